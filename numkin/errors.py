@@ -1,0 +1,69 @@
+"""Exceptions raised by numkin.
+
+Every error names what is wrong and where: the parameter, the loop, the input
+angle. Nothing that failed is ever returned as if it were valid.
+"""
+
+from __future__ import annotations
+
+__all__ = ["NumkinError", "AssemblyError", "ConvergenceError", "BranchError"]
+
+
+class NumkinError(Exception):
+    """Base class of the errors numkin raises on purpose."""
+
+
+class AssemblyError(NumkinError, ValueError):
+    """The linkage cannot be assembled at a requested input.
+
+    Raised before or at the first Newton solve of a sweep. For ready-made
+    four-bars the message names the Grashof class and the reachable input
+    range.
+    """
+
+
+class ConvergenceError(NumkinError, RuntimeError):
+    """Newton-Raphson did not converge at a point of a sweep.
+
+    Attributes
+    ----------
+    input_value : float
+        Input (driver) value where it failed, rad for angular inputs.
+    loop : str
+        Name of the loop whose residual is largest.
+    residual : float
+        Scaled residual norm at the last iterate.
+    iterations : int
+        Iterations spent.
+    """
+
+    def __init__(self, message, *, input_value=None, loop=None, residual=None, iterations=None):
+        super().__init__(message)
+        self.input_value = input_value
+        self.loop = loop
+        self.residual = residual
+        self.iterations = iterations
+
+
+class BranchError(NumkinError):
+    """A sweep reached a singular position it cannot cross on one branch.
+
+    ``kind`` is ``"toggle"`` (a limit position: the input cannot be driven
+    further), ``"change point"`` (the Jacobian changes sign: the branches meet
+    and the choice is ambiguous) or ``"singular"`` (the Jacobian is singular
+    at the requested point itself).
+
+    Attributes
+    ----------
+    kind : str
+    input_value : float
+        Input value (rad) where it happens.
+    loop : str
+        Name of the loop concerned.
+    """
+
+    def __init__(self, message, *, kind, input_value=None, loop=None):
+        super().__init__(message)
+        self.kind = kind
+        self.input_value = input_value
+        self.loop = loop

@@ -1,0 +1,119 @@
+"""Loops: the closure equations of a linkage, in their unknowns.
+
+A loop is a closed chain of vectors whose sum is zero. Written as (length,
+angle) pairs, ``sum_k L_k exp(i A_k) = 0`` gives two scalar equations, its
+real and imaginary parts. Either member of a pair may be an unknown symbol, a
+known value, a parameter or an expression of the input. A loop may also be
+given directly as sympy residual expressions.
+"""
+
+from __future__ import annotations
+
+from typing import Iterable, Sequence
+
+import sympy as sp
+
+__all__ = ["Loop", "as_symbol"]
+
+
+def as_symbol(name) -> sp.Symbol:
+    """A sympy symbol from a symbol or its name (real-valued)."""
+    if isinstance(name, sp.Symbol):
+        return name
+    if isinstance(name, str) and name.isidentifier():
+        return sp.Symbol(name, real=True)
+    raise ValueError(f"{name!r} is not a symbol name (use an identifier such as 'theta3')")
+
+
+def _angle_unknowns(residuals, unknowns) -> set:
+    """Unknowns that appear inside a trigonometric function: those are angles (rad)."""
+    found = set()
+    for expr in residuals:
+        for fn in expr.atoms(sp.sin, sp.cos, sp.tan, sp.exp):
+            found |= fn.free_symbols & set(unknowns)
+    return found
+
+
+class Loop:
+    """Closure equations of one loop in its own unknowns.
+
+    Parameters
+    ----------
+    residuals : sequence of sympy expressions
+        Residuals that vanish when the loop is closed. Their unit is a length.
+    unknowns : sequence of sympy symbols or names
+        The unknowns this loop solves for; as many as residuals. A later loop
+        of a :class:`~numkin.Mechanism` may use the unknowns of earlier ones
+        as known values.
+    name : str, optional
+        Used in error messages ("loop 'O2-A-B-O4' did not converge ...").
+    angles : sequence, optional
+        Which unknowns are angles (rad). Default: those that appear inside a
+        trigonometric function; the others are lengths.
+
+    Examples
+    --------
+    A four-bar written as vectors, crank angle ``theta2`` as input:
+
+    >>> import sympy as sp
+    >>> t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    >>> loop = Loop.from_vectors([(1, t2), (3, t3), (-3, t4), (-4, 0)], [t3, t4], name="O2ABO4")
+    >>> loop.residuals[0]
+    cos(theta2) + 3*cos(theta3) - 3*cos(theta4) - 4
+    >>> sorted(str(a) for a in loop.angles)
+    ['theta3', 'theta4']
+    """
+
+    def __init__(self, residuals: Sequence, unknowns: Sequence, *, name: str | None = None, angles=None):
+        self.residuals = [sp.sympify(r) for r in residuals]
+        self.unknowns = [as_symbol(u) for u in unknowns]
+        self.name = name or "-".join(str(u) for u in self.unknowns)
+        if not self.unknowns:
+            raise ValueError(f"loop '{self.name}' has no unknowns")
+        if len(set(self.unknowns)) != len(self.unknowns):
+            raise ValueError(f"loop '{self.name}' lists an unknown twice: {self.unknowns}")
+        if len(self.residuals) != len(self.unknowns):
+            raise ValueError(
+                f"loop '{self.name}' has {len(self.residuals)} equations for "
+                f"{len(self.unknowns)} unknowns; it must have as many of each"
+            )
+        free = set().union(*(r.free_symbols for r in self.residuals))
+        missing = [str(u) for u in self.unknowns if u not in free]
+        if missing:
+            raise ValueError(f"loop '{self.name}': unknown(s) {', '.join(missing)} appear in no equation")
+        if angles is None:
+            self.angles = _angle_unknowns(self.residuals, self.unknowns)
+        else:
+            self.angles = {as_symbol(a) for a in angles}
+            stray = self.angles - set(self.unknowns)
+            if stray:
+                raise ValueError(f"loop '{self.name}': angles {sorted(map(str, stray))} are not unknowns of it")
+        self.length_symbols: set = set()
+
+    @classmethod
+    def from_vectors(cls, vectors: Iterable, unknowns: Sequence, *, name: str | None = None) -> "Loop":
+        """A loop from vectors ``(length, angle)`` that sum to zero.
+
+        A vector subtracted in the loop equation is written with a minus sign
+        on its length (``(-r4, theta4)``) or pi added to its angle. Angles in
+        rad, measured counter-clockwise from +x.
+        """
+        pairs = []
+        for k, v in enumerate(vectors):
+            try:
+                length, angle = v
+            except (TypeError, ValueError):
+                raise ValueError(f"vector {k} of loop '{name}' must be a (length, angle) pair, got {v!r}") from None
+            pairs.append((sp.sympify(length), sp.sympify(angle)))
+        if len(pairs) < 2:
+            raise ValueError(f"loop '{name}' needs at least two vectors")
+        re = sum(length * sp.cos(angle) for length, angle in pairs)
+        im = sum(length * sp.sin(angle) for length, angle in pairs)
+        unknown_syms = [as_symbol(u) for u in unknowns]
+        angle_syms = set().union(*(a.free_symbols for _, a in pairs)) & set(unknown_syms)
+        loop = cls([re, im], unknown_syms, name=name, angles=angle_syms)
+        loop.length_symbols = set().union(*(length.free_symbols for length, _ in pairs)) - set(unknown_syms)
+        return loop
+
+    def __repr__(self) -> str:
+        return f"Loop({self.name!r}, unknowns={[str(u) for u in self.unknowns]})"

@@ -1,0 +1,365 @@
+"""Mechanism: an input (driver) symbol and an ordered list of loops.
+
+On construction the loops are checked (every symbol is an unknown, a
+parameter, the input or an unknown of an earlier loop), stacked, and their
+residuals, Jacobian and input derivative compiled once
+(:class:`~numkin.compiled.CompiledMechanism`).
+"""
+
+from __future__ import annotations
+
+import math
+from functools import cached_property
+from typing import Callable, Mapping, Sequence
+
+import numpy as np
+import sympy as sp
+
+from .compiled import CompiledMechanism
+from .errors import AssemblyError
+from .loops import Loop, as_symbol
+from .newton import JACOBIANS, NewtonResult, iterate, scaled_cond
+
+__all__ = ["Mechanism"]
+
+
+class Mechanism:
+    """A planar linkage as loop-closure equations in one input.
+
+    Parameters
+    ----------
+    loops : sequence of Loop
+        In solving order; a later loop may use the unknowns of earlier ones.
+    input : sympy symbol or str
+        The driver, usually the crank angle (rad).
+    parameters : mapping, optional
+        Values of the known dimensions that appear as symbols in the loops.
+    name : str, optional
+    guess : mapping, sequence or callable, optional
+        Default starting guess: values of the unknowns at the input
+        ``guess_input`` (a mapping name -> value, a sequence in unknown order,
+        or a callable ``guess(input) -> mapping`` valid at any input).
+    guess_input : float, optional
+        The input value (rad) at which a fixed ``guess`` holds. A sweep that
+        starts elsewhere first continues from there, so that it starts on the
+        guessed branch.
+    points : mapping, optional
+        Named points ``name -> (x, y)`` as expressions of the unknowns, the
+        input and the parameters (for drawing and point kinematics).
+    links : sequence of sequences, optional
+        Rigid links as sequences of point names (drawn as polylines).
+    ground : sequence, optional
+        Names of the fixed pivots (drawn as ground symbols).
+    length_unit : str
+        Unit of the lengths (labels only; no conversion), default ``"mm"``.
+    length_scale : float, optional
+        Characteristic length for the stopping rule; default the largest
+        parameter that appears as a vector length.
+    assembly_check : callable, optional
+        ``assembly_check(inputs) -> str | None`` returns why some of the
+        requested inputs cannot be assembled (or None); used by the
+        ready-made linkages to name the Grashof class and reachable range.
+
+    Examples
+    --------
+    >>> import numpy as np, sympy as sp
+    >>> t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    >>> a, b, c, d = sp.symbols("a b c d", positive=True)
+    >>> loop = Loop.from_vectors([(b, t2), (c, t3), (-d, t4), (-a, 0)], [t3, t4])
+    >>> m = Mechanism([loop], t2, {a: 4, b: 1, c: 3, d: 3}, guess={"theta3": 0.5, "theta4": 1.5})
+    >>> sweep = m.sweep(np.radians([0.0, 1.0, 2.0]))
+    >>> np.round(np.degrees(sweep["theta4"]), 4)
+    array([120.    , 119.6689, 119.3426])
+    """
+
+    def __init__(
+        self,
+        loops: Sequence[Loop],
+        input,
+        parameters: Mapping | None = None,
+        *,
+        name: str = "mechanism",
+        guess=None,
+        guess_input: float | None = None,
+        points: Mapping | None = None,
+        links: Sequence | None = None,
+        ground: Sequence | None = None,
+        length_unit: str = "mm",
+        length_scale: float | None = None,
+        assembly_check: Callable | None = None,
+    ):
+        if isinstance(loops, Loop):
+            loops = [loops]
+        self.loops = list(loops)
+        if not self.loops or not all(isinstance(lp, Loop) for lp in self.loops):
+            raise ValueError("`loops` must be a non-empty sequence of numkin.Loop")
+        self.name = name
+        self.input_symbol = as_symbol(input)
+        self.parameters = {}
+        for key, value in (parameters or {}).items():
+            sym = as_symbol(key)
+            try:
+                value = float(value)
+            except (TypeError, ValueError):
+                raise ValueError(f"parameter {sym} = {value!r} is not a number") from None
+            if not math.isfinite(value):
+                raise ValueError(f"parameter {sym} = {value} is not finite")
+            self.parameters[sym] = value
+        self._check_symbols()
+        self.unknown_symbols = [u for lp in self.loops for u in lp.unknowns]
+        self.unknowns = tuple(str(u) for u in self.unknown_symbols)
+        self.angles = tuple(str(u) for lp in self.loops for u in lp.unknowns if u in lp.angles)
+        self.loop_slices = []
+        start = 0
+        for lp in self.loops:
+            self.loop_slices.append(slice(start, start + len(lp.unknowns)))
+            start += len(lp.unknowns)
+        self.length_unit = length_unit
+        self.length_scale = float(length_scale) if length_scale is not None else self._default_length_scale()
+        if not (math.isfinite(self.length_scale) and self.length_scale > 0):
+            raise ValueError(f"length_scale must be a positive number, got {self.length_scale}")
+        self.xscale = np.array([1.0 if u in self.angles else self.length_scale for u in self.unknowns])
+        self.points = {k: tuple(sp.sympify(c) for c in v) for k, v in (points or {}).items()}
+        self.links = [tuple(link) for link in (links or [])]
+        self.ground = tuple(ground or ())
+        unknown_points = {p for link in self.links for p in link} | set(self.ground)
+        missing = sorted(unknown_points - set(self.points))
+        if missing:
+            raise ValueError(f"links or ground name undefined point(s) {missing}")
+        self.assembly_check = assembly_check
+        self._guess = guess
+        self.guess_input = guess_input
+        self.compiled = CompiledMechanism(
+            [r for lp in self.loops for r in lp.residuals],
+            self.unknown_symbols,
+            self.input_symbol,
+            list(self.parameters),
+        )
+        self.parameter_values = np.array(list(self.parameters.values()), dtype=float)
+
+    # ------------------------------------------------------------------ checks
+    def _check_symbols(self):
+        known = {self.input_symbol} | set(self.parameters)
+        for lp in self.loops:
+            clash = set(lp.unknowns) & known
+            if clash:
+                raise ValueError(
+                    f"loop '{lp.name}': {sorted(map(str, clash))} already known "
+                    "(the input, a parameter or an unknown of an earlier loop)"
+                )
+            free = set().union(*(r.free_symbols for r in lp.residuals))
+            stray = free - known - set(lp.unknowns)
+            if stray:
+                raise ValueError(
+                    f"loop '{lp.name}' uses symbol(s) {', '.join(sorted(map(str, stray)))} that are neither "
+                    "its unknowns, earlier unknowns, the input nor a parameter with a value"
+                )
+            known |= set(lp.unknowns)
+
+    def _default_length_scale(self) -> float:
+        lengths = set().union(*(lp.length_symbols for lp in self.loops))
+        values = [abs(v) for s, v in self.parameters.items() if s in lengths]
+        if not values:
+            values = [abs(v) for v in self.parameters.values()]
+        return max(values) if values and max(values) > 0 else 1.0
+
+    # --------------------------------------------------------------- numerics
+    def residual_function(self, inputs):
+        """``F(x, idx)`` for the Newton batch: residuals at the inputs ``inputs[idx]``."""
+        t = np.asarray(inputs)
+        p = self.parameter_values
+
+        def F(x, idx=slice(None)):
+            return self.compiled.F(x, t[idx], p)
+
+        return F
+
+    def jacobian_function(self, inputs, jacobian="symbolic"):
+        """``J(x, idx)`` for the Newton batch, or the name of a finite-difference rule."""
+        if jacobian not in JACOBIANS:
+            raise ValueError(f"jacobian must be one of {JACOBIANS}, got {jacobian!r}")
+        if jacobian != "symbolic":
+            return jacobian
+        t = np.asarray(inputs)
+        p = self.parameter_values
+
+        def J(x, idx=slice(None)):
+            return self.compiled.J(x, t[idx], p)
+
+        return J
+
+    def loop_residuals(self, x, inputs) -> dict:
+        """Scaled residual norm of every loop, name -> (N,) array."""
+        f = self.compiled.F(x, np.asarray(inputs), self.parameter_values)
+        return {lp.name: np.max(np.abs(f[s]), axis=0) / self.length_scale for lp, s in zip(self.loops, self.loop_slices)}
+
+    def loop_conditions(self, x, inputs) -> dict:
+        """Condition number of every loop's own Jacobian block, name -> (N,) array."""
+        jac = self.compiled.J(x, np.asarray(inputs), self.parameter_values)
+        out = {}
+        for lp, s in zip(self.loops, self.loop_slices):
+            out[lp.name] = scaled_cond(jac[:, s, s], self.length_scale, self.xscale[s])
+        return out
+
+    def loop_orientations(self, x, inputs) -> np.ndarray:
+        """Sign of the determinant of every loop's Jacobian block, shape (loops, N).
+
+        It is constant along a branch and changes only through a singular
+        (toggle or change-point) position.
+        """
+        jac = self.compiled.J(x, np.asarray(inputs), self.parameter_values)
+        return np.array([np.sign(np.linalg.det(jac[:, s, s])) for s in self.loop_slices])
+
+    def guess_vector(self, guess, at: float) -> np.ndarray:
+        """The guess as a vector in unknown order; ``guess`` may be a mapping, sequence or callable."""
+        if guess is None:
+            raise ValueError(
+                f"{self.name}: no guess given and the mechanism has no default; pass guess= "
+                f"with values for {list(self.unknowns)}"
+            )
+        if callable(guess):
+            guess = guess(at)
+        if isinstance(guess, Mapping):
+            names = {str(k) for k in guess}
+            unknown = sorted(names - set(self.unknowns))
+            if unknown:
+                raise ValueError(f"guess names {unknown}, which are not unknowns of {self.name} {list(self.unknowns)}")
+            absent = [u for u in self.unknowns if u not in names]
+            if absent:
+                raise ValueError(f"guess lacks values for {absent}")
+            values = {str(k): v for k, v in guess.items()}
+            vec = np.array([values[u] for u in self.unknowns], dtype=float)
+        else:
+            vec = np.asarray(guess, dtype=float).reshape(-1)
+            if vec.size != len(self.unknowns):
+                raise ValueError(
+                    f"guess has {vec.size} values but {self.name} has {len(self.unknowns)} unknowns {list(self.unknowns)}"
+                )
+        if not np.all(np.isfinite(vec)):
+            bad = self.unknowns[int(np.flatnonzero(~np.isfinite(vec))[0])]
+            raise ValueError(f"guess for {bad} is not finite")
+        return vec
+
+    @property
+    def default_guess(self):
+        """The documented default guess (mapping, sequence, callable or None)."""
+        return self._guess
+
+    # ---------------------------------------------------------------- solving
+    def solve(self, input_value: float, guess=None, *, jacobian="symbolic", tol=1e-12, maxiter=50) -> NewtonResult:
+        """Solve the position at one input by Newton-Raphson (no continuation).
+
+        Parameters
+        ----------
+        input_value : float
+            Input (rad for an angle).
+        guess : mapping, sequence or callable, optional
+            Defaults to the mechanism's default guess.
+
+        Returns
+        -------
+        NewtonResult
+            ``x`` in unknown order (``self.unknowns``).
+        """
+        t = np.array([float(input_value)])
+        x0 = self.guess_vector(self._guess if guess is None else guess, float(input_value))
+        F = self.residual_function(t)
+        J = self.jacobian_function(t, jacobian)
+        out = iterate(F, J, x0[:, None], fscale=self.length_scale, xscale=self.xscale, tol=tol, maxiter=maxiter)
+        x = out.x[:, 0]
+        cond = float(scaled_cond(self.compiled.J(out.x, t, self.parameter_values), self.length_scale, self.xscale)[0])
+        if out.converged[0]:
+            msg = f"converged in {out.iterations[0]} iterations"
+        elif out.singular[0]:
+            msg = f"singular Jacobian (condition number {cond:.3g}): not divided through"
+        else:
+            worst = max(self.loop_residuals(out.x, t).items(), key=lambda kv: np.nan_to_num(kv[1][0], nan=np.inf))
+            msg = f"did not converge: loop '{worst[0]}' residual {worst[1][0]:.3g} after {out.iterations[0]} iterations"
+        return NewtonResult(
+            x=x,
+            converged=bool(out.converged[0]),
+            iterations=int(out.iterations[0]),
+            residual_norms=np.array([h[0] for h in out.residual_history])[: out.iterations[0] + 1],
+            step_norms=np.array([s[0] for s in out.step_history if np.isfinite(s[0])]),
+            cond=cond,
+            message=msg,
+            residual=out.f[:, 0],
+        )
+
+    def sweep(
+        self,
+        inputs,
+        guess=None,
+        *,
+        jacobian: str = "symbolic",
+        tol: float = 1e-12,
+        maxiter: int = 50,
+        max_step: float = math.radians(10.0),
+        on_singular: str = "raise",
+        progress: bool = False,
+    ):
+        """Solve the position over a sweep of the input, by continuation.
+
+        Parameters
+        ----------
+        inputs : array_like
+            Strictly monotonic input values (rad for an angle).
+        guess : mapping, sequence or callable, optional
+            Starting guess at ``inputs[0]`` (or at ``guess_input`` for the
+            mechanism's default guess). Picks the assembly branch.
+        jacobian : {"symbolic", "forward", "central"}
+            How Newton's Jacobian is computed.
+        tol : float
+            Relative tolerance of the stopping rule (see :mod:`numkin.newton`).
+        maxiter : int
+            Newton iterations allowed at the starting point.
+        max_step : float
+            Largest input step (rad) of the sequential continuation; finer
+            grids are then filled in batches.
+        on_singular : {"raise", "report"}
+            What to do at a toggle or change point: raise
+            :class:`~numkin.BranchError`, or record it in ``Sweep.events``,
+            warn, and go on along the smooth continuation.
+
+        Returns
+        -------
+        Sweep
+        """
+        from .sweep import run_sweep
+
+        return run_sweep(
+            self,
+            inputs,
+            guess,
+            jacobian=jacobian,
+            tol=tol,
+            maxiter=maxiter,
+            max_step=max_step,
+            on_singular=on_singular,
+        )
+
+    # ----------------------------------------------------------------- points
+    @cached_property
+    def point_function(self):
+        """Compiled coordinates of all named points: ``f(q, t) -> (2 * points, N)``."""
+        exprs = [c for xy in self.points.values() for c in xy]
+        return self.compiled.point_function(exprs) if exprs else None
+
+    def point_coordinates(self, x, inputs) -> dict:
+        """Coordinates of the named points, name -> (2, N) array."""
+        if not self.points:
+            return {}
+        t = np.asarray(inputs)
+        xy = self.point_function(*x, t, *self.parameter_values)
+        return {name: xy[2 * k : 2 * k + 2] for k, name in enumerate(self.points)}
+
+    def check_assembly(self, inputs) -> None:
+        """Raise :class:`AssemblyError` if the linkage cannot be assembled at some input."""
+        if self.assembly_check is None:
+            return
+        reason = self.assembly_check(np.asarray(inputs, dtype=float))
+        if reason:
+            raise AssemblyError(f"{self.name}: {reason}")
+
+    def __repr__(self) -> str:
+        return f"Mechanism({self.name!r}, input={self.input_symbol}, unknowns={list(self.unknowns)}, loops={[lp.name for lp in self.loops]})"

@@ -1,0 +1,400 @@
+"""Multivariable Newton-Raphson with a symbolic or finite-difference Jacobian.
+
+The iteration is written once, for a *batch* of independent systems (one per
+input angle of a sweep), and :func:`newton` is that iteration applied to a
+batch of one. Each step solves ``J(x) dx = -F(x)``; a Jacobian whose
+condition number exceeds ``cond_max`` is reported as singular and never
+divided through.
+
+Stopping rule
+-------------
+A system has converged when, after a step,
+
+* the scaled residual ``max|F| / fscale`` is at most ``tol`` **and**
+* the scaled step ``max|dx / xscale|`` that led there is at most
+  ``sqrt(tol)`` (Newton converges quadratically, so the error left after
+  that step is of order ``step**2 <= tol``), or has stopped shrinking (it is
+  at the round-off floor ``~eps * cond(J)``).
+
+``fscale`` is the mechanism's characteristic length (residuals of vector
+loops are lengths); ``xscale`` is 1 rad for angles and the characteristic
+length for lengths. Both tests are relative, so a linkage scaled by 1e-6 or
+1e3 converges in the same iterations to the same relative accuracy.
+
+Finite-difference Jacobian step rule
+------------------------------------
+Column ``j`` is differenced with ``h_j = c * max(|x_j|, xscale_j)`` where
+``c = sqrt(eps) ~ 1.5e-8`` for ``"forward"`` and ``c = eps**(1/3) ~ 6.1e-6``
+for ``"central"``; ``h_j`` is then rounded so that ``x_j + h_j`` is exactly
+representable.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Sequence
+
+import numpy as np
+
+__all__ = ["newton", "NewtonResult", "JACOBIANS"]
+
+EPS = np.finfo(float).eps
+#: Jacobian choices accepted by :func:`newton` and :meth:`Mechanism.sweep`.
+JACOBIANS = ("symbolic", "forward", "central")
+_FD_STEP = {"forward": np.sqrt(EPS), "central": EPS ** (1.0 / 3.0)}
+
+
+@dataclass(frozen=True, repr=False)
+class NewtonResult:
+    """Outcome of one Newton-Raphson solve (fields as in scipy's ``OptimizeResult``).
+
+    Attributes
+    ----------
+    x : ndarray
+        Last iterate (the solution when ``converged``).
+    converged : bool
+        Whether the stopping rule was met.
+    iterations : int
+        Newton steps taken.
+    residual_norms : ndarray
+        Scaled residual norm at the start and after every step
+        (``iterations + 1`` values).
+    step_norms : ndarray
+        Scaled step norm of every step (``iterations`` values).
+    cond : float
+        Condition number of the (scaled) Jacobian at the last iterate.
+    message : str
+        What happened, in words.
+    residual : ndarray
+        Residual vector at ``x``.
+    """
+
+    x: np.ndarray
+    converged: bool
+    iterations: int
+    residual_norms: np.ndarray
+    step_norms: np.ndarray
+    cond: float
+    message: str
+    residual: np.ndarray = field(default_factory=lambda: np.empty(0))
+
+    def __repr__(self) -> str:
+        return (
+            f"NewtonResult(converged={self.converged}, iterations={self.iterations}, "
+            f"x={np.array2string(np.asarray(self.x), precision=10)}, "
+            f"residual={self.residual_norms[-1]:.3g}, cond={self.cond:.3g}, "
+            f"message={self.message!r})"
+        )
+
+    def convergence_order(self) -> np.ndarray:
+        """Estimated order ``p_k = log(s_{k+1}/s_k) / log(s_k/s_{k-1})`` from the step norms.
+
+        Values near 2 show quadratic convergence; steps at the round-off
+        floor (below ``1e-14``) are left out.
+        """
+        s = np.asarray(self.step_norms, dtype=float)
+        s = s[s > 1e-14]
+        if s.size < 3:
+            return np.empty(0)
+        return np.log(s[2:] / s[1:-1]) / np.log(s[1:-1] / s[:-2])
+
+
+@dataclass
+class BatchResult:
+    """Newton on a batch of systems: every field has one entry per system."""
+
+    x: np.ndarray  # (n, N)
+    converged: np.ndarray  # (N,)
+    singular: np.ndarray  # (N,)
+    iterations: np.ndarray  # (N,)
+    residual: np.ndarray  # (N,) scaled max-norm
+    residual_history: list  # of (N,) arrays
+    step_history: list  # of (N,) arrays
+    f: np.ndarray  # (n, N) residual vectors
+
+
+def fd_jacobian(F, x, f0, method, xscale):
+    """Finite-difference Jacobian of ``F`` at a batch ``x`` of shape (n, N) -> (N, n, n)."""
+    n, N = x.shape
+    c = _FD_STEP[method]
+    jac = np.empty((N, f0.shape[0], n), dtype=np.result_type(x, f0))
+    for j in range(n):
+        h = c * np.maximum(np.abs(x[j]), xscale[j])
+        xp = x.copy()
+        xp[j] = x[j] + h
+        h = xp[j] - x[j]
+        if method == "forward":
+            col = (F(xp) - f0) / h
+        else:
+            xm = x.copy()
+            xm[j] = x[j] - h
+            col = (F(xp) - F(xm)) / (2.0 * h)
+        jac[:, :, j] = col.T
+    return jac
+
+
+def scaled_cond(jac, fscale, xscale):
+    """2-norm condition numbers of a batch of Jacobians, rows / fscale and columns * xscale."""
+    js = jac * (xscale[None, None, :] / np.asarray(fscale).reshape(-1, 1, 1))
+    if not np.all(np.isfinite(js)):
+        out = np.full(js.shape[0], np.inf)
+        ok = np.all(np.isfinite(js), axis=(1, 2))
+        if ok.any():
+            out[ok] = np.linalg.cond(js[ok])
+        return out
+    return np.linalg.cond(js)
+
+
+def _solve(jac, rhs, fscale, xscale, cond_max):
+    """Solve a batch ``jac @ dx = rhs``; systems that are (near) singular get NaN and a flag."""
+    try:
+        dx = np.linalg.solve(jac, rhs[..., None])[..., 0]
+        bad = ~np.all(np.isfinite(dx), axis=1)
+    except np.linalg.LinAlgError:
+        dx = np.full(rhs.shape, np.nan, dtype=np.result_type(jac, rhs))
+        bad = np.ones(rhs.shape[0], dtype=bool)
+    # Only a condition number tells "solvable" from "solved through a singular matrix".
+    cond = scaled_cond(jac, fscale, xscale) if cond_max is not None else None
+    if cond is not None:
+        bad |= ~(cond <= cond_max)
+    if bad.any():
+        for k in np.flatnonzero(bad):
+            if cond is not None and cond[k] <= cond_max:
+                dx[k] = np.linalg.solve(jac[k], rhs[k])
+                bad[k] = False
+            else:
+                dx[k] = np.nan
+    return dx, bad
+
+
+def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=1e12, check_cond=True):
+    """Newton-Raphson on a batch of independent systems.
+
+    Parameters
+    ----------
+    F : callable
+        ``F(x, idx)`` returns residuals of shape (n, M) for ``x`` of shape
+        (n, M), the columns ``idx`` (an index array) of the batch: a
+        mechanism uses ``idx`` to pick the matching input angles.
+    J : callable or str
+        ``J(x, idx)`` returns Jacobians of shape (M, n, n), or ``"forward"`` /
+        ``"central"`` for finite differences of ``F``.
+    x0 : ndarray, shape (n, N)
+        Starting points.
+    fscale : float or ndarray (N,)
+        Residual scale (a length).
+    xscale : ndarray (n,)
+        Unknown scales (1 for angles, a length for lengths).
+    check_cond : bool
+        Compute condition numbers at every step to refuse near-singular
+        solves (``cond > cond_max``). With ``False`` only an exactly singular
+        or non-finite solve is refused.
+
+    Returns
+    -------
+    BatchResult
+    """
+    x = np.array(x0, copy=True)
+    n, N = x.shape
+    xscale = np.asarray(xscale, dtype=float)
+    fscale_arr = np.broadcast_to(np.asarray(fscale, dtype=float), (N,))
+    f = F(x, np.arange(N))
+    res = np.max(np.abs(f), axis=0) / fscale_arr
+    converged = np.zeros(N, dtype=bool)
+    singular = np.zeros(N, dtype=bool)
+    iterations = np.zeros(N, dtype=int)
+    active = np.isfinite(res)
+    res_hist = [res.copy()]
+    step_hist = []
+    step_tol = np.sqrt(tol)
+    prev_step = np.full(N, np.inf)
+    for _ in range(maxiter):
+        if not active.any():
+            break
+        idx = np.flatnonzero(active)
+        xa = x[:, idx]
+        fa = f[:, idx]
+        if isinstance(J, str):
+            ja = fd_jacobian(lambda z: F(z, idx), xa, fa, J, xscale)
+        else:
+            ja = J(xa, idx)
+        dx, bad = _solve(ja, -fa.T, fscale_arr[idx], xscale, cond_max if check_cond else None)
+        singular[idx[bad]] = True
+        good = idx[~bad]
+        step = np.full(N, np.nan)
+        if good.size:
+            x[:, good] += dx[~bad].T
+            iterations[good] += 1
+            step[good] = np.max(np.abs(dx[~bad].T / xscale[:, None]), axis=0)
+            f_new = F(x[:, good], good)
+            f[:, good] = f_new
+            res[good] = np.max(np.abs(f_new), axis=0) / fscale_arr[good]
+        step_hist.append(step)
+        res_hist.append(res.copy())
+        small_res = res <= tol
+        stalled = step >= 0.5 * prev_step
+        done = small_res & ((step <= step_tol) | stalled)
+        converged |= done & active
+        diverged = ~np.isfinite(res) | ~np.all(np.isfinite(x), axis=0)
+        active &= ~(converged | singular | diverged)
+        prev_step = np.where(np.isnan(step), prev_step, step)
+    return BatchResult(x, converged, singular, iterations, res, res_hist, step_hist, f)
+
+
+def _sympy_system(exprs, unknowns):
+    """Compile a sympy system once: residual and symbolic Jacobian functions of x."""
+    import sympy as sp
+
+    from .compiled import vector_function
+
+    exprs = list(exprs)
+    syms = [sp.Symbol(u) if isinstance(u, str) else u for u in unknowns]
+    extra = set().union(*(sp.sympify(e).free_symbols for e in exprs)) - set(syms)
+    if extra:
+        names = ", ".join(sorted(str(s) for s in extra))
+        raise ValueError(
+            f"unknown symbol(s) {names} in the residuals: substitute a value (expr.subs) "
+            "or list them in `unknowns`"
+        )
+    if len(exprs) != len(syms):
+        raise ValueError(f"{len(exprs)} residuals for {len(syms)} unknowns: the system must be square")
+    jac = sp.Matrix(exprs).jacobian(syms)
+    f = vector_function(exprs, syms)
+    j = vector_function(list(jac), syms)
+    n = len(syms)
+
+    def F(x, idx=None):
+        return f(*x)
+
+    def J(x, idx=None):
+        return np.moveaxis(j(*x).reshape(n, n, -1), -1, 0)
+
+    return F, J
+
+
+def newton(
+    fun,
+    x0,
+    *,
+    unknowns: Sequence | None = None,
+    jacobian: str | Callable = None,
+    args: tuple = (),
+    tol: float = 1e-12,
+    maxiter: int = 50,
+    fscale: float = 1.0,
+    xscale=1.0,
+    cond_max: float = 1e12,
+) -> NewtonResult:
+    """Solve ``F(x) = 0`` by multivariable Newton-Raphson.
+
+    Parameters
+    ----------
+    fun : callable or sequence of sympy expressions
+        ``fun(x, *args)`` returning the residual vector, or the residual
+        expressions themselves (then ``unknowns`` names their symbols).
+    x0 : array_like, shape (n,)
+        Starting guess.
+    unknowns : sequence of sympy symbols or str, optional
+        Required when ``fun`` is symbolic; gives the order of ``x``.
+    jacobian : {"symbolic", "forward", "central"} or callable, optional
+        ``"symbolic"`` (default for sympy systems) differentiates with sympy
+        and lambdifies once; ``"forward"``/``"central"`` (default
+        ``"central"`` for callables) use finite differences with the step rule
+        of this module; a callable ``jac(x, *args)`` returns the (n, n) matrix.
+    tol : float
+        Relative tolerance of the stopping rule (module docstring).
+    maxiter : int
+        Maximum number of Newton steps.
+    fscale, xscale : float or array_like
+        Residual and unknown scales of the stopping rule.
+    cond_max : float
+        Jacobians with a larger (scaled) condition number are refused as singular.
+
+    Returns
+    -------
+    NewtonResult
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> x, y = sp.symbols("x y")
+    >>> res = newton([x**2 + y**2 - 4, x - y], [1.0, 0.5], unknowns=[x, y])
+    >>> res.converged, round(float(res.x[0]), 12)
+    (True, 1.414213562373)
+    >>> import numpy as np
+    >>> res = newton(lambda v: np.array([np.cos(v[0]) - v[0]]), [1.0], jacobian="forward")
+    >>> round(float(res.x[0]), 10)
+    0.7390851332
+    """
+    x0 = np.atleast_1d(np.asarray(x0, dtype=float if not np.iscomplexobj(x0) else complex))
+    if x0.ndim != 1:
+        raise ValueError(f"x0 must be a 1-D guess, got shape {x0.shape}")
+    if not np.all(np.isfinite(x0)):
+        raise ValueError(f"x0 has a non-finite entry at index {int(np.flatnonzero(~np.isfinite(x0))[0])}")
+    if not (np.isfinite(tol) and tol > 0):
+        raise ValueError(f"tol must be a positive number, got {tol!r}")
+    n = x0.size
+    symbolic = not callable(fun)
+    if symbolic:
+        if unknowns is None:
+            raise ValueError("a symbolic system needs `unknowns` (the symbols solved for)")
+        if len(unknowns) != n:
+            raise ValueError(f"x0 has {n} entries but `unknowns` names {len(unknowns)}")
+        F, Jsym = _sympy_system(fun, unknowns)
+        jacobian = "symbolic" if jacobian is None else jacobian
+    else:
+        jacobian = "central" if jacobian is None else jacobian
+
+        def F(x, idx=None):
+            cols = [np.asarray(fun(x[:, k], *args)).reshape(-1) for k in range(x.shape[1])]
+            return np.stack(cols, axis=1)
+
+    if callable(jacobian):
+        user_jac = jacobian
+
+        def J(x, idx=None):
+            return np.stack([np.asarray(user_jac(x[:, k], *args), dtype=x.dtype) for k in range(x.shape[1])])
+
+    elif jacobian == "symbolic":
+        if not symbolic:
+            raise ValueError(
+                "jacobian='symbolic' needs sympy expressions; pass a callable jacobian or use 'forward'/'central'"
+            )
+        J = Jsym
+    elif jacobian in ("forward", "central"):
+        J = jacobian
+    else:
+        raise ValueError(f"jacobian must be one of {JACOBIANS} or a callable, got {jacobian!r}")
+
+    f0 = F(x0[:, None])
+    if f0.shape[0] != n:
+        raise ValueError(f"the residual has {f0.shape[0]} components for {n} unknowns: the system must be square")
+    xs = np.broadcast_to(np.asarray(xscale, dtype=float), (n,))
+    out = iterate(F, J, x0[:, None], fscale=fscale, xscale=xs, tol=tol, maxiter=maxiter, cond_max=cond_max)
+    x = out.x[:, 0]
+    jac_end = J(out.x) if not isinstance(J, str) else fd_jacobian(F, out.x, out.f, J, xs)
+    cond = float(scaled_cond(jac_end, np.array([fscale]), xs)[0])
+    res_norms = np.array([h[0] for h in out.residual_history])
+    steps = np.array([s[0] for s in out.step_history if np.isfinite(s[0])])
+    res_norms = res_norms[: out.iterations[0] + 1]
+    if out.converged[0]:
+        msg = f"converged in {out.iterations[0]} iterations"
+    elif out.singular[0]:
+        msg = (
+            f"singular Jacobian after {out.iterations[0]} iterations "
+            f"(condition number {cond:.3g} > {cond_max:.3g}): not divided through"
+        )
+    elif not np.isfinite(out.residual[0]):
+        msg = f"diverged after {out.iterations[0]} iterations"
+    else:
+        msg = f"did not converge in {maxiter} iterations (scaled residual {out.residual[0]:.3g})"
+    return NewtonResult(
+        x=x,
+        converged=bool(out.converged[0]),
+        iterations=int(out.iterations[0]),
+        residual_norms=res_norms,
+        step_norms=steps,
+        cond=cond,
+        message=msg,
+        residual=out.f[:, 0],
+    )

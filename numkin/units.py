@@ -1,0 +1,307 @@
+"""Unit parsing for user input.
+
+Angular speeds are returned in rad/s and angular accelerations in rad/s^2;
+lengths are converted with metre-based factors.  The functions are meant
+for values given by a user (a scene file, the command line, a notebook
+cell) at the edge of the program:
+
+>>> from numkin.units import angular_speed, angular_acceleration, convert_length
+>>> angular_speed("6000 rpm")
+628.3185307179587
+>>> angular_acceleration("-2 rad/s^2")
+-2.0
+>>> convert_length(25.4, "mm", "in")
+1.0
+
+A bare number is taken to be in the SI unit already.  Anything that is not
+understood raises :class:`UnitError`, a :class:`ValueError` whose message
+repeats the input and lists the accepted units.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import re
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = [
+    "UnitError",
+    "angular_speed",
+    "angular_acceleration",
+    "length_factor",
+    "convert_length",
+]
+
+_TURN = 2.0 * math.pi
+_DEGREE = math.pi / 180.0
+
+# rad/s per unit (canonical spellings, see _canonical_unit)
+_ANGULAR_SPEED_UNITS: dict[str, float] = {
+    "rad/s": 1.0,
+    "rad/min": 1.0 / 60.0,
+    "rpm": _TURN / 60.0,
+    "rev/min": _TURN / 60.0,
+    "rev/s": _TURN,
+    "rps": _TURN,
+    "deg/s": _DEGREE,
+    "deg/min": _DEGREE / 60.0,
+}
+
+# rad/s^2 per unit
+_ANGULAR_ACCELERATION_UNITS: dict[str, float] = {
+    "rad/s^2": 1.0,
+    "rad/min^2": 1.0 / 3600.0,
+    "rpm/s": _TURN / 60.0,
+    "rev/s^2": _TURN,
+    "deg/s^2": _DEGREE,
+}
+
+# millimetres per unit: exact decimal factors, so that e.g. 25.4 mm is exactly 1 in
+_MILLIMETRES: dict[str, float] = {
+    "m": 1000.0,
+    "mm": 1.0,
+    "cm": 10.0,
+    "km": 1e6,
+    "in": 25.4,
+    "ft": 304.8,
+}
+
+_QUANTITY = re.compile(
+    r"""
+    ^\s*
+    (?P<number>[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)
+    \s*
+    (?P<unit>.*?)
+    \s*$
+    """,
+    re.VERBOSE,
+)
+
+
+class UnitError(ValueError):
+    """A quantity with a missing, unknown or wrong-dimension unit.
+
+    Examples
+    --------
+    >>> from numkin.units import UnitError, angular_speed
+    >>> try:
+    ...     angular_speed("10 mm")
+    ... except UnitError as error:
+    ...     print(error)  # doctest: +ELLIPSIS
+    '10 mm' is a length, not an angular speed; accepted units: rad/s, ...
+    """
+
+
+def _canonical_unit(unit: str) -> str:
+    """Lower-case, unspaced spelling: 'Rad / sec**2' -> 'rad/s^2'."""
+    unit = re.sub(r"\s+", "", unit.lower())
+    unit = unit.replace("**", "^").replace("\N{SUPERSCRIPT TWO}", "^2")
+    unit = unit.replace("\N{DEGREE SIGN}", "deg")
+    unit = re.sub(r"/(sec|second)(?![a-z])", "/s", unit)
+    unit = re.sub(r"/(s|min)2$", r"/\1^2", unit)
+    unit = re.sub(r"^(radian|radians)/", "rad/", unit)
+    unit = re.sub(r"^(degree|degrees)/", "deg/", unit)
+    return unit
+
+
+def _dimension_of(unit: str) -> str | None:
+    canonical = _canonical_unit(unit)
+    if canonical in _ANGULAR_SPEED_UNITS:
+        return "an angular speed"
+    if canonical in _ANGULAR_ACCELERATION_UNITS:
+        return "an angular acceleration"
+    if unit in _MILLIMETRES:
+        return "a length"
+    if re.fullmatch(r"(m|mm|cm|km|in|ft)/s", canonical):
+        return "a linear speed"
+    if re.fullmatch(r"(m|mm|cm|km|in|ft)/s\^2", canonical):
+        return "a linear acceleration"
+    return None
+
+
+def _parse(value: str | float, quantity: str, units: dict[str, float]) -> float:
+    """Convert `value` to the SI unit of `quantity` using the factors in `units`."""
+    if isinstance(value, bool) or not isinstance(value, (str, numbers.Real)):
+        raise TypeError(
+            f"{quantity} must be a number or a string such as '10 rad/s', "
+            f"got {type(value).__name__}"
+        )
+    accepted = f"accepted units: {', '.join(units)}"
+    if isinstance(value, numbers.Real):
+        number = float(value)
+        if not math.isfinite(number):
+            raise UnitError(f"{quantity} must be finite, got {value!r}")
+        return number
+
+    text = value.replace("\N{MINUS SIGN}", "-")
+    match = _QUANTITY.match(text)
+    if match is None:
+        raise UnitError(
+            f"cannot read {value!r} as {quantity}; expected '<number> <unit>', {accepted}"
+        )
+    number = float(match["number"])
+    unit = match["unit"]
+    factor = units.get(_canonical_unit(unit)) if unit else 1.0
+    if factor is not None:
+        converted = number * factor
+        if not math.isfinite(converted):
+            raise UnitError(f"{value!r} overflows as {quantity}")
+        return converted
+    dimension = _dimension_of(unit)
+    if dimension is not None:
+        raise UnitError(f"{value!r} is {dimension}, not {quantity}; {accepted}")
+    raise UnitError(f"unknown unit {unit!r} in {value!r}; {accepted}")
+
+
+def angular_speed(value: str | float) -> float:
+    """Angular speed in rad/s.
+
+    Parameters
+    ----------
+    value : float or str
+        A number, taken to be rad/s, or a string ``"<number> <unit>"`` (the
+        space is optional).  Units: rad/s, rad/min, rpm (= rev/min), rev/s
+        (= rps), deg/s, deg/min.  ``sec`` may be written for ``s``, case is
+        ignored, and a string without a unit is taken to be rad/s.
+
+    Returns
+    -------
+    float
+        The speed in rad/s.
+
+    Raises
+    ------
+    UnitError
+        For a malformed string, an unknown unit or a unit of another
+        dimension (``"10 mm"``, ``"5 m/s"``).
+    TypeError
+        If `value` is neither a number nor a string.
+
+    Examples
+    --------
+    >>> from numkin.units import angular_speed
+    >>> angular_speed("450 rad/min")
+    7.5
+    >>> angular_speed("-10rad/s")
+    -10.0
+    >>> round(angular_speed("3 rev/s"), 6)
+    18.849556
+    >>> angular_speed(12)
+    12.0
+    """
+    return _parse(value, "an angular speed", _ANGULAR_SPEED_UNITS)
+
+
+def angular_acceleration(value: str | float) -> float:
+    """Angular acceleration in rad/s^2.
+
+    Parameters
+    ----------
+    value : float or str
+        A number, taken to be rad/s^2, or a string ``"<number> <unit>"``.
+        Units: rad/s^2, rad/min^2, rpm/s, rev/s^2, deg/s^2.  The square may
+        be written ``^2``, ``2``, ``**2`` or ``²``; ``sec`` may be written
+        for ``s``; case is ignored, and a string without a unit is taken to
+        be rad/s^2.
+
+    Returns
+    -------
+    float
+        The acceleration in rad/s^2.
+
+    Raises
+    ------
+    UnitError
+        For a malformed string, an unknown unit or a unit of another
+        dimension (``"10 rad/s"``, ``"9.81 m/s^2"``).
+    TypeError
+        If `value` is neither a number nor a string.
+
+    Examples
+    --------
+    >>> from numkin.units import angular_acceleration
+    >>> angular_acceleration("3600 rad/min^2")
+    1.0
+    >>> angular_acceleration("-4 rad/s**2")
+    -4.0
+    >>> round(angular_acceleration("60 rpm/s"), 6)
+    6.283185
+    """
+    return _parse(value, "an angular acceleration", _ANGULAR_ACCELERATION_UNITS)
+
+
+def length_factor(unit: str) -> float:
+    """Metres per `unit`.
+
+    Parameters
+    ----------
+    unit : str
+        One of ``"m"``, ``"mm"``, ``"cm"``, ``"km"``, ``"in"``, ``"ft"``
+        (case-sensitive; surrounding spaces are ignored).
+
+    Returns
+    -------
+    float
+        Length of one `unit` in metres.
+
+    Raises
+    ------
+    UnitError
+        For any other unit.
+
+    Examples
+    --------
+    >>> from numkin.units import length_factor
+    >>> length_factor("mm")
+    0.001
+    >>> length_factor("in")
+    0.0254
+    """
+    return _millimetres_per(unit) / 1000.0
+
+
+def _millimetres_per(unit: str) -> float:
+    factor = _MILLIMETRES.get(unit.strip()) if isinstance(unit, str) else None
+    if factor is None:
+        raise UnitError(
+            f"unknown length unit {unit!r}; accepted units: {', '.join(_MILLIMETRES)}"
+        )
+    return factor
+
+
+def convert_length(
+    value: float | ArrayLike, from_unit: str, to_unit: str
+) -> float | NDArray[np.float64]:
+    """Convert a length (or an array of lengths) between units.
+
+    Parameters
+    ----------
+    value : float or array_like
+        Length(s) in `from_unit`.
+    from_unit, to_unit : str
+        Units accepted by :func:`length_factor`.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Length(s) in `to_unit`: a float for scalar input, otherwise an array.
+
+    Raises
+    ------
+    UnitError
+        If either unit is unknown.
+
+    Examples
+    --------
+    >>> from numkin.units import convert_length
+    >>> convert_length(2.5, "in", "mm")
+    63.5
+    >>> convert_length([100.0, 250.0], "mm", "m")
+    array([0.1 , 0.25])
+    """
+    from_mm, to_mm = _millimetres_per(from_unit), _millimetres_per(to_unit)
+    converted = np.asarray(value, dtype=float) * from_mm / to_mm
+    return float(converted) if converted.ndim == 0 else converted
