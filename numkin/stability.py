@@ -1,0 +1,328 @@
+"""Stability suite: stiff and extreme cases, each run through the solver and every scheme.
+
+:data:`CASES` names the cases; :func:`run_suite` runs them and summarises
+each in one row of a table: what happened, the largest condition number of
+the Jacobian, the Newton iterations, the error of every finite-difference
+scheme against the analytic solution, and the error or warning raised.
+
+========================================  ==============================================  =============
+case                                      what it probes                                  expected
+========================================  ==============================================  =============
+near toggle (4, 2, 4.0001, 2)             non-Grashof by 1e-4: limits at +-0.405 deg,     ok
+                                          nearly extended at 180 deg; swept 1..359 deg
+nearly aligned, delta = 1e-2, 1e-4, 1e-6  ground 4, crank 1, coupler 3, rocker 2 + delta:  ok
+                                          coupler and rocker almost in line at 180 deg
+change point (5, 2, 5, 2), from 0 deg     parallelogram, singular at the first input      BranchError
+change point (5, 2, 5, 2), through 180    the branches meet: reported, never switched     BranchError
+non-Grashof (7, 4, 3, 5), full turn       driven past its limit                           AssemblyError
+cannot assemble (10, 6, 1, 1)             no input angle works                            AssemblyError
+slider-crank 80/200 at 6000 rpm           accelerations ~4e4 m/s^2                        ok
+homework, homework x 1e-6, x 1e3          relative errors must not change with scale      ok
+homework, 12 and 100 000 points per turn  extreme grids                                   ok
+========================================  ==============================================  =============
+
+Nothing in the suite may produce a silently wrong number: an expected
+error (:class:`~numkin.AssemblyError`, :class:`~numkin.BranchError`) is
+caught and shown as the outcome; a completed sweep is checked (finite
+values, residuals at the tolerance, analytic derivatives equal to the
+complex-step ones) and marked ``WRONG`` if a check fails; the size of the
+finite-difference errors is in the table, next to the grid that caused it.
+
+Examples
+--------
+>>> from numkin import stability
+>>> table = stability.run_suite(["cannot assemble (10, 6, 1, 1)"])
+>>> table[["outcome", "as expected"]].values.tolist()
+[['AssemblyError', True]]
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+from typing import Callable, Iterable
+
+import numpy as np
+
+from . import analytic, kinematics, linkages
+from .derivatives import SCHEMES
+from .errors import AssemblyError, BranchError, ConvergenceError, NumkinError
+from .report import _omega
+from .sweep import Sweep
+
+__all__ = ["Case", "CASES", "run_suite"]
+
+_HOMEWORK = dict(
+    fixed1=7.0, input1=1.94, coupler1=6.86, output1=2.36,
+    fixed2=1.25, input2=2.39, coupler2=1.87, output2=1.26,
+)
+#: Largest relative difference allowed between the analytic and the complex-step dq/dtheta.
+ANALYTIC_CHECK = 1e-6
+
+
+@dataclass(frozen=True)
+class Case:
+    """One case of the stability suite.
+
+    Attributes
+    ----------
+    name : str
+    description : str
+    build : callable
+        ``build() -> Mechanism``.
+    inputs : tuple
+        ``(first_deg, last_deg, count)``: the sweep is
+        ``np.radians(np.linspace(first_deg, last_deg, count))``.
+    quantity : str
+        The unknown whose velocity and acceleration are differenced.
+    omega : float or str
+        Input speed.
+    expect : str
+        ``"ok"``, ``"AssemblyError"`` or ``"BranchError"``.
+    compare_to : str, optional
+        A case whose relative errors this one must reproduce (scale cases).
+    """
+
+    name: str
+    description: str
+    build: Callable
+    inputs: tuple
+    quantity: str
+    omega: object
+    expect: str = "ok"
+    compare_to: str | None = None
+
+    def input_values(self) -> np.ndarray:
+        first, last, count = self.inputs
+        return np.radians(np.linspace(first, last, int(count)))
+
+
+def _homework(scale: float = 1.0):
+    return lambda: linkages.chained_four_bars(**{k: v * scale for k, v in _HOMEWORK.items()})
+
+
+def _cases() -> dict:
+    hw = "450 rad/min"
+    full = (0.0, 360.0, 361)
+    cases = [
+        Case("near toggle (4, 2, 4.0001, 2)",
+             "non-Grashof by 1e-4: limit positions at +-0.405 deg, nearly extended at 180 deg; swept 1..359 deg",
+             lambda: linkages.four_bar(4, 2, 4.0001, 2), (1.0, 359.0, 359), "theta4", 10.0),
+    ]
+    for delta in (1e-2, 1e-4, 1e-6):
+        cases.append(
+            Case(f"nearly aligned, delta = {delta:.0e}",
+                 f"ground 4, crank 1, coupler 3, rocker 2 + {delta:g}: coupler and rocker almost in line at 180 deg",
+                 lambda d=delta: linkages.four_bar(4, 1, 3, 2 + d), full, "theta4", 10.0)
+        )
+    cases += [
+        Case("change point (5, 2, 5, 2), from 0 deg",
+             "parallelogram: all links in line at 0 deg, where the sweep starts",
+             lambda: linkages.four_bar(5, 2, 5, 2), full, "theta4", 10.0, expect="BranchError"),
+        Case("change point (5, 2, 5, 2), through 180 deg",
+             "parallelogram swept 10..350 deg: the branches meet at 180 deg",
+             lambda: linkages.four_bar(5, 2, 5, 2), (10.0, 350.0, 341), "theta4", 10.0, expect="BranchError"),
+        Case("non-Grashof (7, 4, 3, 5), full turn",
+             "a triple rocker driven past its limit", lambda: linkages.four_bar(7, 4, 3, 5), full, "theta4", 10.0,
+             expect="AssemblyError"),
+        Case("cannot assemble (10, 6, 1, 1)", "coupler and rocker too short for any input",
+             lambda: linkages.four_bar(10, 6, 1, 1), full, "theta4", 10.0, expect="AssemblyError"),
+        Case("slider-crank 80/200 at 6000 rpm", "piston accelerations ~4e4 m/s^2 (4e7 mm/s^2)",
+             lambda: linkages.slider_crank(80, 200), full, "x", "6000 rpm"),
+        Case("homework", "chained four-bars of the homework, 1 deg grid", _homework(1.0), full, "beta", hw),
+        Case("homework x 1e-6", "all lengths scaled by 1e-6", _homework(1e-6), full, "beta", hw,
+             compare_to="homework"),
+        Case("homework x 1e3", "all lengths scaled by 1e3", _homework(1e3), full, "beta", hw, compare_to="homework"),
+        Case("homework, 12 points per turn", "30 deg grid", _homework(1.0), (0.0, 360.0, 13), "beta", hw),
+        Case("homework, 100 000 points per turn", "0.0036 deg grid", _homework(1.0), (0.0, 360.0, 100_001),
+             "beta", hw),
+    ]
+    return {c.name: c for c in cases}
+
+
+#: The named cases of the suite, name -> :class:`Case`, in run order.
+CASES: dict = _cases()
+
+
+#: Largest number of points checked against the complex step (evenly spread over the sweep).
+CHECK_POINTS = 3601
+
+
+def _subsweep(sweep, count: int):
+    """The sweep at no more than `count` evenly spread points (same mechanism and branch)."""
+    n = sweep.inputs.size
+    if n <= count:
+        return sweep
+    idx = np.unique(np.linspace(0, n - 1, count).round().astype(int))
+    return Sweep(
+        sweep.mechanism, sweep.inputs[idx], sweep.values[:, idx], sweep.iterations[idx], sweep.residual[idx],
+        sweep.cond[idx], list(sweep.events), sweep.jacobian, sweep.tol,
+    )
+
+
+def _scheme_errors(sweep, j, schemes, dq, d2q) -> dict:
+    """Max error of each scheme over max |exact| (d/dtheta, so independent of omega), NaN if not applicable."""
+    grid = kinematics.sweep_grid(sweep)
+    out = {}
+    for scheme in schemes:
+        if scheme.periodic_only and not grid.periodic:
+            out[scheme.name] = math.nan
+            continue
+        exact = dq[j] if scheme.derivative == 1 else d2q[j]
+        est = kinematics.sweep_derivative(sweep, scheme.name)[j]
+        out[scheme.name] = float(np.max(np.abs(est - exact)) / np.max(np.abs(exact)))
+    return out
+
+
+def _run_case(case: Case, schemes) -> dict:
+    row = {
+        "case": case.name,
+        "expected": case.expect,
+        "outcome": "",
+        "as expected": False,
+        "what happened": "",
+        "points": int(case.inputs[2]),
+        "max cond [-]": math.nan,
+        "Newton iterations (max)": -1,
+        "analytic vs complex step [-]": math.nan,
+    }
+    for scheme in schemes:
+        row[f"{scheme.name} max rel error [-]"] = math.nan
+    row["error or warning raised"] = ""
+    raised = []
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            mech = case.build()
+            j = mech.unknowns.index(case.quantity)
+            sweep = mech.sweep(case.input_values())
+            row["max cond [-]"] = float(np.max(sweep.cond))
+            row["Newton iterations (max)"] = int(np.max(sweep.iterations))
+            dq, d2q = analytic.derivatives(sweep)
+            sub = _subsweep(sweep, CHECK_POINTS)
+            cs = analytic.complex_step(sub)[j]
+            dq_sub = analytic.derivatives(sub)[0][j] if sub is not sweep else dq[j]
+            check = float(np.max(np.abs(cs - dq_sub)) / np.max(np.abs(dq_sub)))
+            row["analytic vs complex step [-]"] = check
+            errors = _scheme_errors(sweep, j, schemes, dq, d2q)
+            for name, err in errors.items():
+                row[f"{name} max rel error [-]"] = err
+            wrong = []
+            if not np.all(np.isfinite(sweep.values)):
+                wrong.append("non-finite positions")
+            if not np.max(sweep.residual) <= 10 * sweep.tol:
+                wrong.append(f"residual {np.max(sweep.residual):.3g} above the tolerance")
+            if not check <= ANALYTIC_CHECK:
+                wrong.append(f"analytic and complex-step derivatives differ by {check:.3g}")
+            w = _omega(case.omega)
+            peak1, peak2 = abs(w) * np.max(np.abs(dq[j])), w * w * np.max(np.abs(d2q[j]))
+            unit = "rad" if case.quantity in mech.angles else mech.length_unit
+            finite = [e for e in errors.values() if np.isfinite(e)]
+            best = min(finite) if finite else math.nan
+            text = (
+                f"solved {sweep.inputs.size} points; peak |d/dt| = {peak1:.4g} {unit}/s, "
+                f"peak |d2/dt2| = {peak2:.4g} {unit}/s^2"
+            )
+            comp, p = mech.compiled, mech.parameter_values
+            f = comp.F(sweep.values, sweep.inputs, p)
+            delta = float(np.max(np.abs(np.linalg.solve(comp.J(sweep.values, sweep.inputs, p), -f.T[..., None])[..., 0][:, j])))
+            text += f"; position error left by the solver (Newton estimate |J^-1 F|) {delta:.2g} {unit}"
+            h = float(np.mean(np.abs(np.diff(sweep.inputs))))
+            floor = 4 * delta / h**2 / max(float(np.max(np.abs(d2q[j]))), 1e-300)
+            if floor > 1e-6:
+                text += f", a floor of 4 delta/h^2 = {floor:.2g} (relative) under the second-derivative schemes"
+            if best > 1e-2:
+                text += f"; the grid does not resolve the motion: every scheme is off by {100 * best:.3g}% or more"
+            if wrong:
+                row["outcome"] = "WRONG: " + "; ".join(wrong)
+            else:
+                row["outcome"] = "ok" if not sweep.events else "ok, with warning"
+            row["what happened"] = text
+        except (AssemblyError, BranchError, ConvergenceError) as exc:
+            kind = type(exc).__name__
+            row["outcome"] = kind
+            if isinstance(exc, BranchError):
+                row["what happened"] = f"stopped: {exc.kind} at input {math.degrees(exc.input_value):.3f} deg"
+            elif isinstance(exc, AssemblyError):
+                row["what happened"] = "refused before solving"
+            else:
+                row["what happened"] = "Newton failed"
+            raised.append(f"{kind}: {exc}")
+        except NumkinError as exc:  # any other deliberate error: shown, never hidden
+            row["outcome"] = type(exc).__name__
+            raised.append(f"{type(exc).__name__}: {exc}")
+        except Exception as exc:  # an unexpected failure is a finding of the suite
+            row["outcome"] = f"unexpected {type(exc).__name__}"
+            raised.append(f"{type(exc).__name__}: {exc}")
+    for w in caught:
+        msg = f"{w.category.__name__}: {w.message}"
+        if msg not in raised:
+            raised.append(msg)
+    row["error or warning raised"] = " | ".join(raised)
+    row["as expected"] = row["outcome"].split(",")[0] == case.expect
+    return row
+
+
+def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | None = None):
+    """Run the stability cases and summarise them in one table.
+
+    Parameters
+    ----------
+    cases : iterable of str, optional
+        Names of :data:`CASES` (default: all, in their order).
+    schemes : iterable of str, optional
+        Finite-difference schemes (default: every scheme of
+        :data:`numkin.derivatives.SCHEMES`; the spectral ones are blank on a
+        grid that is not one full turn).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per case: ``case``, ``expected``, ``outcome`` (``ok``,
+        ``ok, with warning``, the name of the error raised, or ``WRONG: ...``
+        if a completed sweep fails its checks), ``as expected``, ``what
+        happened``, ``points``, ``max cond [-]``, ``Newton iterations
+        (max)`` (-1 if nothing was solved), ``analytic vs complex step [-]``
+        (max relative difference of dq/dtheta, at up to :data:`CHECK_POINTS`
+        points spread evenly over the sweep), ``<scheme> max rel error
+        [-]`` (max error over the sweep divided by the max of the exact
+        derivative) and ``error or warning raised``. Scale cases (with
+        ``compare_to``) say in ``what happened`` how far their relative
+        errors are from those of the case they scale.
+
+    Examples
+    --------
+    >>> t = run_suite(["homework x 1e3"], schemes=["centred"])
+    >>> round(float(t["centred max rel error [-]"].iloc[0]), 6)
+    0.000182
+    """
+    import pandas as pd
+
+    from .derivatives import get_scheme
+
+    names = list(CASES) if cases is None else ([cases] if isinstance(cases, str) else list(cases))
+    unknown = [n for n in names if n not in CASES]
+    if unknown:
+        raise ValueError(f"unknown stability case(s) {unknown}; the cases are {list(CASES)}")
+    scheme_list = list(SCHEMES.values()) if schemes is None else [get_scheme(s) for s in schemes]
+    rows = {}
+    for name in names:
+        case = CASES[name]
+        row = _run_case(case, scheme_list)
+        if case.compare_to is not None:
+            ref = rows.get(case.compare_to) or _run_case(CASES[case.compare_to], scheme_list)
+            cols = [f"{s.name} max rel error [-]" for s in scheme_list]
+            a = np.array([row[c] for c in cols], dtype=float)
+            b = np.array([ref[c] for c in cols], dtype=float)
+            ok = np.isfinite(a) & np.isfinite(b) & (b > 0)
+            if ok.any():
+                change = float(np.max(np.abs(a[ok] / b[ok] - 1)))
+                row["what happened"] += f"; relative errors within {change:.2g} of case '{case.compare_to}'"
+        rows[name] = row
+    df = pd.DataFrame(list(rows.values()))
+    df.attrs["caption"] = (
+        "Stability suite: each case through the solver and every finite-difference scheme; errors of d/dtheta "
+        "relative to the peak exact value; expected errors are outcomes."
+    )
+    return df

@@ -1,0 +1,365 @@
+"""Tests for numkin.report: the numbers in each error-analysis table, against independent references.
+
+References: the homework values of the source document 003 (exact omega_beta
+= 10.6329 rad/s, alpha_beta = -28.3750 rad/s^2 at theta = 100 deg; on the 1 deg
+grid forward 10.5999, centred 10.6330, forward-of-forward -28.1266, second
+difference -28.3765), and the closed form of the slider-crank piston,
+x = r cos(t) + sqrt(l^2 - r^2 sin^2(t)), differentiated by hand below.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from numkin import linkages, report
+from numkin.units import UnitError
+
+EPS = np.finfo(float).eps
+W_HW = 450.0 / 60.0  # rad/s
+CHECK = math.radians(100.0)
+R, L = 80.0, 200.0
+W_SC = 6000.0 * 2.0 * math.pi / 60.0
+
+
+# ----------------------------------------------------------------- references
+def piston(t):
+    """Slider-crank x, dx/dt, d2x/dt2 (per rad of crank), closed form, crank R, rod L."""
+    s, c = np.sin(t), np.cos(t)
+    d = np.sqrt(L**2 - R**2 * s**2)
+    x = R * c + d
+    dx = -R * s - R**2 * s * c / d
+    d2x = -R * c - R**2 * (c**2 - s**2) / d - R**4 * s**2 * c**2 / d**3
+    return x, dx, d2x
+
+
+def test_piston_reference_itself():
+    # -R (1 + R/L) at t = 0 (issue 3), and the derivative formulas against central differences
+    assert piston(0.0)[2] == pytest.approx(-R * (1 + R / L), rel=1e-15)
+    t, h = 0.7, 1e-5
+    assert (piston(t + h)[0] - piston(t - h)[0]) / (2 * h) == pytest.approx(piston(t)[1], rel=1e-8)
+    assert (piston(t + h)[1] - piston(t - h)[1]) / (2 * h) == pytest.approx(piston(t)[2], rel=1e-8)
+
+
+@pytest.fixture(scope="module")
+def homework():
+    return linkages.chained_four_bars()
+
+
+@pytest.fixture(scope="module")
+def slider():
+    return linkages.slider_crank(R, L)
+
+
+def _row(table, **match):
+    sel = np.ones(len(table), dtype=bool)
+    for key, value in match.items():
+        sel &= table[key.replace("_", " ") if key == "points_per_turn" else key].to_numpy() == value
+    rows = table[sel]
+    assert len(rows) == 1, match
+    return rows.iloc[0]
+
+
+# ---------------------------------------------------------------- convergence
+@pytest.fixture(scope="module")
+def hw_convergence(homework):
+    return report.convergence_table(
+        homework, omega="450 rad/min", quantity="beta", check_angle=CHECK, grids=(180, 360, 720),
+        schemes=("forward", "centred", "five_point", "second_difference", "forward_of_forward", "five_point_second"),
+    )
+
+
+@pytest.mark.parametrize(
+    "scheme, order",
+    [("forward", 1), ("centred", 2), ("five_point", 4), ("second_difference", 2), ("forward_of_forward", 1),
+     ("five_point_second", 4)],
+)
+def test_observed_orders(hw_convergence, scheme, order):
+    row = _row(hw_convergence, scheme=scheme, **{"points per turn": 720})
+    assert row["observed order [-]"] == pytest.approx(order, abs=0.15)
+
+
+def test_convergence_errors_at_check_angle_match_the_homework(hw_convergence):
+    col = "abs error at theta = 100 deg [unit of quantity]"
+    err = {s: _row(hw_convergence, scheme=s, **{"points per turn": 360})[col]
+           for s in ("forward", "centred", "second_difference", "forward_of_forward")}
+    # 10.5999 vs 10.6329; 10.6330 vs 10.6329; -28.3765 vs -28.3750; -28.1266 vs -28.3750 (4 decimals each)
+    assert err["forward"] == pytest.approx(10.6329 - 10.5999, abs=1.5e-4)
+    assert 0 < err["centred"] < 2e-4
+    assert err["second_difference"] == pytest.approx(28.3765 - 28.3750, abs=1.5e-4)
+    assert err["forward_of_forward"] == pytest.approx(28.3750 - 28.1266, abs=1.5e-4)
+
+
+def test_convergence_table_layout(hw_convergence):
+    t = hw_convergence
+    assert list(t.columns) == [
+        "scheme", "formal order", "quantity", "points per turn", "h [deg]",
+        "max abs error [unit of quantity]", "RMS abs error [unit of quantity]", "max rel error [-]",
+        "abs error at theta = 100 deg [unit of quantity]", "observed order [-]",
+    ]
+    assert list(t["scheme"])[:3] == ["forward"] * 3
+    assert list(t["points per turn"])[:3] == [180, 360, 720]
+    assert list(t["h [deg]"])[:3] == [2.0, 1.0, 0.5]
+    assert set(t[t.scheme == "centred"]["quantity"]) == {"omega_beta [rad/s]"}
+    assert set(t[t.scheme == "second_difference"]["quantity"]) == {"alpha_beta [rad/s^2]"}
+    assert t.groupby("scheme", sort=False)["observed order [-]"].apply(lambda s: bool(np.isnan(s.iloc[0]))).all()
+
+
+def test_convergence_against_closed_form(slider):
+    n = 72
+    t = report.convergence_table(
+        slider, omega="6000 rpm", quantity="x", check_angle=math.radians(90), grids=(n,),
+        schemes=("centred", "second_difference"),
+    )
+    th = 2 * np.pi * np.arange(n) / n
+    x, dx, d2x = piston(th)
+    h = th[1]
+    cen = (np.roll(x, -1) - np.roll(x, 1)) / (2 * h)
+    sec = (np.roll(x, -1) - 2 * x + np.roll(x, 1)) / h**2
+    e1, e2 = W_SC * np.abs(cen - dx), W_SC**2 * np.abs(sec - d2x)
+    r1, r2 = t.iloc[0], t.iloc[1]
+    assert r1["quantity"] == "v_x [mm/s]" and r2["quantity"] == "a_x [mm/s^2]"
+    assert r1["max abs error [unit of quantity]"] == pytest.approx(e1.max(), rel=1e-6)
+    assert r1["RMS abs error [unit of quantity]"] == pytest.approx(np.sqrt(np.mean(e1**2)), rel=1e-6)
+    assert r2["max abs error [unit of quantity]"] == pytest.approx(e2.max(), rel=1e-6)
+    assert r2["max rel error [-]"] == pytest.approx(e2.max() / (W_SC**2 * np.abs(d2x).max()), rel=1e-6)
+    assert r2["abs error at theta = 90 deg [unit of quantity]"] == pytest.approx(e2[n // 4], rel=1e-5)
+
+
+def test_check_angle_off_the_grid_is_blank(slider):
+    t = report.convergence_table(slider, omega=1.0, quantity="x", check_angle=math.radians(7), grids=(36,),
+                                 schemes=("centred",))
+    assert np.isnan(t["abs error at theta = 7 deg [unit of quantity]"].iloc[0])
+
+
+def test_open_grid_and_spectral_refusal(slider):
+    t = report.convergence_table(slider, omega=1.0, quantity="x", grids=(180,), span=math.pi)
+    assert "spectral" not in set(t["scheme"])  # default schemes on a half turn: no spectral
+    with pytest.raises(ValueError, match="full turn"):
+        report.convergence_table(slider, omega=1.0, quantity="x", grids=(180,), span=math.pi, schemes=("spectral",))
+
+
+# ------------------------------------------------------------------- roundoff
+@pytest.fixture(scope="module")
+def hw_roundoff(homework):
+    return report.roundoff_table(homework, quantity="beta", check_angle=CHECK)
+
+
+def test_roundoff_exact_values_are_the_homework(hw_roundoff):
+    t = hw_roundoff.set_index("scheme")
+    assert t.loc["centred", "exact value [unit of quantity]"] == pytest.approx(10.6329 / W_HW, abs=1e-5 / W_HW)
+    assert t.loc["second_difference", "exact value [unit of quantity]"] == pytest.approx(
+        -28.3750 / W_HW**2, abs=1e-4 / W_HW**2
+    )
+
+
+def test_second_difference_at_1e_8_is_shown_wrong(hw_roundoff):
+    t = hw_roundoff.set_index("scheme")
+    sd = t.loc["second_difference"]
+    assert sd["rel error at h = 1e-08 rad [-]"] > 1e-2
+    assert sd["rel error at h = 1e-08 rad [-]"] > 1e4 * sd["rel error at measured optimal h [-]"]
+    # below the optimum the error grows like eps / h^2: ~100x per decade
+    errs = [sd[f"rel error at h = {h:.0e} rad [-]"] for h in 10.0 ** -np.arange(6, 13)]
+    assert all(b > 10 * a for a, b in zip(errs, errs[1:]))
+    assert errs[-1] > 1e7 * errs[0] / 10
+
+
+@pytest.mark.parametrize(
+    "scheme, textbook", [("forward", EPS**0.5), ("centred", EPS ** (1 / 3)), ("five_point", EPS**0.2),
+                         ("second_difference", EPS**0.25)],
+)
+def test_measured_optimum_near_textbook(hw_roundoff, scheme, textbook):
+    row = hw_roundoff.set_index("scheme").loc[scheme]
+    assert row["textbook optimal h [rad]"] == pytest.approx(textbook)
+    assert textbook / 10 < row["measured optimal h [rad]"] < textbook * 10
+    assert row["rel error at measured optimal h [-]"] < 100 * row["textbook error [-]"]
+
+
+def test_complex_step_has_no_floor(hw_roundoff):
+    row = hw_roundoff.set_index("scheme").loc["complex step"]
+    for h in 10.0 ** -np.arange(7, 13):
+        assert row[f"rel error at h = {h:.0e} rad [-]"] <= 1e-14
+
+
+def test_roundoff_against_closed_form(slider):
+    t = report.roundoff_table(slider, quantity="x", check_angle=math.radians(60),
+                              schemes=("centred", "second_difference"))
+    _, dx, d2x = piston(math.radians(60))
+    assert t["exact value [unit of quantity]"].iloc[0] == pytest.approx(dx, rel=1e-12)
+    assert t["exact value [unit of quantity]"].iloc[1] == pytest.approx(d2x, rel=1e-12)
+    # truncation at h = 1e-2: centred h^2 x'''/6, second difference h^2 x''''/12, from the closed form
+    h, d = 1e-3, 1e-2
+    x3 = (piston(math.radians(60) + h)[2] - piston(math.radians(60) - h)[2]) / (2 * h)
+    x4 = (piston(math.radians(60) + h)[2] - 2 * d2x + piston(math.radians(60) - h)[2]) / h**2
+    assert t["rel error at h = 1e-02 rad [-]"].iloc[0] == pytest.approx(abs(d**2 * x3 / 6 / dx), rel=1e-3)
+    assert t["rel error at h = 1e-02 rad [-]"].iloc[1] == pytest.approx(abs(d**2 * x4 / 12 / d2x), rel=1e-3)
+
+
+# --------------------------------------------------------------------- Newton
+def test_newton_quadratic(homework):
+    t = report.newton_table(homework, check_angle=CHECK)
+    assert list(t["iteration"]) == list(range(len(t)))
+    orders = t["order estimate from errors [-]"].dropna()
+    assert len(orders) >= 2
+    assert orders.iloc[-1] == pytest.approx(2.0, abs=0.25)
+    assert t["error norm [-]"].iloc[-1] < 1e-12
+    assert np.all(np.diff(t["residual norm [-]"]) < 0)
+    assert np.isnan(t["step norm [-]"].iloc[0])
+    # the error after a step is about the next step (Newton): step k+1 ~ error k
+    np.testing.assert_allclose(t["step norm [-]"].iloc[2:].to_numpy(), t["error norm [-]"].iloc[1:-1].to_numpy(),
+                               rtol=0.1)
+
+
+def test_jacobian_table(homework):
+    t = report.jacobian_table(homework, check_angle=CHECK, points_per_turn=36, repeat=1)
+    assert list(t["Jacobian"]) == ["symbolic", "forward", "central"]
+    assert (t["final error (one solve) [-]"] < 1e-11).all()
+    assert (t["max difference from symbolic sweep [-]"] < 1e-10).all()
+    assert (t["iterations (one solve)"] <= 6).all()
+    assert t["order estimate, last (one solve) [-]"].iloc[0] == pytest.approx(2.0, abs=0.25)
+    assert [c for c in t.columns if "time" in c] == ["sweep time [ms] (varies)"]
+
+
+# ------------------------------------------------------------------ tolerance
+@pytest.fixture(scope="module")
+def hw_tolerance(homework):
+    return report.tolerance_table(homework, omega="450 rad/min", quantity="beta", check_angle=CHECK)
+
+
+def test_tolerance_reference_and_tight_rows(hw_tolerance):
+    t = hw_tolerance
+    w, a = "omega_beta at theta = 100 deg [rad/s]", "alpha_beta at theta = 100 deg [rad/s^2]"
+    assert t[w].iloc[0] == pytest.approx(10.6329, abs=1e-4)
+    assert t[a].iloc[0] == pytest.approx(-28.3750, abs=1e-4)
+    tight = t.iloc[4]
+    assert tight["stopping rule"].startswith("numkin sweep, tol = 1e-12")
+    assert tight[w] == pytest.approx(10.6330, abs=1e-4)  # centred difference on the 1 deg grid
+    assert tight[a] == pytest.approx(-28.3765, abs=1e-4)  # second difference on the 1 deg grid
+    assert tight["position error estimate max|J^-1 F| [rad]"] < 1e-11
+
+
+def test_loose_residual_rule_spoils_alpha_not_position(hw_tolerance):
+    t = hw_tolerance
+    step, residual, tight = t.iloc[1], t.iloc[2], t.iloc[4]
+    assert step["stopping rule"].startswith("step rule") and residual["stopping rule"].startswith("residual rule")
+    am, wm = "alpha_beta max rel error [%]", "omega_beta max rel error [%]"
+    # the position is off by ~1e-4 rad at most: invisible in beta, ~1e-4 / h^2 in alpha
+    assert residual["position error estimate max|J^-1 F| [rad]"] < 1e-3
+    assert residual[wm] < 1.0
+    assert residual[am] > 5.0
+    assert residual[am] > 100 * tight[am]
+    # Newton converges quadratically: a step rule at 1e-4 leaves ~1e-8 and spoils nothing
+    assert step["position error estimate max|J^-1 F| [rad]"] < 1e-7
+    assert step[am] < 2 * tight[am]
+    assert (t["note"] == "").all()
+
+
+# ------------------------------------------------------------ work-precision
+def _fixed(df):
+    return df[[c for c in df.columns if "(varies)" not in c]]
+
+
+def test_work_precision_rows_and_determinism(slider):
+    kw = dict(omega="6000 rpm", quantity="x", grids=(36, 72), schemes=("forward", "centred", "second_difference"),
+              repeat=1)
+    a = report.work_precision_table(slider, **kw)
+    b = report.work_precision_table(slider, **kw)
+    pd.testing.assert_frame_equal(_fixed(a), _fixed(b))
+    time_cols = [c for c in a.columns if "time" in c or "Pareto" in c]
+    assert time_cols and all(c.endswith("(varies)") for c in time_cols)
+    assert list(a["method"]) == ["analytic"] * 2 + ["complex step"] * 2 + ["forward"] * 2 + ["centred"] * 2 + [
+        "analytic"] * 2 + ["complex step"] * 2 + ["second_difference"] * 2
+    assert (a[a.method.isin(["analytic", "complex step"])]["max rel error [-]"] < 1e-10).all()
+    assert (a[time_cols[:3]] > 0).all().all()
+    # the finite-difference errors are those of the closed form
+    th = 2 * np.pi * np.arange(72) / 72
+    x, dx, _ = piston(th)
+    cen = (np.roll(x, -1) - np.roll(x, 1)) / (2 * th[1])
+    row = _row(a, method="centred", **{"points per turn": 72})
+    assert row["max abs error [unit of quantity]"] == pytest.approx(W_SC * np.abs(cen - dx).max(), rel=1e-6)
+    assert a["Pareto front (varies)"].any()
+
+
+def test_cheapest_table():
+    wp = pd.DataFrame({
+        "method": ["forward", "centred", "analytic", "forward"],
+        "quantity": ["v [mm/s]"] * 4,
+        "points per turn": [36, 36, 36, 720],
+        "sweep + derivative time [ms] (varies)": [1.0, 1.1, 1.5, 3.0],
+        "max rel error [-]": [1e-2, 1e-4, 1e-15, 1e-3],
+    })
+    t = report.cheapest_table(wp, targets=(1e-1, 1e-3, 1e-5, 1e-16))
+    assert list(t["cheapest method (varies)"]) == ["forward", "centred", "analytic", "none"]
+    assert np.isnan(t["time [ms] (varies)"].iloc[-1])
+
+
+# ------------------------------------------------------------------ writing
+def test_write_tables(tmp_path):
+    df = pd.DataFrame({"scheme": ["centred", "five_point"], "h [deg]": [1.0, 0.5],
+                       "max abs error [rad/s^2]": [2.5e-4, np.nan], "Pareto front (varies)": [True, False]})
+    df.attrs["caption"] = "Demo: 100% of errors"
+    paths = report.write_tables({"demo_table": df, "second": df.iloc[:1]}, tmp_path / "out")
+    assert [p.name for p in paths] == ["demo_table.md", "demo_table.csv", "demo_table.tex",
+                                       "second.md", "second.csv", "second.tex"]
+    md = paths[0].read_text()
+    assert md.startswith("Demo: 100% of errors")
+    assert "| scheme" in md and "max abs error [rad/s^2]" in md and "0.00025" in md and "yes" in md
+    back = pd.read_csv(paths[1])
+    assert list(back.columns) == list(df.columns)
+    assert back["h [deg]"].tolist() == [1.0, 0.5] and np.isnan(back["max abs error [rad/s^2]"].iloc[1])
+    tex = paths[2].read_text()
+    for token in ("\\toprule", "\\midrule", "\\bottomrule", "\\begin{tabular}{lrrl}", "five\\_point",
+                  "rad/s\\textsuperscript{2}", "100\\% of errors", "\\label{tab:demo-table}"):
+        assert token in tex, token
+    assert tex.count("\\\\") == 3  # header + 2 rows
+
+
+def test_write_tables_needs_tabulate_for_markdown(tmp_path, monkeypatch):
+    monkeypatch.setitem(sys.modules, "tabulate", None)
+    with pytest.raises(ImportError, match="tabulate"):
+        report.write_tables({"t": pd.DataFrame({"a": [1]})}, tmp_path / "md")
+    assert not (tmp_path / "md").exists()
+    paths = report.write_tables({"t": pd.DataFrame({"a": [1]})}, tmp_path / "other", formats=("csv", "tex"))
+    assert [p.suffix for p in paths] == [".csv", ".tex"]
+    with pytest.raises(ValueError, match="unknown table format"):
+        report.write_tables({"t": pd.DataFrame({"a": [1]})}, tmp_path, formats=("xlsx",))
+
+
+# --------------------------------------------------------- full report, input
+def test_full_report_and_bad_input(slider):
+    tables = report.full_report(slider, omega="6000 rpm", quantity="x", check_angle=math.radians(60),
+                                grids=(36, 72), schemes=("centred", "second_difference"), points_per_turn=36,
+                                repeat=1)
+    assert list(tables) == ["convergence", "work_precision", "cheapest", "roundoff", "newton", "jacobian",
+                            "tolerance"]
+    assert all(isinstance(t, pd.DataFrame) and t.attrs.get("caption") for t in tables.values())
+    with pytest.raises(ValueError, match=r"choose one of \['theta3', 'x'\]"):
+        report.convergence_table(slider, omega=1.0, quantity="beta")
+    with pytest.raises(UnitError):
+        report.convergence_table(slider, omega="5 m", quantity="x")
+    with pytest.raises(ValueError, match="not on the 36-point grid"):
+        report.tolerance_table(slider, omega=1.0, quantity="x", check_angle=math.radians(7), points_per_turn=36)
+    with pytest.raises(ValueError, match="points per turn"):
+        report.convergence_table(slider, omega=1.0, quantity="x", grids=(2.5,))
+
+
+def test_student_sweep_against_closed_form():
+    mech = linkages.four_bar(4, 1, 3, 3)
+    th = np.radians(np.arange(0.0, 361.0, 5.0))
+    s = report.student_sweep(mech, th, rule="step", tol=1e-4)
+    # closed form of the open branch: circle intersection
+    ax, ay = np.cos(th), np.sin(th)
+    dx, dy = 4 - ax, -ay
+    d = np.hypot(dx, dy)
+    t3 = np.arctan2(dy, dx) + np.arccos((9 + d**2 - 9) / (6 * d))
+    t4 = np.arctan2(ay + 3 * np.sin(t3), ax + 3 * np.cos(t3) - 4)
+    np.testing.assert_allclose(np.remainder(s["theta4"] - t4 + np.pi, 2 * np.pi) - np.pi, 0, atol=1e-7)
+    r = report.student_sweep(mech, th, rule="residual", tol=1e-4)
+    assert np.max(np.abs(mech.compiled.F(r.values, th, mech.parameter_values))) < 1e-4
+    assert r.jacobian == "student residual rule"
+    with pytest.raises(ValueError, match="rule must be"):
+        report.student_sweep(mech, th, rule="both")

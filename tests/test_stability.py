@@ -1,0 +1,145 @@
+"""Tests for numkin.stability: every case ends in its expected outcome, and nothing is silently wrong.
+
+Independent references: the reachable range of the non-Grashof four-bar
+from the law of cosines, the slider-crank closed form, and the scaling
+law of the condition number near an aligned position (cond ~ delta^-1/2).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from numkin import stability
+from numkin.derivatives import SCHEMES
+
+EXPECTED = {
+    "near toggle (4, 2, 4.0001, 2)": "ok",
+    "nearly aligned, delta = 1e-02": "ok",
+    "nearly aligned, delta = 1e-04": "ok",
+    "nearly aligned, delta = 1e-06": "ok",
+    "change point (5, 2, 5, 2), from 0 deg": "BranchError",
+    "change point (5, 2, 5, 2), through 180 deg": "BranchError",
+    "non-Grashof (7, 4, 3, 5), full turn": "AssemblyError",
+    "cannot assemble (10, 6, 1, 1)": "AssemblyError",
+    "slider-crank 80/200 at 6000 rpm": "ok",
+    "homework": "ok",
+    "homework x 1e-6": "ok",
+    "homework x 1e3": "ok",
+    "homework, 12 points per turn": "ok",
+    "homework, 100 000 points per turn": "ok",
+}
+ERR = [f"{name} max rel error [-]" for name in SCHEMES]
+NON_SPECTRAL = [f"{s.name} max rel error [-]" for s in SCHEMES.values() if not s.periodic_only]
+
+
+@pytest.fixture(scope="module")
+def suite():
+    return stability.run_suite().set_index("case")
+
+
+def test_every_case_has_its_expected_outcome(suite):
+    assert list(suite.index) == list(EXPECTED) == list(stability.CASES)
+    assert suite["outcome"].to_dict() == EXPECTED
+    assert suite["as expected"].all()
+    assert not suite["outcome"].str.contains("WRONG|unexpected").any()
+
+
+def test_errors_are_outcomes_with_messages(suite):
+    failed = suite[suite["outcome"] != "ok"]
+    assert len(failed) == 4
+    for case, row in failed.iterrows():
+        assert row["error or warning raised"].startswith(row["outcome"] + ": "), case
+        assert row["Newton iterations (max)"] == -1
+        assert np.isnan(row[ERR].to_numpy(dtype=float)).all(), case  # no number from a failed case
+
+
+def test_non_grashof_names_its_reachable_range(suite):
+    # crank angle where ground, crank and coupler + rocker (fully extended) close: law of cosines
+    limit = math.degrees(math.acos((7**2 + 4**2 - (3 + 5) ** 2) / (2 * 7 * 4)))
+    msg = suite.loc["non-Grashof (7, 4, 3, 5), full turn", "error or warning raised"]
+    assert f"|theta2| <= {limit:.2f}°" in msg and "triple rocker" in msg
+    msg = suite.loc["cannot assemble (10, 6, 1, 1)", "error or warning raised"]
+    assert "cannot be assembled" in msg
+
+
+def test_change_point_is_reported_never_switched(suite):
+    row = suite.loc["change point (5, 2, 5, 2), through 180 deg"]
+    assert "change point at input 180.000 deg" in row["what happened"]
+    assert "branches meet" in row["error or warning raised"]
+    row = suite.loc["change point (5, 2, 5, 2), from 0 deg"]
+    assert "singular at input 0.000 deg" in row["what happened"]
+
+
+def test_completed_cases_are_checked(suite):
+    ok = suite[suite["outcome"] == "ok"]
+    assert len(ok) == 10
+    assert (ok["analytic vs complex step [-]"] < 1e-8).all()
+    assert np.isfinite(ok[NON_SPECTRAL].to_numpy(dtype=float)).all()
+    assert (ok["Newton iterations (max)"] >= 1).all()
+    assert np.isfinite(ok["max cond [-]"]).all()
+
+
+def test_nearly_aligned_condition_scales_like_inverse_sqrt_delta(suite):
+    cond = [suite.loc[f"nearly aligned, delta = {d:.0e}", "max cond [-]"] for d in (1e-2, 1e-4, 1e-6)]
+    # transmission angle ~ sqrt(delta): 100x smaller delta, 10x larger condition number
+    assert cond[1] / cond[0] == pytest.approx(10, rel=0.2)
+    assert cond[2] / cond[1] == pytest.approx(10, rel=0.2)
+    sd = [suite.loc[f"nearly aligned, delta = {d:.0e}", "second_difference max rel error [-]"] for d in (1e-2, 1e-4, 1e-6)]
+    assert sd[0] < sd[1] < sd[2]
+    assert "does not resolve" in suite.loc["nearly aligned, delta = 1e-06", "what happened"]
+
+
+def test_scale_cases_keep_relative_errors(suite):
+    base = suite.loc["homework", NON_SPECTRAL].to_numpy(dtype=float)
+    for case in ("homework x 1e-6", "homework x 1e3"):
+        np.testing.assert_allclose(suite.loc[case, NON_SPECTRAL].to_numpy(dtype=float), base, rtol=1e-3)
+        assert suite.loc[case, "max cond [-]"] == pytest.approx(suite.loc["homework", "max cond [-]"], rel=1e-9)
+        assert "relative errors within" in suite.loc[case, "what happened"]
+
+
+def test_high_speed_slider_crank_against_closed_form(suite):
+    r, l = 80.0, 200.0
+    th = np.radians(np.arange(360.0))
+    s, c = np.sin(th), np.cos(th)
+    d = np.sqrt(l**2 - r**2 * s**2)
+    x = r * c + d
+    dx = -r * s - r**2 * s * c / d
+    d2x = -r * c - r**2 * (c**2 - s**2) / d - r**4 * s**2 * c**2 / d**3
+    h = th[1]
+    cen = (np.roll(x, -1) - np.roll(x, 1)) / (2 * h)
+    sec = (np.roll(x, -1) - 2 * x + np.roll(x, 1)) / h**2
+    row = suite.loc["slider-crank 80/200 at 6000 rpm"]
+    assert row["centred max rel error [-]"] == pytest.approx(np.abs(cen - dx).max() / np.abs(dx).max(), rel=1e-4)
+    assert row["second_difference max rel error [-]"] == pytest.approx(
+        np.abs(sec - d2x).max() / np.abs(d2x).max(), rel=1e-4
+    )
+    # 6000 rpm: peak piston acceleration R w^2 (1 + R/L) = 4.42e7 mm/s^2, stated with its unit
+    peak = r * (2 * math.pi * 100) ** 2 * (1 + r / l)
+    assert f"peak |d2/dt2| = {peak:.4g} mm/s^2" in row["what happened"]
+
+
+def test_extreme_grids(suite):
+    coarse = suite.loc["homework, 12 points per turn"]
+    assert coarse["forward max rel error [-]"] > 0.1
+    assert "does not resolve" in coarse["what happened"]
+    fine = suite.loc["homework, 100 000 points per turn"]
+    assert fine["points"] == 100_001
+    assert fine["five_point max rel error [-]"] < 1e-7
+    assert fine["centred max rel error [-]"] < 1e-7
+    # second differences at h = 0.0036 deg meet the solver's position error: reported as a floor
+    assert 1e-6 < fine["second_difference max rel error [-]"] < 1e-3
+    assert "floor of 4 delta/h^2" in fine["what happened"]
+
+
+def test_run_suite_selection_and_errors():
+    t = stability.run_suite(["cannot assemble (10, 6, 1, 1)", "homework, 12 points per turn"],
+                            schemes=["centred", "spectral"])
+    assert list(t["case"]) == ["cannot assemble (10, 6, 1, 1)", "homework, 12 points per turn"]
+    assert [c for c in t.columns if c.endswith("max rel error [-]")] == [
+        "centred max rel error [-]", "spectral max rel error [-]"]
+    assert t["as expected"].all()
+    with pytest.raises(ValueError, match="unknown stability case"):
+        stability.run_suite(["no such case"])
