@@ -1,0 +1,335 @@
+# ---
+# jupyter:
+#   jupytext:
+#     formats: py:percent
+#     text_representation:
+#       extension: .py
+#       format_name: percent
+#   kernelspec:
+#     display_name: Python 3
+#     language: python
+#     name: python3
+# ---
+
+# %% [markdown]
+# # Lesson 4 — Error against step, and error against run time
+#
+# Lesson 3 compared schemes on one grid. Here we vary the step $h$ and measure. A
+# finite-difference estimate of an $n$-th derivative with truncation order $p$ has an error
+#
+# $$
+# e(h) \;\approx\; \underbrace{C\,h^{p}}_{\text{truncation}} \;+\;
+# \underbrace{\frac{\varepsilon\,|y|}{h^{n}}}_{\text{rounding}},
+# $$
+#
+# where $\varepsilon \approx 2.2\times10^{-16}$ is the relative rounding error of the samples
+# $y$ (or the solver's tolerance, if larger). For large $h$ the first term wins: on a log-log
+# plot the error falls on a line of slope $p$. For small $h$ the second wins and the error
+# *grows* again. The best step balances the two,
+#
+# $$
+# h^\ast \sim \varepsilon^{1/(p+n)}, \qquad e(h^\ast) \sim \varepsilon^{p/(p+n)} .
+# $$
+#
+# Everything here is measured on the homework's chained four-bars ($\omega_{in} = 450$
+# rad/min, output angle $\beta$) with the tables of `numkin.report`.
+
+# %%
+# %matplotlib inline
+import math
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from numkin import analytic, kinematics, linkages, report
+
+pd.set_option("display.width", 160)
+pd.set_option("display.max_columns", 20)
+mech = linkages.chained_four_bars()
+OMEGA = "450 rad/min"
+CHECK = math.radians(100.0)
+EPS = np.finfo(float).eps
+
+# %% [markdown]
+# ## 1. Convergence: error against $h$
+#
+# `report.convergence_table` solves a full turn on grids of 36 … 3600 points, differences
+# $\beta$ with every scheme and compares with the analytic $\omega_\beta$ and $\alpha_\beta$.
+# The observed order is $\log(e_{k-1}/e_k) / \log(h_{k-1}/h_k)$ between successive grids.
+
+# %%
+conv = report.convergence_table(mech, omega=OMEGA, quantity="beta", check_angle=CHECK)
+print(conv.attrs["caption"])
+max_err = conv.pivot_table(index="scheme", columns="points per turn", values="max rel error [-]", sort=False)
+orders = conv.pivot_table(index="scheme", columns="points per turn", values="observed order [-]", sort=False)
+print("max relative error over the turn")
+print(max_err.to_string(float_format="{:.1e}".format))
+print("\nobserved order")
+print(orders.to_string(float_format="{:.2f}".format))
+
+# %%
+# formal orders 1, 2, 4 appear on the intermediate grids (before the rounding floor)
+for scheme, p in [("forward", 1), ("centred", 2), ("five_point", 4),
+                  ("second_difference", 2), ("forward_of_forward", 1), ("five_point_second", 4)]:
+    measured = orders.loc[scheme, 360]
+    print(f"{scheme:20s} formal order {p}, observed {measured:.3f} (180 -> 360 points)")
+    assert abs(measured - p) < 0.15, scheme
+
+# %%
+fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), sharey=True)
+for ax, derivative, title in [(axes[0], 1, r"$\omega_\beta$ (first derivative)"),
+                              (axes[1], 2, r"$\alpha_\beta$ (second derivative)")]:
+    part = conv[conv["quantity"].str.startswith("omega" if derivative == 1 else "alpha")]
+    for scheme, rows in part.groupby("scheme", sort=False):
+        ax.loglog(np.radians(rows["h [deg]"]), rows["max rel error [-]"], "o-", ms=4, label=scheme)
+    h_ref = np.radians(np.array([10.0, 0.1]))
+    for p, y0 in [(1, 2e-1), (2, 2e-2), (4, 3e-3)]:
+        ax.loglog(h_ref, y0 * (h_ref / h_ref[0]) ** p, "k:", lw=1)
+        ax.annotate(f"slope {p}", (h_ref[1], y0 * (h_ref[1] / h_ref[0]) ** p), fontsize=8,
+                    textcoords="offset points", xytext=(4, 0))
+    ax.set_xlabel("h [rad]")
+    ax.set_title(title)
+    ax.legend(fontsize=7, loc="lower right")
+axes[0].set_ylabel(r"max relative error over the turn")
+fig.tight_layout()
+plt.show()
+
+# %% [markdown]
+# Each scheme falls on its line — slope 1 for forward (and forward-of-forward), 2 for centred
+# and the second difference, 4 for five-point and Richardson — until it meets a floor. The
+# spectral (FFT) schemes converge faster than any power of $h$ on this smooth periodic motion,
+# reach the floor by 180 points, and then get slightly *worse*: the floor is set by the
+# positions' own accuracy divided by $h$ (or $h^2$), not by the scheme.
+
+# %% [markdown]
+# ## 2. The rounding floor: the V-curve and the optimal step
+#
+# `report.roundoff_table` solves the position at $\theta = 100^\circ$ and its neighbours
+# $\theta \pm h, \pm 2h$ to machine precision, for $h$ from $10^{-1}$ down to $10^{-12}$ rad,
+# and differences them. The complex step, $q'(\theta) = \operatorname{Im} q(\theta + ih)/h$,
+# subtracts nothing and so has no floor.
+
+# %%
+rnd = report.roundoff_table(mech, quantity="beta", check_angle=CHECK)
+steps = [c for c in rnd.columns if c.startswith("rel error at h = ")]
+h_values = np.array([float(c.split("= ")[1].split(" rad")[0]) for c in steps])
+summary = rnd.set_index("scheme")[["formal order", "measured optimal h [rad]", "rel error at measured optimal h [-]",
+                                   "textbook rule", "textbook optimal h [rad]", "textbook error [-]"]]
+print(summary.to_string(float_format="{:.1e}".format))
+
+# %%
+fig, ax = plt.subplots(figsize=(7, 4.5))
+for _, row in rnd.iterrows():
+    err = np.maximum(row[steps].to_numpy(dtype=float), 1e-17)
+    ax.loglog(h_values, err, "o-", ms=4, label=row["scheme"])
+ax.axhline(EPS, color="0.5", ls=":", lw=1)
+ax.annotate("machine epsilon", (1e-12, EPS), textcoords="offset points", xytext=(0, 4), fontsize=8)
+ax.set_xlabel("h [rad]")
+ax.set_ylabel(r"relative error at $\theta = 100^\circ$")
+ax.set_title(r"the V-curve: truncation (right) against rounding (left)")
+ax.invert_xaxis()
+ax.legend(fontsize=8)
+plt.show()
+
+# %%
+second = rnd.set_index("scheme").loc["second_difference"]
+print(f"second difference at h = 1e-4 rad: relative error {second['rel error at h = 1e-04 rad [-]']:.1e}")
+print(f"second difference at h = 1e-8 rad: relative error {second['rel error at h = 1e-08 rad [-]']:.1e}")
+assert second["rel error at h = 1e-08 rad [-]"] > 1.0  # wrong by more than 100 %
+for scheme in ("forward", "centred", "second_difference"):
+    row = rnd.set_index("scheme").loc[scheme]
+    ratio = row["measured optimal h [rad]"] / row["textbook optimal h [rad]"]
+    print(f"{scheme:18s} measured h* / textbook h* = {ratio:.2f}")
+    assert 0.01 < ratio < 100  # the same order of magnitude, give or take the constants
+
+# %% [markdown]
+# Reading the V-curves: a *smaller step is not always better*. The second difference divides
+# by $h^2$: at $h = 10^{-8}$ rad it is wrong by several hundred per cent, even though every
+# position it uses is correct to about 16 digits. Its best step is near
+# $\varepsilon^{1/4} \approx 10^{-4}$ rad; the centred difference does best near
+# $\varepsilon^{1/3}$, the forward difference near $\sqrt\varepsilon$ (measured optima and their
+# errors in the table above). Only the complex step keeps improving down to the smallest $h$.
+
+# %% [markdown]
+# ## 3. Work against precision
+#
+# Accuracy costs time: finer grids mean more Newton solves. `report.work_precision_table`
+# times the sweep and the differencing for every scheme and grid (medians of repeats —
+# **these numbers vary from run to run and machine to machine**), beside the analytic solution
+# and the complex step.
+
+# %%
+wp = report.work_precision_table(mech, omega=OMEGA, quantity="beta", grids=(36, 72, 180, 360, 720, 1440), repeat=3)
+time_col = [c for c in wp.columns if c.startswith("sweep + derivative time")][0]
+front_col = [c for c in wp.columns if c.startswith("Pareto front")][0]
+# for the plot: the sum of the two separately timed medians (steadier than one timed block)
+cost = wp[[c for c in wp.columns if c.startswith("sweep time")][0]] + wp[[c for c in wp.columns if c.startswith("derivative time")][0]]
+print(wp.attrs["caption"])
+print(wp[wp[front_col]][["method", "quantity", "points per turn", time_col, "max rel error [-]"]]
+      .to_string(index=False, float_format="{:.3g}".format))
+
+# %%
+fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), sharey=True)
+for ax, prefix in zip(axes, ("omega", "alpha")):
+    part = wp[wp["quantity"].str.startswith(prefix)]
+    for method, rows in part.groupby("method", sort=False):
+        ax.loglog(cost[rows.index], np.maximum(rows["max rel error [-]"], 1e-16), "o-", ms=4, lw=0.8,
+                  label=method)
+    ax.set_xlabel("sweep time + derivative time [ms] (varies)")
+    ax.set_title(part["quantity"].iloc[0])
+    ax.legend(fontsize=7)
+axes[0].set_ylabel("max relative error over the turn")
+fig.tight_layout()
+plt.show()
+
+# %% [markdown]
+# The cheapest method for a wanted accuracy, read off the front (`report.cheapest_table`):
+
+# %%
+print(report.cheapest_table(wp).to_string(index=False, float_format="{:.3g}".format))
+
+# %% [markdown]
+# The times move from run to run (they are milliseconds), but the shape does not: the analytic
+# solution costs about as much as one sweep and is exact to rounding. Among the difference
+# schemes, high order pays, because the number of points needed for a given error falls so
+# fast with the order. From the convergence table (extrapolated with the observed order where
+# the grids stop short):
+
+# %%
+target = 1e-4
+for scheme in ("forward", "centred", "five_point", "spectral"):
+    errs = max_err.loc[scheme]
+    ok = errs[errs <= target]
+    if len(ok):
+        print(f"{scheme:11s}: max rel error <= {target:g} from {ok.index[0]} points per turn on")
+    else:
+        n_last, p = errs.index[-1], orders.loc[scheme].iloc[-1]
+        needed = n_last * (errs.iloc[-1] / target) ** (1 / p)
+        print(f"{scheme:11s}: about {needed:,.0f} points per turn (extrapolated, order {p:.2f})")
+
+# %% [markdown]
+# ## 4. The cost of a loose Newton tolerance
+#
+# Every sample of $\beta$ carries the error $\delta$ that Newton left. A first difference turns
+# it into an error $\sim\delta/h$ of $\omega$, a second difference into $\sim 4\delta/h^2$ of
+# $\alpha$: with $h = 1^\circ$, $1/h^2 \approx 3300$. `report.tolerance_table` solves the turn
+# with the stopping rules of the source documents ($\lVert\Delta x\rVert < 10^{-4}$, and
+# $|F| < 10^{-4}$) and with numkin's own rule.
+
+# %%
+tol = report.tolerance_table(mech, omega=OMEGA, quantity="beta", check_angle=CHECK)
+cols = ["stopping rule", "Newton iterations per point (mean)", "max |F| [in]",
+        "omega_beta max rel error [%]", "alpha_beta max rel error [%]"]
+print(tol[cols].to_string(index=False, float_format="{:.3g}".format, max_colwidth=60))
+
+# %% [markdown]
+# The residual rule looks harmless in $\omega$, but the acceleration is visibly wrong. Where,
+# and by how much? Difference the student-style sweep ourselves:
+
+# %%
+theta = np.radians(np.arange(0, 361, 1.0))
+loose = report.student_sweep(mech, theta, rule="residual", tol=1e-4)
+tight = mech.sweep(theta)
+exact = analytic.kinematics(tight, OMEGA)
+alpha_loose = kinematics.finite_difference(loose, OMEGA, periodic=False)["alpha_beta"]
+alpha_tight = kinematics.finite_difference(tight, OMEGA, periodic=False)["alpha_beta"]
+err_loose = np.abs(alpha_loose - exact["alpha_beta"]).to_numpy()
+err_tight = np.abs(alpha_tight - exact["alpha_beta"]).to_numpy()
+k = int(np.argmax(err_loose))
+k100 = tight.index(CHECK)
+print(f"residual rule |F| < 1e-4: largest alpha_beta error {err_loose[k]:.1f} rad/s^2 at theta = {np.degrees(theta[k]):.0f} deg")
+print(f"  for comparison: |alpha_beta(100 deg)| = {abs(exact['alpha_beta'][k100]):.1f} rad/s^2, "
+      f"max |alpha_beta| = {np.abs(exact['alpha_beta']).max():.1f} rad/s^2")
+print(f"numkin's rule (1e-12):    largest alpha_beta error {err_tight.max():.3f} rad/s^2 (the second difference's own)")
+assert err_loose.max() > 0.5 * abs(exact["alpha_beta"][k100])  # an error as large as alpha itself at 100 deg
+assert err_tight.max() < 0.1
+
+fig, ax = plt.subplots(figsize=(7, 4))
+ax.semilogy(np.degrees(theta), np.maximum(err_loose, 1e-8), label=r"residual rule $|F| < 10^{-4}$")
+ax.semilogy(np.degrees(theta), np.maximum(err_tight, 1e-8), label="numkin, tol = 1e-12")
+ax.set_xlabel(r"$\theta$ [deg]")
+ax.set_ylabel(r"$|\alpha_\beta$ error$|$ [rad/s$^2$]")
+ax.set_xticks(range(0, 361, 60))
+ax.set_title("second difference of a loosely solved sweep")
+ax.legend()
+plt.show()
+
+# %% [markdown]
+# The error is not smooth: the residual rule stops as soon as $|F|$ first drops below the
+# tolerance, so the error left in $\beta$ changes irregularly from one point to the next, and
+# the second difference multiplies those point-to-point jumps by $1/h^2$. A plot of $\beta$
+# would never show it.
+#
+# **The homework's own table, explained.** The homework's Newton stopped when the *relative*
+# step $\lVert\Delta x\rVert / \lVert x\rVert$ fell below $10^{-4}$ (angles in degrees in,
+# radians inside). Re-running exactly that loop reproduces its reported numbers — and shows
+# that the fourth-digit differences from numkin's values in Lesson 3 come from the stopping
+# rule, not from the schemes:
+
+# %%
+def homework_newton(theta_deg, r_in, r_coupler, r_out, r_fixed, guess_deg, tol=1e-4):
+    """The homework's loop: Newton from a guess in degrees, stop on |dx| / |x| < tol."""
+    theta4 = np.deg2rad(180 + theta_deg)
+    x = np.deg2rad(np.asarray(guess_deg, dtype=float))
+    for _ in range(1000):
+        f = np.array([r_out * np.cos(x[0]) + r_coupler * np.cos(x[1]) + r_in * np.cos(theta4) - r_fixed,
+                      r_out * np.sin(x[0]) + r_coupler * np.sin(x[1]) + r_in * np.sin(theta4)])
+        jac = np.array([[-r_out * np.sin(x[0]), -r_coupler * np.sin(x[1])],
+                        [r_out * np.cos(x[0]), r_coupler * np.cos(x[1])]])
+        dx = np.linalg.solve(jac, -f)
+        x = x + dx
+        if np.linalg.norm(dx) / np.linalg.norm(x) < tol:
+            break
+    return np.rad2deg(x)
+
+
+theta_hw = np.linspace(0, 360, 361)
+phi_hw, psi_hw = np.zeros(361), np.zeros(361)
+phi_hw[0], psi_hw[0] = homework_newton(0, 1.94, 6.86, 2.36, 7.0, [45, 60])
+for i in range(1, 361):
+    phi_hw[i], psi_hw[i] = homework_newton(theta_hw[i], 1.94, 6.86, 2.36, 7.0, [phi_hw[i - 1], psi_hw[i - 1]])
+phi_hw %= 360
+beta_hw, gamma_hw = np.zeros(361), np.zeros(361)
+b0, g0 = homework_newton(phi_hw[0] + 149, 2.39, 1.87, 1.26, 1.25, [30, 270])
+beta_hw[0], gamma_hw[0] = b0 % 360, g0
+for i in range(1, 361):
+    b0, g0 = homework_newton(phi_hw[i] + 149, 2.39, 1.87, 1.26, 1.25, [beta_hw[i - 1], gamma_hw[i - 1]])
+    beta_hw[i], gamma_hw[i] = b0 % 360, g0 % 360
+
+b, h, w = np.deg2rad(beta_hw), math.radians(1.0), 7.5
+hw_rerun = {
+    "forward omega_beta [rad/s]": w * (b[101] - b[100]) / h,
+    "centred omega_beta [rad/s]": w * (b[101] - b[99]) / (2 * h),
+    "forward-of-forward alpha_beta [rad/s^2]": w**2 * (b[102] - 2 * b[101] + b[100]) / h**2,
+    "second difference alpha_beta [rad/s^2]": w**2 * (b[101] - 2 * b[100] + b[99]) / h**2,
+}
+hw_reported = [10.59897, 10.63198, -28.11947, -28.36941]
+numkin_tight = [
+    w * (tight["beta"][101] - tight["beta"][100]) / h,
+    w * (tight["beta"][101] - tight["beta"][99]) / (2 * h),
+    w**2 * (tight["beta"][102] - 2 * tight["beta"][101] + tight["beta"][100]) / h**2,
+    w**2 * (tight["beta"][101] - 2 * tight["beta"][100] + tight["beta"][99]) / h**2,
+]
+rerun = pd.DataFrame({"homework table": hw_reported, "homework loop re-run": list(hw_rerun.values()),
+                      "same schemes, numkin sweep": numkin_tight}, index=list(hw_rerun))
+print(rerun.to_string(float_format="{:.5f}".format))
+print(f"\nbeta(100 deg): homework loop {beta_hw[100]:.4f} deg, numkin {np.degrees(tight['beta'][100]):.4f} deg")
+assert np.allclose(rerun["homework loop re-run"], rerun["homework table"], atol=6e-6)
+
+# %% [markdown]
+# The homework's $\beta(100^\circ)$ is off by about 0.001°, invisible in any plot, yet enough
+# to move its finite-difference $\omega_\beta$ and $\alpha_\beta$ in the fourth digit.
+
+# %% [markdown]
+# ## Questions
+#
+# 1. From the convergence table, estimate the constant $C$ of the centred difference
+#    ($e \approx C h^2$) and predict the number of points per turn needed for a relative error
+#    of $10^{-6}$ in $\omega_\beta$. Check your prediction with `report.convergence_table`.
+# 2. The five-point row of the convergence table stops improving at 3600 points. Using the
+#    error model at the top of this notebook with $\varepsilon \approx 10^{-13}$ (the sweep's
+#    tolerance), predict at which $h$ the floor should appear. Does it match?
+# 3. Re-run section 4 with `rule="step"` and with `tol=1e-8`. Which stopping rule would you
+#    recommend to the homework's author, and why is a rule on $|\Delta x|$ alone not enough
+#    near a toggle position?
