@@ -1,0 +1,584 @@
+# ---
+# jupyter:
+#   jupytext:
+#     text_representation:
+#       extension: .py
+#       format_name: percent
+#   kernelspec:
+#     display_name: Python 3
+#     language: python
+#     name: python3
+# ---
+
+# %% [raw]
+# # ASSIGNMENT CONFIG
+# name: hw1-chained-four-bar
+# files:
+#   - kincheck.py
+# tests:
+#   ok_format: false
+# generate: true
+# export_cell:
+#   pdf: false
+#   instructions: "Upload the zip file this cell makes."
+# check_all_cell: true
+
+# %% [markdown]
+# # Homework 1 — Newton with continuation and finite differences on two chained four-bars
+#
+# A gear drives **linkage 1** (input θ). Its output angle φ drives **linkage 2**, whose
+# input angle is α = φ + 180° − 31° = φ + 149°; its output angle is β.
+# Both linkages are written in the same loop form, with r₁ the fixed link, r₄ the
+# input, r₃ the coupler and r₂ the output:
+#
+# $$ r_2 e^{i\,\text{out}} + r_3 e^{i\,\text{coupler}} + r_4 e^{i(\text{in} + \pi)} = r_1 $$
+#
+# | | fixed r₁ | input r₄ | coupler r₃ | output r₂ | input angle | unknowns | guess at θ = 0 |
+# |---|---|---|---|---|---|---|---|
+# | linkage 1 | 7.0 | 1.94 | 6.86 | 2.36 | θ | φ, ψ | (45°, 60°) |
+# | linkage 2 | 1.25 | 2.39 | 1.87 | 1.26 | α = φ + 149° | β, γ | (30°, 270°) |
+#
+# Lengths are in inches. The driving gear turns at ω = 450 rad/min.
+#
+# Run `grader.check("q1a")` (and so on) after each question: it runs the public checks and
+# tells you what looks off. Hidden checks compare your numbers with reference values when
+# the homework is graded.
+
+# %%
+import numpy as np
+import matplotlib.pyplot as plt
+
+# linkage 1 (in): fixed, input, coupler, output
+FIXED_1, INPUT_1, COUPLER_1, OUTPUT_1 = 7.0, 1.94, 6.86, 2.36
+# linkage 2 (in)
+FIXED_2, INPUT_2, COUPLER_2, OUTPUT_2 = 1.25, 2.39, 1.87, 1.26
+OFFSET_DEG = 149.0  # alpha = phi + 149 degrees
+OMEGA_RAD_PER_MIN = 450.0  # speed of the driving gear
+
+theta_deg = np.arange(0, 361)  # 0, 1, ..., 360 degrees
+theta = np.radians(theta_deg)
+h = np.radians(1.0)  # grid step, rad
+
+# %% [raw]
+# # BEGIN QUESTION
+# name: q1a
+# points: 3
+
+# %% [markdown]
+# **Q1a — Newton with continuation.** Write a multivariable Newton–Raphson solver for the
+# loop equations (real and imaginary parts) with their analytic Jacobian. Sweep θ from 0°
+# to 360° in steps of 1°, starting from the guess (φ, ψ) = (45°, 60°) at θ = 0 and then
+# **using the previous solution as the starting guess for the next θ**. Iterate until the
+# Newton step is below 1e-10.
+#
+# Store the output angle in `phi` and the coupler angle in `psi`, one value per θ
+# (361 values). Radians or degrees are both accepted; the check says which it read.
+
+# %% [raw]
+# # BEGIN SOLUTION
+
+# %%
+def newton(F, J, x0, tol=1e-10, maxiter=50):
+    """Solve F(x) = 0 from x0; stop when the Newton step is below tol."""
+    # BEGIN SOLUTION
+    x = np.array(x0, dtype=float)
+    for _ in range(maxiter):
+        step = np.linalg.solve(J(x), -F(x))
+        x = x + step
+        if np.max(np.abs(step)) < tol:
+            return x
+    raise RuntimeError(f"Newton did not converge from {x0}")
+    # END SOLUTION
+
+
+def four_bar_sweep(inputs, r_fixed, r_in, r_coupler, r_out, guess):
+    """Output and coupler angles (rad) for each input angle (rad), by continuation."""
+    # BEGIN SOLUTION
+    x = np.array(guess, dtype=float)
+    result = np.empty((len(inputs), 2))
+    for k, t in enumerate(inputs):
+
+        def F(x):
+            return np.array([
+                r_out * np.cos(x[0]) + r_coupler * np.cos(x[1]) + r_in * np.cos(t + np.pi) - r_fixed,
+                r_out * np.sin(x[0]) + r_coupler * np.sin(x[1]) + r_in * np.sin(t + np.pi),
+            ])
+
+        def J(x):
+            return np.array([
+                [-r_out * np.sin(x[0]), -r_coupler * np.sin(x[1])],
+                [r_out * np.cos(x[0]), r_coupler * np.cos(x[1])],
+            ])
+
+        x = np.mod(newton(F, J, x), 2 * np.pi)  # the next solve starts here
+        result[k] = x
+    return result[:, 0], result[:, 1]
+    # END SOLUTION
+
+
+phi, psi = four_bar_sweep(theta, FIXED_1, INPUT_1, COUPLER_1, OUTPUT_1, np.radians([45.0, 60.0]))  # SOLUTION
+
+# %% [raw]
+# # END SOLUTION
+
+# %% [raw]
+# # BEGIN TESTS
+
+# %%
+def test_phi_closes_loop_on_one_branch(phi):
+    import numpy as np
+    import kincheck as kc
+
+    def gap(a):
+        return kc.four_bar_gap(a, np.radians(np.arange(a.size)), 7.0, 1.94, 6.86, 2.36)
+
+    unit, angles, residual = kc.read_angles("phi", phi, gap)
+    print(f"`phi` read as {'radians' if unit == 'rad' else 'degrees'}")
+    kc.closure("phi", residual, tol=1e-3)
+    kc.continuity("phi", angles)
+
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_phi_values(phi):
+    import kincheck as kc
+
+    PHI = {10: 0.48101131173, 40: 0.801992851788, 70: 1.21832147982, 100: 1.64824558046, 130: 2.04593688727, 160: 2.31500391439, 190: 2.20276535076, 220: 1.71369175609, 250: 1.22685763437, 280: 0.852830800482, 310: 0.579419252725, 340: 0.417601762442}  # numkin: phi
+    kc.angles("phi", phi, PHI, tol=1e-6)
+
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_phi_newton_converged(phi):
+    import numpy as np
+    import kincheck as kc
+
+    def gap(a):
+        return kc.four_bar_gap(a, np.radians(np.arange(a.size)), 7.0, 1.94, 6.86, 2.36)
+
+    unit, angles, residual = kc.read_angles("phi", phi, gap)
+    kc.closure("phi", residual, tol=1e-9)
+
+# %% [raw]
+# # END TESTS
+
+# %% [raw]
+# # END QUESTION
+
+# %%
+fig, ax = plt.subplots()
+ax.plot(theta_deg, phi)
+ax.set_xlabel("θ (deg)")
+ax.set_ylabel("φ")
+ax.set_title("Output angle of linkage 1")
+plt.show()
+
+# %% [raw]
+# # BEGIN QUESTION
+# name: q1b
+# points: 3
+
+# %% [markdown]
+# **Q1b — dφ/dθ.** Compute dφ/dθ at every θ in two ways: the first **forward** difference
+# (φᵢ₊₁ − φᵢ)/h and the **centred** difference (φᵢ₊₁ − φᵢ₋₁)/(2h). Store them in
+# `dphi_fw` and `dphi_c` (361 values each; use any one-sided formula at the ends).
+# Use the same angle unit for φ and for the step.
+
+# %% [raw]
+# # BEGIN SOLUTION
+
+# %%
+def forward_difference(y, h):
+    """dy/dx by forward differences on a grid of step h."""
+    # BEGIN SOLUTION
+    d = np.empty_like(y)
+    d[:-1] = (y[1:] - y[:-1]) / h
+    d[-1] = (y[-1] - y[-2]) / h  # backward at the last point
+    return d
+    # END SOLUTION
+
+
+def centred_difference(y, h):
+    """dy/dx by centred differences on a grid of step h."""
+    # BEGIN SOLUTION
+    d = np.empty_like(y)
+    d[1:-1] = (y[2:] - y[:-2]) / (2 * h)
+    d[0] = (-3 * y[0] + 4 * y[1] - y[2]) / (2 * h)  # one-sided, second order
+    d[-1] = (3 * y[-1] - 4 * y[-2] + y[-3]) / (2 * h)
+    return d
+    # END SOLUTION
+
+
+dphi_fw = forward_difference(phi, h)  # SOLUTION
+dphi_c = centred_difference(phi, h)  # SOLUTION
+
+# %% [raw]
+# # END SOLUTION
+
+# %% [raw]
+# # BEGIN TESTS
+
+# %%
+def test_dphi_are_two_different_formulas(dphi_fw, dphi_c):
+    import numpy as np
+    import kincheck as kc
+
+    fw = kc.array(dphi_fw, "dphi_fw")
+    c = kc.array(dphi_c, "dphi_c")
+    assert not np.allclose(fw[1:-1], c[1:-1], rtol=1e-9, atol=1e-12), (
+        "`dphi_fw` and `dphi_c` are identical: one of them uses the other's formula"
+    )
+
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_dphi_centred(dphi_c):
+    import kincheck as kc
+
+    CENTRED = {10: 0.414283965924, 40: 0.745299788649, 70: 0.822866522745, 100: 0.806756122363, 130: 0.686503335805, 160: 0.25268110877, 190: -0.700963531508, 220: -1.01264948824, 250: -0.823267776406, 280: -0.612790094621, 310: -0.430894869195, 340: -0.148607150408}  # numkin: dphi_centred
+    FORWARD = {10: 0.423335776186, 40: 0.747933951388, 70: 0.823226771803, 100: 0.805832351818, 130: 0.682926280501, 160: 0.240248249112, 190: -0.714614613832, 220: -1.01139924675, 250: -0.819446899514, 280: -0.60965543375, 310: -0.427650811304, 340: -0.141470646941}  # numkin: dphi_forward
+    BACKWARD = {10: 0.405232155663, 40: 0.74266562591, 70: 0.822506273686, 100: 0.807679892908, 130: 0.690080391109, 160: 0.265113968429, 190: -0.687312449184, 220: -1.01389972974, 250: -0.827088653297, 280: -0.615924755492, 310: -0.434138927087, 340: -0.155743653875}  # numkin: dphi_backward
+    kc.series(
+        "dphi_c", dphi_c, CENTRED, rtol=1e-5,
+        alternatives=[
+            (FORWARD, "this matches the forward difference; the question asks for centred"),
+            (BACKWARD, "this matches the backward difference; the question asks for centred"),
+        ],
+        suspects=("deg",),
+    )
+
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_dphi_forward(dphi_fw):
+    import kincheck as kc
+
+    CENTRED = {10: 0.414283965924, 40: 0.745299788649, 70: 0.822866522745, 100: 0.806756122363, 130: 0.686503335805, 160: 0.25268110877, 190: -0.700963531508, 220: -1.01264948824, 250: -0.823267776406, 280: -0.612790094621, 310: -0.430894869195, 340: -0.148607150408}  # numkin: dphi_centred
+    FORWARD = {10: 0.423335776186, 40: 0.747933951388, 70: 0.823226771803, 100: 0.805832351818, 130: 0.682926280501, 160: 0.240248249112, 190: -0.714614613832, 220: -1.01139924675, 250: -0.819446899514, 280: -0.60965543375, 310: -0.427650811304, 340: -0.141470646941}  # numkin: dphi_forward
+    BACKWARD = {10: 0.405232155663, 40: 0.74266562591, 70: 0.822506273686, 100: 0.807679892908, 130: 0.690080391109, 160: 0.265113968429, 190: -0.687312449184, 220: -1.01389972974, 250: -0.827088653297, 280: -0.615924755492, 310: -0.434138927087, 340: -0.155743653875}  # numkin: dphi_backward
+    kc.series(
+        "dphi_fw", dphi_fw, FORWARD, rtol=1e-5,
+        alternatives=[
+            (CENTRED, "this matches the centred difference; the question asks for forward"),
+            (BACKWARD, "this matches the backward difference (φᵢ − φᵢ₋₁)/h; the question asks for forward (φᵢ₊₁ − φᵢ)/h"),
+        ],
+        suspects=("deg",),
+    )
+
+# %% [raw]
+# # END TESTS
+
+# %% [raw]
+# # END QUESTION
+
+# %%
+fig, ax = plt.subplots()
+ax.plot(theta_deg, dphi_fw, label="forward")
+ax.plot(theta_deg, dphi_c, ":", label="centred")
+ax.set_xlabel("θ (deg)")
+ax.set_ylabel("dφ/dθ")
+ax.legend()
+plt.show()
+
+# %% [raw]
+# # BEGIN QUESTION
+# name: q1c
+# points: 2
+
+# %% [markdown]
+# **Q1c — which is more accurate?** Set `order_forward` and `order_centred` to the order p
+# of the truncation error O(hᵖ) of each formula, and `more_accurate` to `"forward"` or
+# `"centred"`.
+
+# %% [raw]
+# # BEGIN SOLUTION
+
+# %%
+order_forward = 1  # SOLUTION
+order_centred = 2  # SOLUTION
+more_accurate = "centred"  # SOLUTION
+
+# %% [raw]
+# # END SOLUTION
+
+# %% [raw]
+# # BEGIN TESTS
+
+# %%
+def test_answer_form(more_accurate, order_forward, order_centred):
+    assert isinstance(more_accurate, str), '`more_accurate` should be "forward" or "centred"'
+    word = more_accurate.strip().lower()
+    assert word in ("forward", "centred", "centered", "central", "center", "centre"), (
+        f'`more_accurate` should be "forward" or "centred", got {more_accurate!r}'
+    )
+    for name, p in (("order_forward", order_forward), ("order_centred", order_centred)):
+        assert isinstance(p, (int, float)) and not isinstance(p, bool), f"`{name}` should be a number"
+
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_orders(more_accurate, order_forward, order_centred):
+    assert order_forward == 1, f"`order_forward` = {order_forward}: the forward difference has error h/2 f'', order 1"
+    assert order_centred == 2, f"`order_centred` = {order_centred}: the centred difference has error h²/6 f''', order 2"
+    assert more_accurate.strip().lower().startswith("cent"), (
+        "the centred difference is the more accurate one: its error falls like h², the forward one like h"
+    )
+
+# %% [raw]
+# # END TESTS
+
+# %% [raw]
+# # END QUESTION
+
+# %% [raw]
+# # BEGIN QUESTION
+# name: q2a
+# points: 3
+
+# %% [markdown]
+# **Q2a — the second linkage.** Its input angle is α = φ + 149°. Solve linkage 2 with the
+# same Newton continuation, starting from (β, γ) = (30°, 270°) at θ = 0. Store the output
+# angle in `beta` and the coupler angle in `gamma` (361 values; radians or degrees).
+
+# %% [raw]
+# # BEGIN SOLUTION
+
+# %%
+alpha_in = phi + np.radians(OFFSET_DEG)  # SOLUTION
+beta, gamma = four_bar_sweep(alpha_in, FIXED_2, INPUT_2, COUPLER_2, OUTPUT_2, np.radians([30.0, 270.0]))  # SOLUTION
+
+# %% [raw]
+# # END SOLUTION
+
+# %% [raw]
+# # BEGIN TESTS
+
+# %%
+def test_beta_closes_loop_on_one_branch(phi, beta):
+    import numpy as np
+    import kincheck as kc
+
+    def gap1(a):
+        return kc.four_bar_gap(a, np.radians(np.arange(a.size)), 7.0, 1.94, 6.86, 2.36)
+
+    _, phi_rad, _ = kc.read_angles("phi", phi, gap1)
+
+    def gap2(b):
+        return kc.four_bar_gap(b, phi_rad[: b.size] + np.radians(149.0), 1.25, 2.39, 1.87, 1.26)
+
+    unit, angles, residual = kc.read_angles("beta", beta, gap2)
+    print(f"`beta` read as {'radians' if unit == 'rad' else 'degrees'}")
+    kc.closure("beta", residual, tol=1e-3)
+    kc.continuity("beta", angles)
+
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_beta_values(beta):
+    import kincheck as kc
+
+    BETA = {10: 1.23603736328, 40: 1.96570412988, 70: 2.92817258874, 100: 3.747693474, 130: 4.42245807272, 160: 4.88799096175, 190: 4.68846659713, 220: 3.86171648104, 250: 2.94604737807, 280: 2.0903207924, 310: 1.43923519488, 340: 1.11996147629}  # numkin: beta
+    kc.angles("beta", beta, BETA, tol=1e-6)
+
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_beta_newton_converged(phi, beta):
+    import numpy as np
+    import kincheck as kc
+
+    def gap1(a):
+        return kc.four_bar_gap(a, np.radians(np.arange(a.size)), 7.0, 1.94, 6.86, 2.36)
+
+    _, phi_rad, _ = kc.read_angles("phi", phi, gap1)
+
+    def gap2(b):
+        return kc.four_bar_gap(b, phi_rad[: b.size] + np.radians(149.0), 1.25, 2.39, 1.87, 1.26)
+
+    unit, angles, residual = kc.read_angles("beta", beta, gap2)
+    kc.closure("beta", residual, tol=1e-9)
+
+# %% [raw]
+# # END TESTS
+
+# %% [raw]
+# # END QUESTION
+
+# %% [raw]
+# # BEGIN QUESTION
+# name: q2b
+# points: 8
+
+# %% [markdown]
+# **Q2b — angular velocity and acceleration of the output.** With ω the speed of the
+# driving gear,
+#
+# $$ \frac{d\beta}{dt} = \omega \frac{d\beta}{d\theta}, \qquad
+#    \frac{d^2\beta}{dt^2} = \omega^2 \frac{d^2\beta}{d\theta^2}. $$
+#
+# Set `omega` to ω in rad/s. Compute, in rad/s and rad/s², at every θ:
+#
+# * `dbeta_dt_fw`: forward difference, `dbeta_dt_c`: centred difference;
+# * `d2beta_dt2_fw`: the forward difference applied twice, (βᵢ₊₂ − 2βᵢ₊₁ + βᵢ)/h²,
+#   `d2beta_dt2_c`: the centred second difference (βᵢ₊₁ − 2βᵢ + βᵢ₋₁)/h².
+#
+# Set `omega_100` and `alpha_100` to the **centred** angular velocity and acceleration at
+# θ = 100° (a number, or your 0–360° array: the check picks θ = 100°). As a check, the
+# assignment says the angular velocity is near 10 rad/s and the angular acceleration
+# close to −25 rad/s² there.
+
+# %% [raw]
+# # BEGIN SOLUTION
+
+# %%
+def second_difference(y, h):
+    """d²y/dx² by the centred second difference on a grid of step h."""
+    # BEGIN SOLUTION
+    d = np.empty_like(y)
+    d[1:-1] = (y[2:] - 2 * y[1:-1] + y[:-2]) / h**2
+    d[0] = (2 * y[0] - 5 * y[1] + 4 * y[2] - y[3]) / h**2  # one-sided, second order
+    d[-1] = (2 * y[-1] - 5 * y[-2] + 4 * y[-3] - y[-4]) / h**2
+    return d
+    # END SOLUTION
+
+
+omega = OMEGA_RAD_PER_MIN / 60.0  # SOLUTION
+dbeta_dt_fw = omega * forward_difference(beta, h)  # SOLUTION
+dbeta_dt_c = omega * centred_difference(beta, h)  # SOLUTION
+d2beta_dt2_fw = omega**2 * forward_difference(forward_difference(beta, h), h)  # SOLUTION
+d2beta_dt2_c = omega**2 * second_difference(beta, h)  # SOLUTION
+
+# BEGIN SOLUTION NO PROMPT
+i100 = np.flatnonzero(theta_deg == 100)[0]
+# END SOLUTION
+omega_100 = dbeta_dt_c[i100]  # SOLUTION
+alpha_100 = d2beta_dt2_c[i100]  # SOLUTION
+
+# %% [raw]
+# # END SOLUTION
+
+# %% [raw]
+# # BEGIN TESTS
+
+# %%
+def test_omega_in_rad_per_s(omega):
+    import kincheck as kc
+
+    kc.value("omega", omega, 7.5, rtol=1e-9, unit="rad/s", suspects=("rad/min",))
+
+# %%
+def test_near_the_assignment_check(omega_100, alpha_100):
+    import kincheck as kc
+
+    kc.band("omega_100", omega_100, 8.0, 12.0, about=10.0, deg=100, unit="rad/s")
+    kc.band("alpha_100", alpha_100, -32.5, -17.5, about=-25.0, deg=100, unit="rad/s²")
+
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_omega_100(omega_100):
+    import kincheck as kc
+
+    OMEGA_100 = 10.6328964886  # numkin: omega_beta_100
+    kc.value("omega_100", omega_100, OMEGA_100, deg=100, rtol=5e-3, unit="rad/s")
+
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_alpha_100(alpha_100):
+    import kincheck as kc
+
+    ALPHA_100 = -28.3749666204  # numkin: alpha_beta_100
+    ALPHA_100_FW = -28.1265557971  # numkin: alpha_beta_fw_100
+    kc.value(
+        "alpha_100", alpha_100, ALPHA_100, deg=100, rtol=5e-3, unit="rad/s²",
+        alternatives=[(ALPHA_100_FW, "this matches the forward difference applied twice; the question asks for the centred second difference")],
+    )
+
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_dbeta_dt_centred(dbeta_dt_c):
+    import kincheck as kc
+
+    CENTRED = {10: 5.98965846242, 40: 13.7121192715, 70: 12.9516698602, 100: 10.6329970835, 130: 8.62780841934, 160: 3.48986519077, 190: -9.09290899242, 220: -13.1258179125, 250: -12.9009693547, 280: -11.2400843708, 310: -7.0823888985, 340: -1.93099874475}  # numkin: dbeta_dt_centred
+    FORWARD = {10: 6.1539575112, 40: 13.7627006538, 70: 12.9095510357, 100: 10.5999795275, 130: 8.5867169372, 160: 3.32443065015, 190: -9.24976225005, 220: -13.1364439499, 250: -12.8885650637, 280: -11.1909207485, 310: -7.00095892645, 340: -1.83373672837}  # numkin: dbeta_dt_forward
+    BACKWARD = {10: 5.82535941365, 40: 13.6615378892, 70: 12.9937886847, 100: 10.6660146395, 130: 8.66889990148, 160: 3.65529973138, 190: -8.9360557348, 220: -13.1151918752, 250: -12.9133736458, 280: -11.289247993, 310: -7.16381887055, 340: -2.02826076113}  # numkin: dbeta_dt_backward
+    kc.series(
+        "dbeta_dt_c", dbeta_dt_c, CENTRED, rtol=1e-5, unit="rad/s",
+        alternatives=[
+            (FORWARD, "this matches the forward difference; the question asks for centred"),
+            (BACKWARD, "this matches the backward difference; the question asks for centred"),
+        ],
+    )
+
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_dbeta_dt_forward(dbeta_dt_fw):
+    import kincheck as kc
+
+    CENTRED = {10: 5.98965846242, 40: 13.7121192715, 70: 12.9516698602, 100: 10.6329970835, 130: 8.62780841934, 160: 3.48986519077, 190: -9.09290899242, 220: -13.1258179125, 250: -12.9009693547, 280: -11.2400843708, 310: -7.0823888985, 340: -1.93099874475}  # numkin: dbeta_dt_centred
+    FORWARD = {10: 6.1539575112, 40: 13.7627006538, 70: 12.9095510357, 100: 10.5999795275, 130: 8.5867169372, 160: 3.32443065015, 190: -9.24976225005, 220: -13.1364439499, 250: -12.8885650637, 280: -11.1909207485, 310: -7.00095892645, 340: -1.83373672837}  # numkin: dbeta_dt_forward
+    kc.series(
+        "dbeta_dt_fw", dbeta_dt_fw, FORWARD, rtol=1e-5, unit="rad/s",
+        alternatives=[(CENTRED, "this matches the centred difference; the question asks for forward")],
+    )
+
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_d2beta_dt2_centred(d2beta_dt2_c):
+    import kincheck as kc
+
+    SECOND = {10: 141.204631092, 40: 43.4714958899, 70: -36.1984632387, 100: -28.3764991381, 130: -35.3155275091, 160: -142.180514444, 190: -134.805444973, 220: -9.13240639291, 250: 10.6607028756, 280: 42.2530209024, 310: 69.9839058642, 340: 83.5905456814}  # numkin: d2beta_dt2_second
+    FORWARD_TWICE = {10: 141.834312182, 40: 38.0004175177, 70: -36.3696217269, 100: -28.1265557971, 130: -36.4179336932, 160: -148.743488113, 190: -128.172584078, 220: -7.63602782719, 250: 11.1778128316, 280: 43.7021492818, 310: 70.1928583397, 340: 85.0328710984}  # numkin: d2beta_dt2_forward_twice
+    kc.series(
+        "d2beta_dt2_c", d2beta_dt2_c, SECOND, rtol=1e-4, unit="rad/s²",
+        alternatives=[(FORWARD_TWICE, "this matches the forward difference applied twice; the question asks for the centred second difference")],
+    )
+
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_d2beta_dt2_forward(d2beta_dt2_fw):
+    import kincheck as kc
+
+    SECOND = {10: 141.204631092, 40: 43.4714958899, 70: -36.1984632387, 100: -28.3764991381, 130: -35.3155275091, 160: -142.180514444, 190: -134.805444973, 220: -9.13240639291, 250: 10.6607028756, 280: 42.2530209024, 310: 69.9839058642, 340: 83.5905456814}  # numkin: d2beta_dt2_second
+    FORWARD_TWICE = {10: 141.834312182, 40: 38.0004175177, 70: -36.3696217269, 100: -28.1265557971, 130: -36.4179336932, 160: -148.743488113, 190: -128.172584078, 220: -7.63602782719, 250: 11.1778128316, 280: 43.7021492818, 310: 70.1928583397, 340: 85.0328710984}  # numkin: d2beta_dt2_forward_twice
+    kc.series(
+        "d2beta_dt2_fw", d2beta_dt2_fw, FORWARD_TWICE, rtol=1e-4, unit="rad/s²",
+        alternatives=[(SECOND, "this matches the centred second difference; the question asks for the forward difference applied twice")],
+    )
+
+# %% [raw]
+# # END TESTS
+
+# %% [raw]
+# # END QUESTION
+
+# %%
+fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(7, 7))
+ax1.plot(theta_deg, dbeta_dt_fw, label="forward")
+ax1.plot(theta_deg, dbeta_dt_c, ":", label="centred")
+ax1.set_ylabel("dβ/dt (rad/s)")
+ax1.legend()
+ax2.plot(theta_deg, d2beta_dt2_fw, label="forward of forward")
+ax2.plot(theta_deg, d2beta_dt2_c, ":", label="centred second difference")
+ax2.set_xlabel("θ (deg)")
+ax2.set_ylabel("d²β/dt² (rad/s²)")
+ax2.legend()
+plt.show()

@@ -1,0 +1,538 @@
+"""Feedback helpers for the numkin homework checks.
+
+Every homework folder ships this module next to its notebook, and the
+autograder tests (``grader.check("q2")`` in the notebook, ``otter run`` for
+grading) call it.  It holds no answers: the hidden tests pass in the reference
+values, which ``python assignments/build.py expected`` computes with numkin.
+
+Each check either returns quietly or raises ``AssertionError`` with a message
+that says what looks off: a unit (degrees where radians are asked, rad/min
+where rad/s is asked, rpm, mm), a sign, the forward difference where the
+centred one is asked, a Newton iteration stopped too early, a branch jump.
+
+Arrays are sampled on a grid of input angles in degrees, for example
+``grid=(0, 360, 1)`` for θ = 0°, 1°, …, 360°.  Reference values are given as
+``{angle in degrees: value}`` and compared at those angles only, so that the
+end points (where students pick their own one-sided formulas) do not matter.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+
+__all__ = [
+    "SUSPECTS",
+    "angles",
+    "array",
+    "at",
+    "band",
+    "closure",
+    "continuity",
+    "four_bar_gap",
+    "read_angles",
+    "explain_factor",
+    "series",
+    "unit_of",
+    "value",
+]
+
+FULL_TURN = (0, 360, 1)
+"""The default grid: θ = 0°, 1°, …, 360° (361 samples)."""
+
+# name: (factor, hint when the answer is too large by it, hint when too small)
+SUSPECTS = {
+    "rad/min": (
+        60.0,
+        "rad/min where rad/s is asked? (1 rad/min = 1/60 rad/s)",
+        "divided by 60 once too often? (1 rad/min = 1/60 rad/s)",
+    ),
+    "deg": (
+        180.0 / math.pi,
+        "degrees where radians are asked?",
+        "radians where degrees are asked, or a step h in degrees under an angle in radians?",
+    ),
+    "rpm": (
+        60.0 / (2.0 * math.pi),
+        "rpm where rad/s is asked? (1 rpm = 2π/60 rad/s)",
+        "converted rpm to rad/s twice?",
+    ),
+    "mm": (
+        1000.0,
+        "millimetres where metres are asked?",
+        "metres where millimetres are asked?",
+    ),
+}
+
+_FACTOR_TOLERANCE = 0.02  # relative, for recognising a unit factor
+
+NEWTON_HINT = (
+    "An error this small usually comes from a Newton iteration stopped too early "
+    "(a loose tolerance such as |F| < 1e-4), which finite differences magnify"
+)
+
+
+# --------------------------------------------------------------------------
+# reading what the student handed in
+# --------------------------------------------------------------------------
+
+
+def _not_set(x) -> bool:
+    return x is None or x is Ellipsis
+
+
+def _grid_angles(grid) -> np.ndarray:
+    start, stop, step = grid
+    return np.arange(start, stop + step / 2, step, dtype=float)
+
+
+def _grid_text(grid) -> str:
+    start, stop, step = grid
+    return f"θ = {start:g}°, {start + step:g}°, …, {stop:g}°"
+
+
+def array(x, name: str, grid=FULL_TURN) -> np.ndarray:
+    """``x`` as a 1-D float array with one value per grid angle.
+
+    A grid that stops one step short (0°, 1°, …, 359°) is accepted too.
+    """
+    if _not_set(x):
+        raise AssertionError(f"`{name}` is not set yet: run the cell that computes it")
+    try:
+        values = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise AssertionError(
+            f"`{name}` should be an array of numbers, got {type(x).__name__}"
+        ) from None
+    values = np.atleast_1d(np.squeeze(values))
+    count = _grid_angles(grid).size
+    if values.ndim != 1 or values.size not in (count, count - 1):
+        raise AssertionError(
+            f"`{name}` should hold {count} values, one for each {_grid_text(grid)}; "
+            f"got shape {np.shape(x)}"
+        )
+    bad = np.flatnonzero(~np.isfinite(values))
+    if bad.size:
+        where = _grid_angles(grid)[bad[0]]
+        raise AssertionError(
+            f"`{name}` is {values[bad[0]]} at θ = {where:g}° ({bad.size} such values): "
+            "did Newton fail to converge there?"
+        )
+    return values
+
+
+def _index(grid, deg: float) -> int:
+    start, _, step = grid
+    return int(round((float(deg) - start) / step))
+
+
+def at(x, name: str, deg: float, grid=FULL_TURN) -> float:
+    """The value of ``x`` at θ = ``deg``: a number, or picked from an array over the grid."""
+    if _not_set(x):
+        raise AssertionError(f"`{name}` is not set yet: run the cell that computes it")
+    try:
+        values = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise AssertionError(f"`{name}` should be a number, got {type(x).__name__}") from None
+    if values.size == 1:
+        result = float(values.reshape(-1)[0])
+    else:
+        values = array(x, name, grid)
+        result = float(values[_index(grid, deg)])
+    if not math.isfinite(result):
+        raise AssertionError(f"`{name}` is {result} at θ = {deg:g}°")
+    return result
+
+
+def _pick(values: np.ndarray, ref: dict, grid) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    degs = np.array(sorted(float(d) for d in ref))
+    got = np.array([values[_index(grid, d)] for d in degs])
+    want = np.array([float(ref[d]) for d in sorted(ref, key=float)])
+    return degs, got, want
+
+
+# --------------------------------------------------------------------------
+# diagnosing a wrong number
+# --------------------------------------------------------------------------
+
+
+def _fmt(x: float) -> str:
+    return f"{x:.5g}"
+
+
+def _pair(want: float, got: float) -> tuple[str, str]:
+    """``want`` and ``got`` with enough digits to show where they differ."""
+    error = abs(got - want)
+    size = max(abs(want), abs(got))
+    digits = 5
+    if error > 0 and size > 0:
+        digits = min(12, max(5, math.ceil(math.log10(size / error)) + 2))
+    return f"{want:.{digits}g}", f"{got:.{digits}g}"
+
+
+_SYMBOLS = {
+    # name: (symbol of the factor, symbol of its inverse)
+    "rad/min": ("60", "1/60"),
+    "deg": ("180/π", "π/180"),
+    "rpm": ("60/2π", "2π/60"),
+    "mm": ("1000", "1/1000"),
+}
+
+
+def _combinations(suspects):
+    """Every (factor, [(name, power), ...]) from one or two suspects to the powers ±1, ±2."""
+    names = [s for s in suspects if s in SUSPECTS]
+    for count in (1, 2):
+        for combo in itertools.combinations(names, count):
+            for powers in itertools.product((-2, -1, 1, 2), repeat=count):
+                factor = math.prod(SUSPECTS[n][0] ** p for n, p in zip(combo, powers))
+                yield factor, list(zip(combo, powers))
+
+
+def _describe(factor: float, terms, sign: float) -> str:
+    parts, hints = [], []
+    for n, p in terms:
+        symbol = _SYMBOLS[n][0 if p > 0 else 1]
+        if abs(p) == 2:
+            symbol = f"({symbol})²" if "/" in symbol or "π" in symbol else f"{symbol}²"
+        parts.append(symbol)
+        hints.append(SUSPECTS[n][1 if p > 0 else 2])
+    shown = f"{factor:.4g}" if factor >= 1 else f"1/{1 / factor:.4g}"
+    explanation = " × ".join(parts)
+    text = f"off by a factor {shown}"
+    if explanation != shown:
+        text += f" (= {explanation})"
+    text += ": " + " And ".join(hints)
+    if sign < 0:
+        text += " The sign is flipped as well."
+    return text
+
+
+def explain_factor(ratio: float, suspects=("deg", "rad/min")) -> str | None:
+    """Name a unit mix-up that turns the right answer into ``ratio`` times it.
+
+    Tries the listed ``SUSPECTS`` alone and in pairs, to the powers ±1 and ±2
+    (an acceleration goes with ω², a second difference with 1/h²), with either
+    sign.  Returns a message such as ``"off by a factor 60: rad/min where
+    rad/s is asked? ..."``, or None when no combination fits within 2 %.
+    """
+    if not math.isfinite(ratio) or ratio == 0:
+        return None
+    if abs(ratio + 1.0) < _FACTOR_TOLERANCE:
+        return "the sign is flipped: check the sense of rotation (clockwise is negative)"
+    size, sign = abs(ratio), math.copysign(1.0, ratio)
+    if abs(size - 1.0) < _FACTOR_TOLERANCE:
+        return None
+    best = None
+    for factor, terms in _combinations(suspects):
+        miss = abs(math.log(size / factor))
+        if miss < _FACTOR_TOLERANCE and (best is None or (len(terms), miss) < best[0]):
+            best = ((len(terms), miss), factor, terms)
+    if best is None:
+        return None
+    return _describe(best[1], best[2], sign)
+
+
+def _ratio(got: np.ndarray, want: np.ndarray) -> float | None:
+    """The common ratio got/want, if the values are a constant multiple of the reference."""
+    scale = np.max(np.abs(want))
+    if scale == 0:
+        return None
+    keep = np.abs(want) > 0.2 * scale
+    ratios = got[keep] / want[keep]
+    middle = float(np.median(ratios))
+    if middle == 0 or np.max(np.abs(ratios / middle - 1.0)) > _FACTOR_TOLERANCE:
+        return None
+    return middle
+
+
+def _close(got, want, rtol: float, atol: float) -> np.ndarray:
+    scale = np.max(np.abs(want)) if np.size(want) else 0.0
+    return np.abs(np.asarray(got) - np.asarray(want)) <= atol + rtol * scale
+
+
+# --------------------------------------------------------------------------
+# checks
+# --------------------------------------------------------------------------
+
+
+def series(
+    name: str,
+    x,
+    ref: dict,
+    *,
+    grid=FULL_TURN,
+    unit: str = "",
+    rtol: float = 1e-4,
+    atol: float = 0.0,
+    alternatives: tuple = (),
+    suspects=("deg", "rad/min"),
+    small_hint: str | None = NEWTON_HINT,
+) -> None:
+    """Compare an array over the grid with reference values at some angles.
+
+    Passes when every ``|x - ref| <= atol + rtol * max|ref|``.  Otherwise
+    ``alternatives`` — ``(reference dict, message)`` pairs such as the forward
+    difference when the centred one is asked — are tried first, then a unit
+    factor (see :func:`explain_factor`), then the largest difference is
+    reported.
+    """
+    values = array(x, name, grid)
+    degs, got, want = _pick(values, ref, grid)
+    if _close(got, want, rtol, atol).all():
+        return
+    for alt_ref, message in alternatives:
+        _, alt_got, alt_want = _pick(values, alt_ref, grid)
+        if _close(alt_got, alt_want, rtol, atol).all():
+            raise AssertionError(f"`{name}`: {message}")
+    ratio = _ratio(got, want)
+    if ratio is not None:
+        hint = explain_factor(ratio, suspects)
+        if hint:
+            raise AssertionError(f"`{name}`: {hint}")
+    worst = int(np.argmax(np.abs(got - want)))
+    error = abs(got[worst] - want[worst])
+    unit_text = f" {unit}" if unit else ""
+    shown_want, shown_got = _pair(want[worst], got[worst])
+    message = (
+        f"`{name}` is off by up to {error:.3g}{unit_text}: "
+        f"at θ = {degs[worst]:g}° expected {shown_want}, got {shown_got}"
+    )
+    if small_hint and error < 0.05 * np.max(np.abs(want)):
+        message += f". {small_hint}"
+    raise AssertionError(message)
+
+
+def value(
+    name: str,
+    x,
+    want: float,
+    *,
+    deg: float | None = None,
+    grid=FULL_TURN,
+    unit: str = "",
+    rtol: float = 5e-3,
+    alternatives: tuple = (),
+    suspects=("deg", "rad/min"),
+) -> float:
+    """Compare one number (or the value at θ = ``deg`` of an array) with ``want``.
+
+    Passes within the relative tolerance ``rtol`` (0.5 % by default).
+    ``alternatives`` are ``(value, message)`` pairs tried when it fails.
+    Returns the student's number.
+    """
+    got = at(x, name, deg, grid) if deg is not None else at(x, name, 0, grid)
+    if abs(got - want) <= rtol * abs(want):
+        return got
+    where = f" at θ = {deg:g}°" if deg is not None else ""
+    for alt, message in alternatives:
+        if abs(got - alt) <= rtol * abs(alt) and abs(alt - want) > rtol * abs(want):
+            raise AssertionError(f"`{name}`{where} = {_fmt(got)}: {message}")
+    hint = explain_factor(got / want, suspects) if want else None
+    unit_text = f" {unit}" if unit else ""
+    if hint:
+        raise AssertionError(f"`{name}`{where} = {_fmt(got)}{unit_text}: {hint}")
+    raise AssertionError(
+        f"`{name}`{where} = {_fmt(got)}{unit_text}, expected {_fmt(want)}{unit_text} "
+        f"(within {rtol:.2%}): off by {100 * (got - want) / want:+.3g} %"
+    )
+
+
+def band(
+    name: str,
+    x,
+    low: float,
+    high: float,
+    *,
+    about: float,
+    deg: float | None = None,
+    grid=FULL_TURN,
+    unit: str = "",
+    suspects=("deg", "rad/min"),
+) -> float:
+    """A loose check: the number (or the value at θ = ``deg``) lies in [low, high].
+
+    ``about`` is the rough value the assignment quotes; a miss by a unit
+    factor from it is named.  Returns the student's number.
+    """
+    got = at(x, name, deg, grid) if deg is not None else at(x, name, 0, grid)
+    if low <= got <= high:
+        return got
+    where = f" at θ = {deg:g}°" if deg is not None else ""
+    unit_text = f" {unit}" if unit else ""
+    hint = _loose_factor(got, low, high, suspects)
+    if hint:
+        raise AssertionError(f"`{name}`{where} = {_fmt(got)}{unit_text}: {hint}")
+    raise AssertionError(
+        f"`{name}`{where} = {_fmt(got)}{unit_text}; it should be about {_fmt(about)}{unit_text} "
+        f"(between {_fmt(low)} and {_fmt(high)})"
+    )
+
+
+def _loose_factor(got: float, low: float, high: float, suspects) -> str | None:
+    """Unit mix-ups that would bring ``got`` back into [low, high] (at most two named).
+
+    A flipped sign is tried first, then single unit factors, then pairs.
+    """
+    if low <= -got <= high:
+        return "the sign is flipped: check the sense of rotation (clockwise is negative)"
+    middle = 0.5 * (low + high)
+    found = []
+    for factor, terms in _combinations(suspects):
+        if found and len(terms) > min(n for n, _, _ in found):
+            continue
+        for sign in (1.0, -1.0):
+            fixed = got / (sign * factor)
+            if low <= fixed <= high:
+                miss = abs(math.log(abs(fixed / middle)))
+                found.append((len(terms), miss, _describe(factor, terms, sign)))
+    if not found:
+        return None
+    fewest = min(n for n, _, _ in found)
+    texts = [t for n, _, t in sorted(found) if n == fewest][:2]
+    return texts[0] if len(texts) == 1 else f"{texts[0]} Or {texts[1]}"
+
+
+def _wrapped(difference: np.ndarray) -> np.ndarray:
+    return (difference + np.pi) % (2 * np.pi) - np.pi
+
+
+def unit_of(name: str, x, ref: dict, *, grid=FULL_TURN, tol: float = 1e-6, allow=("rad", "deg")):
+    """``"rad"`` or ``"deg"``: the unit in which the angles ``x`` match ``ref`` (radians).
+
+    Angles are compared modulo a full turn, so wrapped (``% 360``) and
+    unwrapped arrays are both accepted.  Raises with a message saying how far
+    off the values are (and in which unit they were read) when neither fits.
+    """
+    values = array(x, name, grid)
+    degs, got, want = _pick(values, ref, grid)
+    errors = {}
+    for unit in ("rad", "deg"):
+        read = got if unit == "rad" else np.radians(got)
+        errors[unit] = np.abs(_wrapped(read - want))
+        if unit in allow and errors[unit].max() <= tol:
+            return unit
+    for unit in ("rad", "deg"):
+        if unit not in allow and errors[unit].max() <= tol:
+            asked = "radians" if unit == "deg" else "degrees"
+            word = "degrees" if unit == "deg" else "radians"
+            raise AssertionError(
+                f"`{name}`: the values look like {word}; the question asks for {asked}"
+            )
+    # neither unit fits everywhere: read it in the unit that fits at more angles
+    def fitness(u):
+        magnitude_says = (np.max(np.abs(values)) > 2 * np.pi + 0.5) == (u == "deg")
+        return (int(np.sum(errors[u] <= tol)), magnitude_says)
+
+    unit = max(allow, key=fitness)
+    worst = int(np.argmax(errors[unit]))
+    word = "radians" if unit == "rad" else "degrees"
+    expected = want[worst] if unit == "rad" else math.degrees(want[worst])
+    error_rad = errors[unit][worst]
+    hint = ""
+    if error_rad < 1e-2:
+        hint = (
+            " This is small: is your Newton iteration stopped too early (a loose tolerance"
+            " such as |F| < 1e-4)?"
+        )
+    elif abs(error_rad - math.pi) < 1e-3:
+        hint = (
+            " Off by 180°: that is the mirror solution (a negative length along the link)."
+            " Start each solve from the previous solution."
+        )
+    shown_want, shown_got = _pair(expected, got[worst])
+    raise AssertionError(
+        f"`{name}` (read as {word}) is off by up to {math.degrees(error_rad):.3g}° "
+        f"({error_rad:.3g} rad): at θ = {degs[worst]:g}° expected {shown_want} "
+        f"(or that plus whole turns), got {shown_got}.{hint}"
+    )
+
+
+def angles(name: str, x, ref: dict, *, grid=FULL_TURN, tol: float = 1e-6, allow=("rad", "deg")):
+    """Check angles against ``ref`` (radians) in either allowed unit; print which was read."""
+    unit = unit_of(name, x, ref, grid=grid, tol=tol, allow=allow)
+    print(f"`{name}` read as {'radians' if unit == 'rad' else 'degrees'}")
+    return unit
+
+
+def four_bar_gap(out_rad, in_rad, r_fixed, r_in, r_coupler, r_out) -> np.ndarray:
+    """Loop-closure residual of the homework's four-bar, one value per sample.
+
+    The loop ``r_out e^{i out} + r_coupler e^{i coupler} + r_in e^{i(in + π)} = r_fixed``
+    closes for some coupler angle exactly when the distance
+    ``|r_fixed - r_out e^{i out} + r_in e^{i in}|`` equals ``r_coupler``; the
+    difference is returned (same length unit as the links).
+    """
+    out_rad = np.asarray(out_rad, dtype=float)
+    in_rad = np.asarray(in_rad, dtype=float)
+    reach = np.abs(r_fixed - r_out * np.exp(1j * out_rad) + r_in * np.exp(1j * in_rad))
+    return np.abs(reach - r_coupler)
+
+
+def read_angles(name: str, x, gap, *, grid=FULL_TURN):
+    """Read the angle array ``x`` in radians, deciding its unit by the loop equations.
+
+    ``gap(angles_rad)`` returns the loop-closure residual of the angles; the
+    unit (radians or degrees) in which the residual is smaller wins.  Returns
+    ``(unit, angles in radians, residual)``.
+    """
+    values = array(x, name, grid)
+    best = None
+    for unit in ("rad", "deg"):
+        read = values if unit == "rad" else np.radians(values)
+        residual = np.asarray(gap(read), dtype=float)
+        if best is None or np.max(residual) < np.max(best[2]):
+            best = (unit, read, residual)
+    return best
+
+
+def closure(
+    name: str,
+    gap,
+    *,
+    tol: float = 1e-9,
+    grid=FULL_TURN,
+    step_rad: float | None = None,
+    broken: float = 1e-2,
+):
+    """Check that loop-closure residuals ``gap`` (one per grid angle) are all below ``tol``.
+
+    A residual above ``broken`` means the equations or the data are wrong; one
+    between ``tol`` and ``broken`` means the Newton iteration stopped before it
+    converged, and the message says how finite differences magnify it.
+    """
+    gap = np.abs(np.asarray(gap, dtype=float))
+    worst = int(np.argmax(gap))
+    if gap[worst] <= tol:
+        return
+    where = _grid_angles(grid)[worst]
+    if gap[worst] > broken:
+        raise AssertionError(
+            f"`{name}` does not satisfy the loop-closure equations (|F| up to {gap[worst]:.3g} "
+            f"at θ = {where:g}°) in radians or in degrees: check the equations, the link "
+            "lengths and the input angles"
+        )
+    h = step_rad if step_rad is not None else math.radians(grid[2])
+    raise AssertionError(
+        f"`{name}` satisfies the loop-closure equations only to |F| ≈ {gap[worst]:.1g} "
+        f"(worst at θ = {where:g}°): the Newton iteration stops too early, e.g. at |F| < 1e-4. "
+        f"Iterate until the step |Δx| < 1e-10. A first difference divides this error by "
+        f"h = {h:.3g}, a second difference by h² = {h * h:.2g}."
+    )
+
+
+def continuity(name: str, angles_rad, *, grid=FULL_TURN, max_step_deg: float = 10.0):
+    """Check that angles (radians) move by less than ``max_step_deg`` between grid points."""
+    values = np.asarray(angles_rad, dtype=float)
+    steps = np.degrees(np.abs(_wrapped(np.diff(values))))
+    worst = int(np.argmax(steps))
+    if steps[worst] <= max_step_deg:
+        return
+    where = _grid_angles(grid)
+    raise AssertionError(
+        f"`{name}` jumps by {steps[worst]:.3g}° between θ = {where[worst]:g}° and "
+        f"{where[worst + 1]:g}°: Newton has jumped to the other assembly branch. Start each "
+        "solve from the previous solution (continuation), not from the same fixed guess."
+    )

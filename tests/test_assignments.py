@@ -1,0 +1,372 @@
+"""The homework in assignments/: reference values, feedback helpers, and grading with otter.
+
+Fast tests check that the committed reference values are numkin's, and the feedback
+module ``assignments/kincheck.py`` on its own.  The tests marked ``slow`` build every
+homework with ``otter assign`` and grade, with ``otter run`` (no Docker), the solution
+notebook (full marks) and each deliberate mistake of ``assignments/<hw>/mistakes.toml``
+(partial marks, and feedback that names the mistake).  Every homework is built once and
+all submissions are graded in one module-scoped fixture, two at a time.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import math
+import os
+import re
+import sys
+import zipfile
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+ASSIGNMENTS = ROOT / "assignments"
+
+
+def _load(name: str, path: Path):
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+build = _load("numkin_assignments_build", ASSIGNMENTS / "build.py")
+kc = _load("kincheck", ASSIGNMENTS / "kincheck.py")
+
+HOMEWORK = list(build.HOMEWORK)
+MISTAKES = [(hw, m["name"]) for hw in HOMEWORK for m in build.mistakes(hw)]
+
+
+# --------------------------------------------------------------------------
+# reference values
+# --------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("hw", HOMEWORK)
+def test_committed_reference_values_are_numkins(hw):
+    """expected.json and the master's '# numkin:' lines agree with a fresh numkin computation.
+
+    Regenerate with: python assignments/build.py expected
+    """
+    problems = build.stale(hw)
+    assert not problems, "\n".join(problems) + "\nrun: python assignments/build.py expected"
+
+
+@pytest.mark.parametrize("hw", HOMEWORK)
+def test_every_reference_value_is_used_by_a_test(hw):
+    assert set(build.master_markers(hw)) == set(build.load_expected(hw))
+
+
+def test_reference_values_are_the_documents_numbers():
+    hw1 = build.load_expected("hw1_chained_four_bar")
+    assert hw1["omega_beta_100"] == pytest.approx(10.6329, abs=1e-4)
+    assert hw1["alpha_beta_100"] == pytest.approx(-28.3750, abs=1e-4)
+    assert hw1["dbeta_dt_centred"][100] == pytest.approx(10.6330, abs=1e-4)
+    assert hw1["dbeta_dt_forward"][100] == pytest.approx(10.5999, abs=1e-4)
+    assert hw1["d2beta_dt2_second"][100] == pytest.approx(-28.3765, abs=1e-4)
+    assert hw1["d2beta_dt2_forward_twice"][100] == pytest.approx(-28.1266, abs=1e-4)
+    assert math.degrees(hw1["phi"][100]) == pytest.approx(94.4375, abs=1e-4)
+    assert math.degrees(hw1["beta"][100]) == pytest.approx(214.7270, abs=1e-4)
+    hw2 = build.load_expected("hw2_quick_return")
+    assert [hw2["r3_30"], math.degrees(hw2["theta3_30"]), hw2["r4_30"], hw2["r5_30"]] == pytest.approx(
+        [87.178, 66.587, 130.767, 51.962], abs=1e-3
+    )
+    hw3 = build.load_expected("hw3_slider_crank")
+    assert hw3["a_0"] == pytest.approx(-44215.8, abs=0.1)
+    assert hw3["a_90"] == pytest.approx(13783.8, abs=0.1)
+    hw4 = build.load_expected("hw4_six_bar")
+    assert [hw4["x"][0], hw4["x"][90], hw4["x"][180]] == pytest.approx(
+        [-1.77881, -3.70858, -5.84838], abs=1e-5
+    )
+
+
+def test_stale_values_are_caught(tmp_path, monkeypatch):
+    hw = "hw3_slider_crank"
+    fresh = build.compute(hw)
+    fresh["a_0"] *= 1.001
+    assert any("a_0" in p for p in build.stale(hw, fresh))
+
+
+# --------------------------------------------------------------------------
+# the masters and their deliberate mistakes
+# --------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("hw", HOMEWORK)
+def test_master_is_an_otter_notebook(hw):
+    jupytext = pytest.importorskip("jupytext")
+    nb = jupytext.read(build.master_path(hw))
+    raw = [c.source for c in nb.cells if c.cell_type == "raw"]
+    assert raw[0].startswith("# ASSIGNMENT CONFIG")
+    begins = sum(s.startswith("# BEGIN QUESTION") for s in raw)
+    ends = sum(s.startswith("# END QUESTION") for s in raw)
+    assert begins == ends >= 2
+    assert sum(s.startswith("# BEGIN SOLUTION") for s in raw) == begins
+    hidden = [c.source for c in nb.cells if c.cell_type == "code" and "hidden: true" in c.source]
+    assert hidden, "no hidden tests"
+
+
+@pytest.mark.parametrize("hw, name", MISTAKES)
+def test_mistake_edits_match_the_master_once(hw, name):
+    source = build.master_path(hw).read_text()
+    (mistake,) = [m for m in build.mistakes(hw) if m["name"] == name]
+    assert mistake["feedback"], "a mistake must say which feedback it expects"
+    for edit in mistake["edit"]:
+        assert source.count(edit["find"]) == 1, edit["find"]
+
+
+# --------------------------------------------------------------------------
+# kincheck: the feedback
+# --------------------------------------------------------------------------
+
+
+def _fails(check, *args, **kwargs) -> str:
+    with pytest.raises(AssertionError) as info:
+        check(*args, **kwargs)
+    return str(info.value)
+
+
+@pytest.mark.parametrize(
+    "ratio, words",
+    [
+        (60.0, "off by a factor 60: rad/min where rad/s is asked?"),
+        (3600.0, "3600 (= 60²): rad/min"),
+        (1 / 60, "1/60: divided by 60"),
+        (180 / math.pi, "57.3 (= 180/π): degrees where radians are asked?"),
+        ((math.pi / 180) ** 2, "1/3283 (= (π/180)²)"),
+        (60 / (2 * math.pi), "9.549 (= 60/2π): rpm where rad/s is asked?"),
+        ((60 / (2 * math.pi)) ** 2, "91.19 (= (60/2π)²)"),
+        (1000.0, "millimetres where metres are asked?"),
+        (-1.0, "the sign is flipped"),
+        (-60.0, "The sign is flipped as well."),
+        (60 * 180 / math.pi, "3438 (= 180/π × 60): degrees where radians are asked? And rad/min"),
+    ],
+)
+def test_unit_factors_are_named(ratio, words):
+    assert words in kc.explain_factor(ratio, ("deg", "rad/min", "rpm", "mm"))
+
+
+@pytest.mark.parametrize("ratio", [1.0, 1.01, 1.3, 2.0, 0.5, 7.0])
+def test_other_ratios_are_not_blamed_on_units(ratio):
+    assert kc.explain_factor(ratio, ("deg", "rad/min", "rpm", "mm")) is None
+
+
+def test_value_at_100_degrees_is_picked_from_a_full_turn_array():
+    turn = np.arange(361.0) / 10
+    assert kc.at(turn, "w", 100) == 10.0
+    assert kc.at(turn[:360], "w", 100) == 10.0  # 0..359 is accepted too
+    assert kc.at(10.0, "w", 100) == 10.0
+    assert kc.at(np.float64(10.0), "w", 100) == 10.0
+    assert kc.at([[10.0]], "w", 100) == 10.0
+    assert "361 values" in _fails(kc.at, np.zeros(200), "w", 100)
+    assert "not set yet" in _fails(kc.at, ..., "w", 100)
+    assert "should be a number" in _fails(kc.at, "ten", "w", 100)
+
+
+def test_arrays_are_read_with_their_shape_checked():
+    assert kc.array(np.zeros((361, 1)), "y").shape == (361,)
+    assert kc.array(list(range(181)), "y", grid=(0, 180, 1)).shape == (181,)
+    bad = np.zeros(361)
+    bad[42] = np.nan
+    assert "θ = 42°" in _fails(kc.array, bad, "y")
+
+
+def test_angles_in_radians_or_degrees_wrapped_or_not():
+    ref = {10: 0.5, 100: 1.6, 250: 3.0}
+    rad = np.zeros(361)
+    for d, v in ref.items():
+        rad[d] = v
+    assert kc.unit_of("phi", rad, ref) == "rad"
+    assert kc.unit_of("phi", rad - 47 * 2 * np.pi, ref) == "rad"  # unwrapped
+    assert kc.unit_of("phi", np.degrees(rad) % 360, ref) == "deg"
+    assert kc.unit_of("phi", np.degrees(rad) + 720, ref) == "deg"
+    message = _fails(kc.unit_of, "beta", np.degrees(rad), ref, allow=("rad",))
+    assert "look like degrees; the question asks for radians" in message
+    off = rad.copy()
+    off[100] += 3e-5
+    assert "Newton iteration stopped too early" in _fails(kc.unit_of, "phi", off, ref)
+    mirror = rad.copy()
+    mirror[250] += np.pi
+    assert "mirror solution" in _fails(kc.unit_of, "phi", mirror, ref)
+
+
+def test_angles_check_says_which_unit_it_read(capsys):
+    ref = {10: 0.5}
+    kc.angles("phi", np.full(361, math.degrees(0.5)), ref)
+    assert "`phi` read as degrees" in capsys.readouterr().out
+
+
+def test_series_names_the_other_difference_and_unit_factors():
+    centred = {10: 6.0, 100: 10.633, 190: -9.09}
+    forward = {10: 6.15, 100: 10.600, 190: -9.25}
+    y = np.zeros(361)
+    for d, v in forward.items():
+        y[d] = v
+    message = _fails(
+        kc.series, "dbeta_dt_c", y, centred,
+        alternatives=[(forward, "this matches the forward difference; the question asks for centred")],
+    )
+    assert message == "`dbeta_dt_c`: this matches the forward difference; the question asks for centred"
+    for d, v in centred.items():
+        y[d] = v * 60
+    assert "off by a factor 60: rad/min" in _fails(kc.series, "w", y, centred)
+    for d, v in centred.items():
+        y[d] = v * (1 + 1e-4)
+    assert "Newton iteration stopped too early" in _fails(kc.series, "w", y, centred, rtol=1e-6)
+    kc.series("w", y, centred, rtol=1e-3)
+
+
+def test_value_and_band_feedback():
+    assert "expected 10.633 rad/s (within 0.50%)" in _fails(kc.value, "w", 10.9, 10.633, deg=100, unit="rad/s")
+    assert "off by +2.51 %" in _fails(kc.value, "w", 10.9, 10.633, deg=100)
+    assert "forward" in _fails(kc.value, "a", -28.13, -28.375, alternatives=[(-28.1266, "forward")])
+    kc.band("w", 10.63, 8, 12, about=10)
+    message = _fails(kc.band, "w", 10.63 * 60, 8, 12, about=10, deg=100, unit="rad/s")
+    assert message.startswith("`w` at θ = 100° = 637.8 rad/s: off by a factor 60")
+    assert "the sign is flipped" in _fails(kc.band, "w", -10.6, 8, 12, about=10)
+    assert "between 8 and 12" in _fails(kc.band, "w", 13.5, 8, 12, about=10)
+
+
+def test_loop_closure_and_continuity_feedback():
+    theta = np.radians(np.arange(361.0))
+    phi = np.full(361, 1.0)
+    gap = kc.four_bar_gap(phi, theta, 7.0, 1.94, 6.86, 2.36)
+    assert gap.shape == (361,)
+    assert "check the equations" in _fails(kc.closure, "phi", gap)
+    assert "stops too early" in _fails(kc.closure, "phi", np.full(361, 1e-5))
+    kc.closure("phi", np.full(361, 1e-12))
+    smooth = np.radians(np.linspace(20, 130, 361))
+    kc.continuity("phi", smooth)
+    jumpy = smooth.copy()
+    jumpy[200:] += np.radians(40)
+    assert "continuation" in _fails(kc.continuity, "phi", jumpy)
+    kc.continuity("phi", smooth + 2 * np.pi * (np.arange(361) > 100))  # whole turns are no jump
+
+
+def test_read_angles_picks_the_unit_that_closes_the_loop():
+    def gap(a):
+        return np.abs(np.sin(a - 1.0))
+
+    unit, angles, residual = kc.read_angles("t", np.full(361, math.degrees(1.0)), gap)
+    assert unit == "deg" and np.allclose(angles, 1.0) and residual.max() < 1e-12
+
+
+# --------------------------------------------------------------------------
+# otter: build, grade the solutions and the mistakes
+# --------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def graded(tmp_path_factory):
+    """Build every homework with otter assign; grade every solution and mistake with otter run."""
+    pytest.importorskip("otter")
+    pytest.importorskip("jupytext")
+    pytest.importorskip("nbclient")
+    out = tmp_path_factory.mktemp("assignments")
+    workers = max(1, min(2, os.cpu_count() or 1))
+    with ThreadPoolExecutor(workers) as pool:
+        results = dict(zip(HOMEWORK, pool.map(lambda hw: build.assign(hw, out, run_tests=False), HOMEWORK)))
+    jobs = []
+    for hw, result in results.items():
+        solution = result / "autograder" / f"{hw}.ipynb"
+        jobs.append((hw, "solution", solution, result / "graded" / "solution"))
+        for mistake in build.mistakes(hw):
+            wrong = result / "mistakes" / mistake["name"] / f"{hw}.ipynb"
+            build.apply_mistake(solution, mistake, wrong)
+            jobs.append((hw, mistake["name"], wrong, wrong.parent))
+
+    def grade(job):
+        hw, name, submission, folder = job
+        try:
+            return build.run(submission, build.autograder_zip(results[hw]), folder)
+        except Exception as error:  # reported by the test that needs it
+            return error
+
+    with ThreadPoolExecutor(workers) as pool:
+        graded = dict(zip([(j[0], j[1]) for j in jobs], pool.map(grade, jobs)))
+    return {"built": results, "graded": graded}
+
+
+def _results(graded, hw, name) -> dict:
+    outcome = graded["graded"][(hw, name)]
+    if isinstance(outcome, Exception):
+        raise outcome
+    return outcome
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("hw", HOMEWORK)
+def test_otter_assign_builds_student_and_autograder_versions(graded, hw):
+    result = graded["built"][hw]
+    student = (result / "student" / f"{hw}.ipynb").read_text()
+    autograder = (result / "autograder" / f"{hw}.ipynb").read_text()
+    assert (result / "student" / "kincheck.py").exists()
+    assert "grader.check(" in student
+    assert "BEGIN SOLUTION" not in student and "hidden: true" not in student
+    expected = build.load_expected(hw)
+    for key, value in expected.items():
+        values = value.values() if isinstance(value, dict) else value if isinstance(value, list) else [value]
+        precise = [repr(v) for v in values if len(repr(v)) >= 10]  # not round numbers like 80.0
+        assert precise, key
+        for text in precise:
+            assert text not in student, f"reference value {key} ({text}) leaked into the student notebook"
+            assert text in autograder, f"reference value {key} ({text}) missing from the hidden tests"
+    with zipfile.ZipFile(build.autograder_zip(result)) as archive:
+        names = archive.namelist()
+        tests = "".join(archive.read(n).decode() for n in names if re.match(r"tests/.*\.py$", n))
+    assert "files/kincheck.py" in names
+    assert "hidden=True" in tests
+
+
+def _solution_lines(hw: str) -> list[str]:
+    """Code the master marks as solution: lines in '# BEGIN SOLUTION' blocks, '# SOLUTION' lines."""
+    found, inside = [], False
+    for line in build.master_path(hw).read_text().splitlines():
+        text = line.strip()
+        if text.startswith("# BEGIN SOLUTION"):
+            inside = True
+        elif text.startswith("# END SOLUTION"):
+            inside = False
+        elif inside:
+            found.append(text)
+        elif text.endswith("# SOLUTION"):
+            found.append(text.removesuffix("# SOLUTION").strip())
+    return [line for line in found if len(line) >= 20 and not line.startswith("#")]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("hw", HOMEWORK)
+def test_student_version_has_no_solutions(graded, hw):
+    cells = json.loads((graded["built"][hw] / "student" / f"{hw}.ipynb").read_text())["cells"]
+    student = "\n".join("".join(cell["source"]) for cell in cells)
+    lines = _solution_lines(hw)
+    assert len(lines) >= 3
+    leaked = [line for line in lines if line in student]
+    assert not leaked, f"solution code in the student notebook: {leaked}"
+    assert student.count("= ...") + student.count("    ...") >= 2
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("hw", HOMEWORK)
+def test_solution_scores_full_marks(graded, hw):
+    results = _results(graded, hw, "solution")
+    got, possible = build.score(results)
+    assert possible > 0
+    assert got == possible, build.feedback(results)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("hw, name", MISTAKES)
+def test_mistake_scores_partial_marks_and_is_named(graded, hw, name):
+    results = _results(graded, hw, name)
+    got, possible = build.score(results)
+    text = build.feedback(results)
+    assert 0 < got < possible, f"{name}: {got} / {possible}\n{text}"
+    (mistake,) = [m for m in build.mistakes(hw) if m["name"] == name]
+    for words in mistake["feedback"]:
+        assert words in text, f"{name}: feedback lacks {words!r}:\n{text}"
