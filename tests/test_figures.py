@@ -1,0 +1,405 @@
+"""Figures and animations: each figure from real data, checked against independent
+references (closed forms derived here, numbers of the source documents); byte-identical
+output when rendered twice; no figure left open; matplotlib only imported on demand."""
+
+from __future__ import annotations
+
+import math
+import os
+import subprocess
+import sys
+import types
+import warnings
+
+import numpy as np
+import pytest
+
+pytest.importorskip("matplotlib")
+from PIL import Image
+
+from numkin import linkages, report
+from numkin.analytic import kinematics as analytic_kinematics
+from numkin.kinematics import finite_difference
+
+from numkin import figures
+from numkin.animate import animate, frame_indices
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (only to check that no figure is left open)
+
+DEG = math.pi / 180
+OMEGA_HW = 7.5  # 450 rad/min
+THETA_CHECK = 100 * DEG
+
+
+# ----------------------------------------------------------------------------- data
+@pytest.fixture(scope="module")
+def hw():
+    """The homework's chained four-bars over one turn, 1° steps, with analytic and finite differences."""
+    sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 361)))
+    finite = {
+        "forward": finite_difference(sweep, "450 rad/min", method="forward", second_method="forward_of_forward"),
+        "centred": finite_difference(sweep, "450 rad/min"),
+    }
+    return types.SimpleNamespace(sweep=sweep, analytic=analytic_kinematics(sweep, "450 rad/min"), finite=finite)
+
+
+@pytest.fixture(scope="module")
+def crank():
+    """The exam's slider-crank (80 mm, 200 mm, 6000 rpm), 0..180° in 1° steps."""
+    sweep = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0, 181)))
+    return types.SimpleNamespace(
+        sweep=sweep, analytic=analytic_kinematics(sweep, "6000 rpm"),
+        finite={"second_difference": finite_difference(sweep, "6000 rpm")},
+    )
+
+
+@pytest.fixture(scope="module")
+def tables():
+    """Real report tables for the homework's beta, on small grids."""
+    mech = linkages.chained_four_bars()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        out = {
+            "convergence": report.convergence_table(
+                mech, omega="450 rad/min", quantity="beta", check_angle=THETA_CHECK, grids=(36, 72, 180, 360),
+                schemes=("forward", "centred", "five_point", "second_difference"),
+            ),
+            "work_precision": report.work_precision_table(
+                mech, omega="450 rad/min", quantity="beta", grids=(36, 72, 180),
+                schemes=("forward", "centred"), repeat=1,
+            ),
+            "roundoff": report.roundoff_table(
+                mech, quantity="beta", check_angle=THETA_CHECK, schemes=("forward", "centred", "second_difference"),
+                scan_per_decade=2,
+            ),
+        }
+        for jac in ("symbolic", "forward", "central"):
+            out[f"newton_{jac}"] = report.newton_table(mech, check_angle=THETA_CHECK, jacobian=jac)
+    return out
+
+
+@pytest.fixture(autouse=True)
+def no_open_figures():
+    yield
+    assert plt.get_fignums() == []
+
+
+def _abs_c(f, r, t):
+    """|f + r e^{it}|, continued analytically to complex t (for the complex step)."""
+    return np.sqrt(f * f + r * r + 2 * f * r * np.cos(t))
+
+
+def _arg_c(f, r, t):
+    """arg(f + r e^{it}), continued analytically to complex t (f > r: no branch cut)."""
+    return np.arctan(r * np.sin(t) / (f + r * np.cos(t)))
+
+
+def _phi_branches(theta):
+    """Both circle intersections of the homework's linkage 1 (document 003's dimensions).
+
+    B = 2.36 e^{i phi} about C = 0 and |B - A| = 6.86, with A = 7 + 1.94 e^{i theta}.
+    """
+    d = _abs_c(7.0, 1.94, theta)
+    gamma = np.arccos((2.36**2 + d**2 - 6.86**2) / (2 * 2.36 * d))
+    arg = _arg_c(7.0, 1.94, theta)
+    return arg + gamma, arg - gamma
+
+
+# the branch of the homework's starting guess phi(0) = 45°
+_BRANCH = 0 if abs(_phi_branches(0.0)[0] - 45 * DEG) < abs(_phi_branches(0.0)[1] - 45 * DEG) else 1
+
+
+def phi_closed_form(theta):
+    return _phi_branches(theta)[_BRANCH]
+
+
+def phi_exact(theta):
+    return np.real(phi_closed_form(np.asarray(theta, dtype=float)))
+
+
+def dphi_exact(theta, h=1e-20):
+    return np.imag(phi_closed_form(np.asarray(theta, dtype=float) + 1j * h)) / h
+
+
+def line(ax, label):
+    for ln in ax.get_lines():
+        if ln.get_label() == label:
+            return np.asarray(ln.get_xdata(), dtype=float), np.asarray(ln.get_ydata(), dtype=float)
+    raise AssertionError(f"no line {label!r}; lines: {[ln.get_label() for ln in ax.get_lines()]}")
+
+
+def all_text(fig) -> str:
+    return "\n".join(t.get_text() for t in fig.findobj(lambda a: hasattr(a, "get_text") and hasattr(a, "get_position")))
+
+
+# ----------------------------------------------------------------------------- imports
+def test_importing_numkin_scene_and_figure_names_does_not_import_matplotlib():
+    code = (
+        "import sys, numkin, numkin.scene, numkin.figures, numkin.animate\n"
+        "assert numkin.figures.parse_spec('kinematics:beta') == ('kinematics', 'beta')\n"
+        "print('matplotlib' in sys.modules)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+
+
+def test_closed_form_reference_is_the_homework_branch(hw):
+    # the test's own reference agrees with the solved sweep (so the figure checks below are meaningful)
+    assert np.allclose(np.unwrap(phi_exact(hw.sweep.inputs)), np.unwrap(hw.sweep["phi"]), atol=1e-9)
+
+
+# ----------------------------------------------------------------------------- sweep figures
+def test_position_plots_phi_in_degrees(hw):
+    fig = figures.position(hw.sweep, ["phi"])
+    ax = fig.axes[0]
+    x, y = ax.get_lines()[0].get_data()
+    assert ax.get_xlabel() == r"$\theta$ [deg]" and ax.get_ylabel() == r"$\phi$ [deg]"
+    k = 100
+    assert x[k] == pytest.approx(100.0)
+    assert y[k] == pytest.approx(math.degrees(phi_exact(THETA_CHECK)), abs=1e-8)
+    assert y[k] == pytest.approx(94.4375, abs=1e-4)  # document 003 / linkages docstring value
+
+
+def test_derivative_forward_and_centred_against_closed_form(hw):
+    fig = figures.derivative(hw.sweep, "phi")
+    ax = fig.axes[0]
+    h = 1 * DEG
+    t = THETA_CHECK
+    _, fwd = line(ax, "forward")
+    _, cen = line(ax, "centred")
+    assert fwd[100] == pytest.approx((phi_exact(t + h) - phi_exact(t)) / h, abs=1e-8)
+    assert cen[100] == pytest.approx((phi_exact(t + h) - phi_exact(t - h)) / (2 * h), abs=1e-8)
+    # the centred one is the more accurate, as the homework expects
+    exact = dphi_exact(t)
+    assert abs(cen[100] - exact) < abs(fwd[100] - exact) / 10
+    assert "rad/rad" in ax.get_ylabel()
+
+
+def test_difference_vanishes_where_second_derivative_does(hw):
+    fig = figures.difference(hw.sweep, "phi")
+    ax, ax2 = fig.axes
+    x, delta = ax.get_lines()[0].get_data()
+    h = 1 * DEG
+    # zeros of phi'' from the closed form, on a fine grid
+    tt = np.radians(np.linspace(0, 360, 36001))
+    d2 = np.gradient(dphi_exact(tt), tt)
+    zeros = np.degrees(tt[1:][np.sign(d2[1:]) != np.sign(d2[:-1])])
+    marks = [ln.get_xdata()[0] for ln in ax.get_lines()[1:] if ln.get_linestyle() == ":"]
+    assert len(marks) == len(zeros) >= 2
+    assert np.allclose(np.sort(marks), np.sort(zeros), atol=0.6)
+    for z in zeros:  # Delta has a minimum, near zero, at each of them
+        k = int(round(z))
+        assert delta[k] < 0.1 * delta.max()
+    # Delta ~ (h/2)|phi''|: the forward difference's leading error
+    assert delta.max() == pytest.approx(h / 2 * np.max(np.abs(d2)), rel=0.05)
+
+
+def test_kinematics_of_beta_marks_the_check_point(hw):
+    fig = figures.kinematics(hw.sweep, "beta", analytic=hw.analytic, finite=hw.finite, check_angles=[THETA_CHECK])
+    ax0, ax1, ax2 = fig.axes
+    assert ax1.get_ylabel() == r"$\omega_{\beta}$ [rad/s]" and ax2.get_ylabel() == r"$\alpha_{\beta}$ [rad/s²]"
+    for ax in (ax1, ax2):
+        assert {"forward", "centred", "analytic"} <= {ln.get_label() for ln in ax.get_lines()}
+    text = all_text(fig)
+    # document 003: omega_beta(100°) = 10.633 rad/s, alpha_beta(100°) = -28.375 rad/s² (exact)
+    assert "analytic: 10.633 rad/s" in text
+    assert "analytic: −28.375 rad/s²" in text
+    assert r"$\beta$(100°) = 214.73 deg" in text
+    assert any(abs(ln.get_xdata()[0] - 100) < 1e-12 for ln in ax1.get_lines() if ln.get_linestyle() == ":")
+
+
+def test_slider_of_the_six_bar():
+    sweep = linkages.six_bar().sweep(np.radians(np.arange(0, 361, 2)))
+    fig = figures.slider(sweep, analytic=analytic_kinematics(sweep, "-10 rad/s"))
+    _, x = fig.axes[0].get_lines()[0].get_data()
+    assert x[0] == pytest.approx(-1.77881, abs=1e-5)  # document 001
+    assert [ax.get_ylabel() for ax in fig.axes[:3]] == ["$x$ [cm]", "$v_{x}$ [cm/s]", "$a_{x}$ [cm/s²]"]
+
+
+def test_piston_acceleration_against_the_exam_closed_form(crank):
+    fig = figures.acceleration_comparison(crank.sweep, "x", crank.analytic, crank.finite)
+    ax, axe = fig.axes
+    deg, a = line(ax, "analytic")
+    t = np.radians(deg)
+    r, l, w = 80.0, 200.0, 6000 * 2 * math.pi / 60
+    s, c = np.sin(t), np.cos(t)
+    root = np.sqrt(l * l - r * r * s * s)
+    x2 = -r * c - r * r * (c * c - s * s) / root - r**4 * s * s * c * c / root**3
+    assert np.allclose(a, w * w * x2, rtol=0, atol=1e-9 * np.max(np.abs(w * w * x2)))
+    _, num = line(ax, "second difference")
+    _, err = line(axe, "second difference")
+    assert np.allclose(err, np.abs(num - a), equal_nan=True)
+    assert axe.get_yscale() == "log"
+    # O(h²) with h = 1°: relative error well under 1e-3
+    assert np.nanmax(err) < 1e-3 * np.max(np.abs(a))
+
+
+def test_quick_return_drawn_with_its_dimensions():
+    sweep = linkages.quick_return().sweep(np.radians(np.arange(0, 361)))
+    fig = figures.mechanism(sweep, 30 * DEG)
+    text = all_text(fig)
+    # document 000 at theta2 = 30°
+    for expected in ("$r_{3}$ = 87.178 mm", r"$\theta_{3}$ = 66.587°", "$r_{4}$ = 130.767 mm", "$r_{5}$ = 51.962 mm",
+                     "$r_1$ = 60 mm", "$r_2$ = 40 mm", "$r_6$ = 60 mm", "$r_3$ = 87.178 mm", "$r_4$ = 130.767 mm"):
+        assert expected in text, expected
+    assert r"at $\theta_{2}$ = 30°" in text
+    # off the grid: solved there, not taken from the nearest point
+    fig2 = figures.mechanism(sweep, 30.5 * DEG)
+    assert "$r_{3}$ = 87.178 mm" not in all_text(fig2)
+
+
+# ----------------------------------------------------------------------------- table figures
+def test_convergence_reference_slopes_and_observed_order(tables):
+    fig = figures.convergence(tables["convergence"])
+    ax = fig.axes[0]
+    assert (ax.get_xscale(), ax.get_yscale()) == ("log", "log")
+    refs = [ln for ln in ax.get_lines() if ln.get_label().startswith("_") and len(ln.get_xdata()) == 50]
+    slopes = sorted(round(float(np.polyfit(np.log(ln.get_xdata()), np.log(ln.get_ydata()), 1)[0]), 9) for ln in refs)
+    assert slopes == [1.0, 2.0, 4.0]
+    h, e = line(ax, "centred (order 2)")
+    assert np.log(e[-1] / e[-2]) / np.log(h[-1] / h[-2]) == pytest.approx(2.0, abs=0.1)
+    assert {"slope 1", "slope 2", "slope 4"} <= set(all_text(fig).split("\n"))
+
+
+def test_roundoff_v_curves(tables):
+    fig = figures.roundoff(tables["roundoff"])
+    ax = fig.axes[0]
+    h, fwd = line(ax, "forward (order 1)")
+    k = int(np.nanargmin(fwd))
+    assert 0 < k < h.size - 1  # a V: truncation to the right, rounding to the left
+    textbook = [ln for ln in ax.get_lines() if ln.get_marker() == "D" and len(ln.get_xdata()) == 1]
+    assert min(abs(ln.get_xdata()[0] - math.sqrt(np.finfo(float).eps)) for ln in textbook) < 1e-15
+    eps_lines = [ln for ln in ax.get_lines() if list(ln.get_ydata()) == [np.finfo(float).eps] * 2]
+    assert eps_lines
+
+
+def test_newton_residuals_per_jacobian(tables):
+    newton = {k.split("_", 1)[1]: v for k, v in tables.items() if k.startswith("newton_")}
+    fig = figures.newton_residuals(newton)
+    ax = fig.axes[0]
+    assert ax.get_yscale() == "log"
+    for jac in ("symbolic", "forward", "central"):
+        k, r = line(ax, f"{jac} Jacobian")
+        assert list(k) == list(range(len(k)))
+        assert r[-1] < 1e-12 < r[0]
+        # quadratic convergence: digits roughly double from iterate 1 to 2 to 3
+        assert np.log10(r[3]) / np.log10(r[2]) > 1.6
+
+
+def test_work_precision_rings_the_pareto_front(tables):
+    fig = figures.work_precision(tables["work_precision"])
+    ax = fig.axes[0]
+    assert (ax.get_xscale(), ax.get_yscale()) == ("log", "log")
+    assert "Pareto front" in [ln.get_label() for ln in ax.get_lines()]
+
+
+# ----------------------------------------------------------------------------- render + determinism
+def _results(hw, crank, tables):
+    homework = types.SimpleNamespace(
+        sweep=hw.sweep, analytic=hw.analytic, finite=hw.finite, tables=tables, omega=OMEGA_HW,
+        check_angles=[THETA_CHECK],
+        figures=["position:phi", "derivative:phi", "difference:phi", "kinematics:beta", "mechanism",
+                 "convergence", "work-precision", "roundoff", "newton"],
+    )
+    piston = types.SimpleNamespace(
+        sweep=crank.sweep, analytic=crank.analytic, finite=crank.finite, tables={}, omega=200 * math.pi,
+        check_angles=[90 * DEG], figures=["slider", "acceleration", "mechanism:90"],
+    )
+    return homework, piston
+
+
+def test_render_twice_gives_identical_bytes(hw, crank, tables, tmp_path):
+    runs = []
+    for k in range(2):
+        out = tmp_path / f"run{k}"
+        written = []
+        for result in _results(hw, crank, tables):
+            written += figures.render(result, out_dir=out)
+        runs.append(written)
+        assert plt.get_fignums() == []
+    names = sorted(p.name for p in runs[0])
+    assert names == sorted(p.name for p in runs[1])
+    assert len(names) == 2 * 12
+    assert {"kinematics-beta.png", "difference-phi.svg", "acceleration-x.png", "mechanism-90deg.svg",
+            "newton.png", "convergence.svg"} <= set(names)
+    for a, b in zip(sorted(runs[0]), sorted(runs[1])):
+        assert a.read_bytes() == b.read_bytes(), a.name
+    png = next(p for p in runs[0] if p.name == "derivative-phi.png")
+    with Image.open(png) as im:
+        assert im.size == (960, 630)  # 6.4 x 4.2 in at 150 dpi
+        assert "Software" not in im.info
+    svg = next(p for p in runs[0] if p.name == "derivative-phi.svg").read_text()
+    assert "<dc:date>" not in svg and "Matplotlib v" not in svg and "matplotlib.org/" not in svg.split("<metadata>")[1].split("</metadata>")[0]
+
+
+def test_same_bytes_from_a_fresh_process(tmp_path):
+    """Sweeps and drawing are deterministic across processes (and hash seeds)."""
+    code = (
+        "import sys, numpy as np\n"
+        "from numkin import linkages, figures\n"
+        "s = linkages.quick_return().sweep(np.radians(np.arange(0, 361)))\n"
+        "figures.save(figures.mechanism(s, np.radians(30)), sys.argv[1])\n"
+    )
+    for k, seed in enumerate(("1", "2")):
+        env = dict(os.environ, PYTHONHASHSEED=seed)
+        subprocess.run([sys.executable, "-c", code, str(tmp_path / f"qr{k}")], check=True, env=env)
+    for ext in ("png", "svg"):
+        assert (tmp_path / f"qr0.{ext}").read_bytes() == (tmp_path / f"qr1.{ext}").read_bytes()
+
+
+def test_render_skips_what_is_absent_and_rejects_mistakes(hw, tmp_path):
+    position_only = types.SimpleNamespace(sweep=hw.sweep, figures=["kinematics:beta", "convergence", "position:beta"])
+    with pytest.warns(figures.FigureSkipped) as record:
+        written = figures.render(position_only, out_dir=tmp_path)
+    assert [p.name for p in written] == ["position-beta.png", "position-beta.svg"]
+    messages = [str(w.message) for w in record]
+    assert any("'kinematics:beta' skipped" in m and "velocity or acceleration" in m for m in messages)
+    assert any("'convergence' skipped" in m for m in messages)
+    with pytest.raises(ValueError, match="unknown figure 'kinematic'.*did you mean 'kinematics'"):
+        figures.render(position_only, names=["kinematic"], out_dir=tmp_path)
+    with pytest.raises(ValueError, match="'omega' is not an unknown"):
+        figures.render(position_only, names=["position:omega"], out_dir=tmp_path)
+    with pytest.raises(ValueError, match="formats: 'jpg'"):
+        figures.render(position_only, names=["position"], out_dir=tmp_path, formats=["jpg"])
+    assert figures.parse_spec("work_precision") == ("work-precision", None)
+    assert figures.parse_spec(" mechanism:30 ") == ("mechanism", "30")
+    with pytest.raises(ValueError, match="takes no"):
+        figures.parse_spec("newton:beta")
+
+
+def test_save_closes_a_pyplot_figure(tmp_path):
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0, 1])
+    assert plt.get_fignums()
+    paths = figures.save(fig, tmp_path / "sub" / "line", formats=("png", "svg", "pdf"))
+    assert [p.suffix for p in paths] == [".png", ".svg", ".pdf"]
+    assert plt.get_fignums() == []
+
+
+# ----------------------------------------------------------------------------- animation
+def test_frame_indices():
+    assert frame_indices(np.radians(np.arange(0, 361)), 72).tolist() == list(range(0, 360, 5))
+    assert frame_indices(np.radians(np.arange(0, 181)), 7).tolist() == [0, 30, 60, 90, 120, 150, 180]
+    with pytest.raises(ValueError, match="frames = 400 is more than the 360 distinct inputs"):
+        frame_indices(np.radians(np.arange(0, 361)), 400)
+    with pytest.raises(ValueError, match="frames must be an integer >= 2"):
+        frame_indices(np.radians(np.arange(0, 361)), 1)
+
+
+def test_gif_frame_count_and_identical_bytes(tmp_path):
+    sweep = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0, 361, 5)))
+    paths = [animate(sweep, tmp_path / f"run{k}" / "crank.gif", frames=12, fps=24) for k in range(2)]
+    assert plt.get_fignums() == []
+    with Image.open(paths[0]) as im:
+        assert im.format == "GIF" and im.n_frames == 12
+        assert im.info["duration"] == 40  # 1000 / 24 ms, in GIF units of 10 ms
+        first = np.asarray(im.convert("RGB"))
+        im.seek(3)
+        fourth = np.asarray(im.convert("RGB"))
+    assert not np.array_equal(first, fourth)
+    assert paths[0].read_bytes() == paths[1].read_bytes()
+    with pytest.raises(ValueError, match="must end in .gif"):
+        animate(sweep, tmp_path / "crank.mp4")
