@@ -10,7 +10,7 @@ differentiated loop equations (:mod:`numkin.analytic`).
 Radians inside; degrees only at the edges, always labelled.
 """
 
-from . import linkages
+from . import analytic, compare, derivatives, kinematics, linkages, units
 from .errors import AssemblyError, BranchError, ConvergenceError, NumkinError
 from .loops import Loop
 from .mechanism import Mechanism
@@ -30,6 +30,11 @@ __all__ = [
     "SingularityWarning",
     "Sweep",
     "SweepEvent",
+    "analytic",
+    "compare",
+    "derivatives",
+    "kinematics",
     "linkages",
     "newton",
+    "units",
 ]

@@ -1,0 +1,571 @@
+"""Exact velocity and acceleration from the differentiated loop equations.
+
+The position of a mechanism satisfies its stacked loop equations
+``F(q(theta), theta) = 0`` at every input ``theta``. Differentiating once
+and twice along the solution gives two *linear* systems with the position
+Jacobian ``J = dF/dq``::
+
+    J q'  = -F_theta                                  (velocity equations)
+    J q'' = -(G_q q' + G_theta),  G = J q' + F_theta  (acceleration equations)
+
+where ``'`` is d/dtheta. The right-hand sides are derived once with sympy
+when the mechanism is built (the acceleration one only on first use, so a
+position-only run never differentiates) and are solved here at every point
+of a sweep at once. Loops are stacked in solving order, so ``J`` is block
+lower-triangular: the chain rule through earlier loops (chained four-bars,
+six-bar) is part of the one solve.
+
+Time derivatives follow from the input's angular speed ``omega_in`` and
+acceleration ``alpha_in``::
+
+    omega = omega_in * q'          alpha = omega_in**2 * q'' + alpha_in * q'
+
+Units
+-----
+* input angle: rad; ``omega`` in rad/s and ``alpha`` in rad/s^2 (numbers),
+  or strings with units parsed by :mod:`numkin.units` (``"450 rad/min"``,
+  ``"6000 rpm"``, ``"-10 rad/s"``, ``"2 rad/s^2"``);
+* angle unknowns: ``omega_<name>`` in rad/s, ``alpha_<name>`` in rad/s^2;
+* length unknowns and point coordinates: ``v_<name>`` in the mechanism's
+  length unit per s, ``a_<name>`` in that unit per s^2 (mm/s and mm/s^2
+  for a mechanism in mm: divide by 1000 for m/s and m/s^2).
+
+The unit of every column is also stored in ``frame.attrs["units"]``.
+
+A reference independent of these formulas is :func:`complex_step`: the
+loop equations are solved at the complex input ``theta + i h`` and the
+derivative read off the imaginary part, to machine precision.
+
+Examples
+--------
+>>> import numpy as np
+>>> from numkin import analytic, linkages
+>>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([0.0, 90.0]))
+>>> kin = analytic.kinematics(sweep, omega="6000 rpm")
+>>> print(np.round(kin["a_x"].to_numpy() / 1000, 1))   # mm/s^2 -> m/s^2
+[-44215.8  13783.8]
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import warnings
+import weakref
+
+import numpy as np
+import sympy as sp
+
+from . import units
+from .compiled import vector_function
+from .newton import iterate
+from .sweep import COND_MAX, SingularityWarning
+
+__all__ = [
+    "derivatives",
+    "tangent",
+    "kinematics",
+    "point_derivatives",
+    "point_kinematics",
+    "complex_step",
+    "input_rates",
+    "column_units",
+]
+
+
+# --------------------------------------------------------------------------- helpers
+def _check_sweep(sweep):
+    for attr in ("mechanism", "inputs", "values"):
+        if not hasattr(sweep, attr):
+            raise TypeError(f"sweep must be a numkin Sweep (from Mechanism.sweep), got {type(sweep).__name__}")
+    return sweep.mechanism, np.asarray(sweep.inputs, dtype=float), np.asarray(sweep.values, dtype=float)
+
+
+def _deg(t) -> str:
+    return f"{math.degrees(float(t)):.3f}°"
+
+
+def _rate(value, name: str, parse, count: int) -> np.ndarray:
+    """A scalar or per-point input rate as an (N,) array in SI angular units."""
+    if isinstance(value, str) or isinstance(value, numbers.Real) and not isinstance(value, bool):
+        try:
+            v = parse(value)
+        except (ValueError, TypeError) as exc:
+            raise type(exc)(f"{name}: {exc}") from None
+        return np.full(count, v)
+    if isinstance(value, bool) or value is None:
+        raise TypeError(f"{name} must be a number, a string with units or an array of numbers, got {value!r}")
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a number, a string with units or an array of numbers, got {value!r}") from None
+    if arr.ndim == 0:
+        return _rate(float(arr), name, parse, count)
+    if arr.shape != (count,):
+        raise ValueError(f"{name} as an array must have one value per input of the sweep, shape ({count},), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name}[{int(np.flatnonzero(~np.isfinite(arr))[0])}] is not finite")
+    return arr
+
+
+def input_rates(omega, alpha, count: int) -> tuple[np.ndarray, np.ndarray]:
+    """The input's angular speed (rad/s) and acceleration (rad/s^2) at each of `count` points.
+
+    Parameters
+    ----------
+    omega : float, str or array_like
+        Angular speed of the input: a number in rad/s, a string with units
+        (``"450 rad/min"``, ``"6000 rpm"``, ``"-10 rad/s"``), or one value
+        (rad/s) per point of the sweep.
+    alpha : float, str or array_like
+        Angular acceleration of the input: a number in rad/s^2, a string
+        (``"2 rad/s^2"``, ``"60 rpm/s"``) or one value per point.
+    count : int
+        Number of points of the sweep.
+
+    Returns
+    -------
+    omega, alpha : ndarray, shape (count,)
+
+    Raises
+    ------
+    numkin.units.UnitError
+        For an unreadable string or a unit of the wrong dimension (an
+        acceleration given as `omega`, a length, ...); the message names the
+        parameter.
+
+    Examples
+    --------
+    >>> w, a = input_rates("450 rad/min", 0, 3)
+    >>> w, a
+    (array([7.5, 7.5, 7.5]), array([0., 0., 0.]))
+    """
+    return (
+        _rate(omega, "omega", units.angular_speed, count),
+        _rate(alpha, "alpha", units.angular_acceleration, count),
+    )
+
+
+def column_units(mechanism) -> dict:
+    """Units of the columns of :func:`kinematics` for a mechanism, column -> unit string.
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> column_units(linkages.slider_crank(80, 200))
+    {'theta': 'rad', 'omega_theta3': 'rad/s', 'alpha_theta3': 'rad/s^2', 'v_x': 'mm/s', 'a_x': 'mm/s^2'}
+    """
+    out = {str(mechanism.input_symbol): "rad"}
+    lu = mechanism.length_unit
+    for name in mechanism.unknowns:
+        if name in mechanism.angles:
+            out[f"omega_{name}"], out[f"alpha_{name}"] = "rad/s", "rad/s^2"
+        else:
+            out[f"v_{name}"], out[f"a_{name}"] = f"{lu}/s", f"{lu}/s^2"
+    return out
+
+
+def _columnwise(solve, q, t, *extra) -> np.ndarray:
+    """``solve(q, *extra, t)`` on the whole batch, or column by column (NaN where singular)."""
+    try:
+        return np.asarray(solve(q, *extra, t))
+    except np.linalg.LinAlgError:
+        out = np.full(q.shape, np.nan, dtype=np.result_type(q, t))
+        for k in range(t.size):
+            cols = [e[:, k : k + 1] for e in extra]
+            try:
+                out[:, k] = np.asarray(solve(q[:, k : k + 1], *cols, t[k : k + 1]))[:, 0]
+            except np.linalg.LinAlgError:
+                pass
+        return out
+
+
+def _singular_mask(sweep, mech, inputs, what: str) -> np.ndarray:
+    """Points whose Jacobian is singular (condition number above COND_MAX); warns once."""
+    cond = np.asarray(getattr(sweep, "cond", np.ones(inputs.size)), dtype=float)
+    bad = ~(cond <= COND_MAX)
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        warnings.warn(
+            f"{mech.name}: {what} undefined at {int(bad.sum())} point(s) where the Jacobian is singular "
+            f"(a toggle or change point; first at input {_deg(inputs[k])}, condition number {cond[k]:.3g}): "
+            "set to NaN",
+            SingularityWarning,
+            stacklevel=3,
+        )
+    return bad
+
+
+def _tangent(mech, q, t, p):
+    """dq/dtheta from ``J q' = -F_theta`` (NaN where J is singular)."""
+    return _columnwise(lambda q_, t_: mech.compiled.tangent(q_, t_, p), q, t)
+
+
+def _second(mech, q, dq, t, p):
+    """d2q/dtheta2 from ``J q'' = -(G_q q' + G_theta)`` (compiled on first use; NaN where J is singular)."""
+    return _columnwise(lambda q_, dq_, t_: mech.compiled.second_derivative(q_, dq_, t_, p), q, t, dq)
+
+
+# --------------------------------------------------------------------------- unknowns
+def tangent(sweep) -> np.ndarray:
+    """First derivatives dq/dtheta of all unknowns, from the velocity equations only.
+
+    Parameters
+    ----------
+    sweep : Sweep
+
+    Returns
+    -------
+    ndarray, shape (n, N)
+        Rows in ``sweep.unknowns`` order, per rad of input (rad/rad for
+        angles, length unit/rad for lengths). NaN at singular points (with a
+        :class:`~numkin.SingularityWarning`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import analytic, linkages
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([90.0]))
+    >>> print(np.round(analytic.tangent(sweep)[1], 6))   # dx/dtheta = -r at 90 deg
+    [-80.]
+    """
+    mech, t, q = _check_sweep(sweep)
+    bad = _singular_mask(sweep, mech, t, "dq/dtheta is")
+    dq = _tangent(mech, q, t, mech.parameter_values)
+    dq[:, bad] = np.nan
+    return dq
+
+
+def derivatives(sweep) -> tuple[np.ndarray, np.ndarray]:
+    """dq/dtheta and d2q/dtheta2 of all unknowns from the differentiated loop equations.
+
+    Solves ``J q' = -dF/dtheta`` and then ``J q'' = -(G_q q' + G_theta)``
+    (with ``G = J q' + dF/dtheta``) at every point of the sweep in one
+    vectorised batch. The stacked Jacobian of a multi-loop mechanism is
+    block lower-triangular, so the chain rule through earlier loops is
+    included.
+
+    Parameters
+    ----------
+    sweep : Sweep
+        A solved sweep (:meth:`Mechanism.sweep`).
+
+    Returns
+    -------
+    dq, d2q : ndarray, shape (n, N)
+        Rows in ``sweep.unknowns`` order, derivatives per rad of input
+        (angles rad/rad and rad/rad^2; lengths in length unit per rad and
+        per rad^2). NaN at points where the Jacobian is singular (toggle or
+        change points), with a :class:`~numkin.SingularityWarning`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import analytic, linkages
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([0.0]))
+    >>> dq, d2q = analytic.derivatives(sweep)
+    >>> float(d2q[1, 0])               # x'' = -r (1 + r/l) at theta = 0
+    -112.0
+    """
+    mech, t, q = _check_sweep(sweep)
+    p = mech.parameter_values
+    bad = _singular_mask(sweep, mech, t, "dq/dtheta and d2q/dtheta2 are")
+    dq = _tangent(mech, q, t, p)
+    d2q = _second(mech, q, np.nan_to_num(dq), t, p)
+    dq[:, bad] = np.nan
+    d2q[:, bad] = np.nan
+    d2q[:, ~np.all(np.isfinite(dq), axis=0)] = np.nan
+    return dq, d2q
+
+
+def kinematics(sweep, omega, alpha=0.0):
+    """Angular velocities and accelerations (and linear ones of length unknowns) over a sweep.
+
+    Parameters
+    ----------
+    sweep : Sweep
+        A solved sweep of the mechanism.
+    omega : float, str or array_like
+        Angular speed of the input: a number in rad/s (either sign; the
+        six-bar's crank turns clockwise at -10 rad/s), a string with units
+        (``"450 rad/min"``, ``"6000 rpm"``), or one value per point of the
+        sweep.
+    alpha : float, str or array_like, default 0
+        Angular acceleration of the input: rad/s^2, a string
+        (``"2 rad/s^2"``), or one value per point. The input is taken to
+        have speed `omega` and acceleration `alpha` at every listed
+        position (for a constant speed, ``alpha = 0``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per input. Column ``<input>`` (the input angle, rad); then,
+        in unknown order, ``omega_<name>`` [rad/s] and ``alpha_<name>``
+        [rad/s^2] for each angle unknown, ``v_<name>`` [length unit/s] and
+        ``a_<name>`` [length unit/s^2] for each length unknown. Units are
+        also in ``frame.attrs["units"]``.
+
+    Raises
+    ------
+    numkin.units.UnitError
+        If `omega` or `alpha` has the wrong dimension or cannot be read.
+
+    Notes
+    -----
+    ``omega_q = omega_in q'`` and ``alpha_q = omega_in**2 q'' + alpha_in q'``
+    with ``q'`` and ``q''`` from :func:`derivatives`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import analytic, linkages
+    >>> sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 101)))
+    >>> kin = analytic.kinematics(sweep, omega="450 rad/min")
+    >>> row = kin.iloc[100]
+    >>> print(f"{row['omega_beta']:.4f} rad/s, {row['alpha_beta']:.4f} rad/s^2")
+    10.6329 rad/s, -28.3750 rad/s^2
+    """
+    import pandas as pd
+
+    mech, t, _ = _check_sweep(sweep)
+    w, a = input_rates(omega, alpha, t.size)
+    dq, d2q = derivatives(sweep)
+    return _frame(pd, mech, t, w * dq, w**2 * d2q + a * dq, {"omega": w, "alpha": a, "method": "analytic"})
+
+
+def _scalar_attr(values: np.ndarray):
+    """A rate for ``DataFrame.attrs``: a float when constant, else a tuple (never an array)."""
+    values = np.asarray(values, dtype=float)
+    return float(values[0]) if values.size and np.all(values == values[0]) else tuple(values.tolist())
+
+
+def _frame(pd, mech, t, first, second, attrs):
+    """The kinematics DataFrame from time derivatives (n, N) of the unknowns."""
+    attrs = {k: _scalar_attr(v) if k in ("omega", "alpha") else v for k, v in attrs.items()}
+    cols = {str(mech.input_symbol): t}
+    for k, name in enumerate(mech.unknowns):
+        v, acc = ("omega", "alpha") if name in mech.angles else ("v", "a")
+        cols[f"{v}_{name}"] = first[k]
+        cols[f"{acc}_{name}"] = second[k]
+    frame = pd.DataFrame(cols)
+    frame.attrs["units"] = column_units(mech)
+    frame.attrs.update(attrs)
+    return frame
+
+
+# --------------------------------------------------------------------------- points
+_POINT_CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+def _point_names(mech, points) -> list:
+    if not mech.points:
+        raise ValueError(f"{mech.name} has no named points (give points= when building the Mechanism)")
+    if points is None:
+        return list(mech.points)
+    names = [points] if isinstance(points, str) else list(points)
+    unknown = [p for p in names if p not in mech.points]
+    if unknown:
+        raise ValueError(f"{mech.name} has no point(s) {unknown}; its points are {list(mech.points)}")
+    return names
+
+
+def _point_functions(mech, names):
+    """Compiled (P, dP/dtheta, d2P/dtheta2) of the named points, derived once per mechanism."""
+    cache = _POINT_CACHE.setdefault(mech, {})
+    key = tuple(names)
+    if key not in cache:
+        q = list(mech.compiled.unknowns)
+        t = mech.compiled.input_symbol
+        params = list(mech.compiled.parameters)
+        dq = [sp.Dummy(f"d{u}") for u in q]
+        d2q = [sp.Dummy(f"dd{u}") for u in q]
+        exprs = [sp.sympify(c) for name in names for c in mech.points[name]]
+        first = [sum((sp.diff(e, u) * du for u, du in zip(q, dq)), sp.S.Zero) + sp.diff(e, t) for e in exprs]
+        second = [
+            sum((sp.diff(f, u) * du for u, du in zip(q, dq)), sp.S.Zero)
+            + sum((sp.diff(f, du) * ddu for du, ddu in zip(dq, d2q)), sp.S.Zero)
+            + sp.diff(f, t)
+            for f in first
+        ]
+        varying = [*q, *dq, *d2q, t]
+        args = [*q, *dq, *d2q, t, *params]
+        cache[key] = (
+            vector_function(exprs, args, varying),
+            vector_function(first, args, varying),
+            vector_function(second, args, varying),
+        )
+    return cache[key]
+
+
+def point_derivatives(sweep, points=None) -> dict:
+    """Positions of named points and their first and second derivatives with respect to the input.
+
+    ``dP/dtheta = dP/dq q' + dP/dtheta`` and
+    ``d2P/dtheta2 = dP'/dq q' + dP'/dq' q'' + dP'/dtheta``, derived once per
+    mechanism with sympy and evaluated over the whole sweep.
+
+    Parameters
+    ----------
+    sweep : Sweep
+    points : str or sequence of str, optional
+        Point names (default: all of ``sweep.mechanism.points``).
+
+    Returns
+    -------
+    dict
+        name -> (P, dP, d2P), each an array of shape (2, N) (rows x and y;
+        length unit, per rad, per rad^2).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import analytic, linkages
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([90.0]))
+    >>> P, dP, d2P = analytic.point_derivatives(sweep, "A")["A"]
+    >>> print(np.round(dP[:, 0], 9), np.round(d2P[:, 0], 9))
+    [-80.   0.] [ -0. -80.]
+    """
+    mech, t, q = _check_sweep(sweep)
+    names = _point_names(mech, points)
+    f0, f1, f2 = _point_functions(mech, names)
+    dq, d2q = derivatives(sweep)
+    args = (*q, *dq, *d2q, t, *mech.parameter_values)
+    P, dP, d2P = (np.asarray(f(*args), dtype=float) for f in (f0, f1, f2))
+    return {name: (P[2 * k : 2 * k + 2], dP[2 * k : 2 * k + 2], d2P[2 * k : 2 * k + 2]) for k, name in enumerate(names)}
+
+
+def point_kinematics(sweep, omega, alpha=0.0, points=None):
+    """Positions, velocities and accelerations of named points over a sweep.
+
+    Parameters
+    ----------
+    sweep : Sweep
+    omega : float, str or array_like
+        Input angular speed (rad/s, or a string with units), see :func:`kinematics`.
+    alpha : float, str or array_like, default 0
+        Input angular acceleration (rad/s^2, or a string with units).
+    points : str or sequence of str, optional
+        Point names (default: all named points of the mechanism).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Column ``<input>`` (rad), then for each point P: ``x_P``, ``y_P``
+        [length unit], ``vx_P``, ``vy_P`` [length unit/s], ``ax_P``, ``ay_P``
+        [length unit/s^2]. Units also in ``frame.attrs["units"]``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import analytic, linkages
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([0.0]))
+    >>> kin = analytic.point_kinematics(sweep, "6000 rpm", points="P")
+    >>> print(f"{kin['x_P'][0]:.1f} mm, {kin['ax_P'][0] / 1000:.1f} m/s^2")
+    280.0 mm, -44215.8 m/s^2
+    """
+    import pandas as pd
+
+    mech, t, _ = _check_sweep(sweep)
+    w, a = input_rates(omega, alpha, t.size)
+    data = point_derivatives(sweep, points)
+    lu = mech.length_unit
+    cols = {str(mech.input_symbol): t}
+    unit = {str(mech.input_symbol): "rad"}
+    for name, (P, dP, d2P) in data.items():
+        for k, axis in enumerate("xy"):
+            cols[f"{axis}_{name}"] = P[k]
+            unit[f"{axis}_{name}"] = lu
+        for k, axis in enumerate("xy"):
+            cols[f"v{axis}_{name}"] = w * dP[k]
+            unit[f"v{axis}_{name}"] = f"{lu}/s"
+        for k, axis in enumerate("xy"):
+            cols[f"a{axis}_{name}"] = w**2 * d2P[k] + a * dP[k]
+            unit[f"a{axis}_{name}"] = f"{lu}/s^2"
+    frame = pd.DataFrame(cols)
+    frame.attrs["units"] = unit
+    frame.attrs.update({"omega": _scalar_attr(w), "alpha": _scalar_attr(a), "method": "analytic"})
+    return frame
+
+
+# --------------------------------------------------------------------------- complex step
+def complex_step(sweep, h: float = 1e-30, *, order: int = 1) -> np.ndarray:
+    """Derivatives of the unknowns by the complex-step method through the Newton solve.
+
+    The loop equations are solved at the complex inputs ``theta + i h`` by
+    Newton-Raphson in complex arithmetic (:func:`numkin.newton.iterate`),
+    starting from the sweep's real solution. The solution is
+    ``q(theta) + i h q'(theta) + O(h**2)``, so ``q' = Im(q) / h`` with no
+    subtractive cancellation: accurate to machine precision for any tiny
+    `h`. It uses only the residuals and the position Jacobian, not the
+    derived velocity or acceleration equations, so it is an independent
+    check of :func:`derivatives`.
+
+    Parameters
+    ----------
+    sweep : Sweep
+    h : float, default 1e-30
+        Imaginary step (rad), finite and positive.
+    order : {1, 2}, default 1
+        1: dq/dtheta. 2: d2q/dtheta2, as the complex step of the
+        first-derivative formula: ``Im(q'(q_c, theta + i h)) / h`` where
+        ``q_c`` is the complex solution and ``q'(q, theta) = -J^-1 dF/dtheta``
+        (this uses the velocity equations, not the acceleration equations).
+
+    Returns
+    -------
+    ndarray, shape (n, N)
+        Rows in ``sweep.unknowns`` order, per rad (order 1) or per rad^2
+        (order 2). NaN where the complex Newton solve fails (a singular
+        Jacobian), with a :class:`~numkin.SingularityWarning`.
+
+    Raises
+    ------
+    ValueError
+        If `h` is not finite and positive or `order` is not 1 or 2.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import analytic, linkages
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([0.0, 90.0]))
+    >>> print(np.round(analytic.complex_step(sweep)[1], 9))           # dx/dtheta
+    [  0. -80.]
+    >>> print(np.round(analytic.complex_step(sweep, order=2)[1], 6))  # d2x/dtheta2
+    [-112.         34.914862]
+    """
+    if isinstance(h, bool) or not isinstance(h, numbers.Real) or not (math.isfinite(h) and h > 0):
+        raise ValueError(f"h must be a finite positive number, got {h!r}")
+    if order not in (1, 2):
+        raise ValueError(f"order must be 1 (dq/dtheta) or 2 (d2q/dtheta2), got {order!r}")
+    mech, t, q = _check_sweep(sweep)
+    comp, p = mech.compiled, mech.parameter_values
+    tc = t + 1j * float(h)
+
+    def F(x, idx):
+        return comp.F(x, tc[idx], p)
+
+    def J(x, idx):
+        return comp.J(x, tc[idx], p)
+
+    x = q.astype(complex)
+    # Two passes: the first also removes the real residual left by the sweep, the
+    # second recomputes the imaginary part at the polished real solution.
+    for _ in range(2):
+        out = iterate(F, J, x, fscale=mech.length_scale, xscale=mech.xscale, tol=1e-13, maxiter=8,
+                      cond_max=COND_MAX)
+        x = np.where(out.converged, out.x, x)
+    failed = ~out.converged
+    if failed.any():
+        k = int(np.flatnonzero(failed)[0])
+        warnings.warn(
+            f"{mech.name}: complex-step Newton failed at {int(failed.sum())} point(s) (first at input "
+            f"{_deg(t[k])}: {'singular Jacobian' if out.singular[k] else 'no convergence'}): set to NaN",
+            SingularityWarning,
+            stacklevel=2,
+        )
+    if order == 1:
+        d = x.imag / h
+    else:
+        d = _tangent(mech, x, tc, p).imag / h
+    d[:, failed] = np.nan
+    return d

@@ -1,0 +1,266 @@
+"""Finite-difference schemes side by side with the exact (analytic) kinematics.
+
+:func:`compare` takes one quantity of a sweep -- the angular velocity of a
+link, the acceleration of a slider, the velocity of a named point -- and
+returns, per input angle, the analytic value (:mod:`numkin.analytic`), the
+value of each requested finite-difference scheme (:mod:`numkin.kinematics`)
+and their errors, plus a summary of the max and RMS error per scheme.
+
+Quantities
+----------
+The names of the columns of :func:`numkin.analytic.kinematics` and
+:func:`numkin.analytic.point_kinematics`:
+
+* ``omega_<angle>`` [rad/s], ``alpha_<angle>`` [rad/s^2];
+* ``v_<length>`` [unit/s], ``a_<length>`` [unit/s^2];
+* ``vx_<P>``, ``vy_<P>`` [unit/s], ``ax_<P>``, ``ay_<P>`` [unit/s^2] of a
+  named point P.
+
+Velocities are compared with first-derivative schemes, accelerations with
+second-derivative ones. For an accelerating input the ``alpha_in q'`` term
+of an acceleration uses the first-derivative scheme of the same family
+(:data:`numkin.kinematics.PARTNER`: forward with forward_of_forward, centred
+with second_difference and centred_of_centred, five_point with
+five_point_second, spectral with spectral_second).
+
+Errors
+------
+``abs error = |scheme - analytic|`` (in the quantity's unit). Two relative
+errors, both dimensionless:
+
+* ``rel error = abs error / max|analytic|``, the error relative to the
+  largest value of the quantity over the sweep. It stays meaningful where
+  the quantity crosses zero, and it is the one summarised;
+* ``pointwise rel error = abs error / |analytic|``, which grows without
+  bound near a zero crossing of the quantity (NaN where it is exactly 0).
+
+On a periodic (full-turn) sweep the last row repeats the first and is left
+out of the RMS values.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import derivatives as _d
+from .analytic import _check_sweep, derivatives, input_rates, point_derivatives
+from .kinematics import PARTNER, prepare_rows, scheme_for, sweep_grid
+
+__all__ = ["Comparison", "compare", "quantities", "DEFAULT_SCHEMES"]
+
+#: Schemes compared by default: first-derivative quantities / second-derivative ones.
+#: The spectral schemes are added on a periodic (full-turn) sweep.
+DEFAULT_SCHEMES = {
+    1: ("forward", "centred", "five_point"),
+    2: ("forward_of_forward", "second_difference", "five_point_second"),
+}
+_SPECTRAL = {1: "spectral", 2: "spectral_second"}
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """Result of :func:`compare`.
+
+    Attributes
+    ----------
+    quantity : str
+        The compared quantity, e.g. ``"omega_beta"``.
+    unit : str
+        Its unit, e.g. ``"rad/s"``.
+    table : pandas.DataFrame
+        One row per input: ``<input> [deg]``, ``analytic [unit]``, and for
+        each scheme ``<scheme> [unit]``, ``<scheme> abs error [unit]``,
+        ``<scheme> rel error`` and ``<scheme> pointwise rel error``.
+    summary : pandas.DataFrame
+        One row per scheme (index ``scheme``): ``order`` (of the truncation
+        error; "spectral" for the FFT schemes), ``max abs error [unit]``,
+        ``rms abs error [unit]``, ``max rel error``, ``rms rel error`` and
+        ``max at <input> [deg]`` (where the largest error occurs).
+    scale : float
+        ``max|analytic|`` over the sweep, the denominator of ``rel error``.
+    h : float
+        Grid step, rad.
+    periodic : bool
+        Whether the sweep was differenced as one periodic turn.
+    """
+
+    quantity: str
+    unit: str
+    table: object
+    summary: object
+    scale: float
+    h: float
+    periodic: bool
+
+    def __repr__(self) -> str:
+        return (
+            f"Comparison({self.quantity!r} [{self.unit}], h = {math.degrees(self.h):.6g}°, "
+            f"{'periodic' if self.periodic else 'open'} grid, {len(self.table)} points)\n"
+            f"{self.summary.to_string()}"
+        )
+
+
+# --------------------------------------------------------------------------- quantities
+def _catalog(mechanism) -> dict:
+    """name -> (derivative order, unit, kind ("unknown" or "point"), unknown or point name, axis)."""
+    lu = mechanism.length_unit
+    out = {}
+    for name in mechanism.unknowns:
+        if name in mechanism.angles:
+            out[f"omega_{name}"] = (1, "rad/s", "unknown", name, None)
+            out[f"alpha_{name}"] = (2, "rad/s^2", "unknown", name, None)
+        else:
+            out[f"v_{name}"] = (1, f"{lu}/s", "unknown", name, None)
+            out[f"a_{name}"] = (2, f"{lu}/s^2", "unknown", name, None)
+    for p in mechanism.points:
+        for k, axis in enumerate("xy"):
+            out.setdefault(f"v{axis}_{p}", (1, f"{lu}/s", "point", p, k))
+            out.setdefault(f"a{axis}_{p}", (2, f"{lu}/s^2", "point", p, k))
+    return out
+
+
+def quantities(mechanism) -> dict:
+    """The quantities :func:`compare` accepts for a mechanism, name -> (derivative order, unit).
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> q = quantities(linkages.slider_crank(80, 200))
+    >>> q["alpha_theta3"], q["v_x"], q["ax_P"]
+    ((2, 'rad/s^2'), (1, 'mm/s'), (2, 'mm/s^2'))
+    """
+    return {k: v[:2] for k, v in _catalog(mechanism).items()}
+
+
+def _resolve(mech, quantity: str):
+    """(order, unit, kind, name, axis) of a quantity name, or a ValueError listing the valid ones."""
+    if not isinstance(quantity, str):
+        raise TypeError(f"quantity must be a string such as 'omega_{mech.unknowns[0]}', got {quantity!r}")
+    catalog = _catalog(mech)
+    if quantity in catalog:
+        return catalog[quantity]
+    hint = ""
+    if quantity in mech.unknowns:
+        pre = ("omega", "alpha") if quantity in mech.angles else ("v", "a")
+        hint = f" (for the unknown {quantity!r} use '{pre[0]}_{quantity}' or '{pre[1]}_{quantity}')"
+    raise ValueError(f"unknown quantity {quantity!r} for {mech.name}{hint}; valid: {sorted(catalog)}")
+
+
+# --------------------------------------------------------------------------- compare
+def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") -> Comparison:
+    """Compare finite-difference schemes with the analytic value of one quantity over a sweep.
+
+    Parameters
+    ----------
+    sweep : Sweep
+        A solved sweep on a uniform grid.
+    omega : float, str or array_like
+        Input angular speed: rad/s or a string with units (``"450 rad/min"``).
+    quantity : str
+        A column name of :func:`numkin.analytic.kinematics` (``"omega_beta"``,
+        ``"alpha_beta"``, ``"v_x"``, ``"a_x"``) or of
+        :func:`numkin.analytic.point_kinematics` (``"vx_D"``, ``"ax_D"``).
+    schemes : sequence of str, optional
+        Scheme names of :data:`numkin.derivatives.SCHEMES` estimating the
+        quantity's derivative (first for velocities, second for
+        accelerations). Default :data:`DEFAULT_SCHEMES`, plus the spectral
+        scheme on a periodic sweep.
+    alpha : float, str or array_like, default 0
+        Input angular acceleration: rad/s^2 or a string with units.
+    periodic : {"auto", True, False}, default "auto"
+        As in :func:`numkin.kinematics.finite_difference`.
+
+    Returns
+    -------
+    Comparison
+        ``.table`` per input and ``.summary`` per scheme (see
+        :class:`Comparison` and the module notes on the relative errors).
+
+    Raises
+    ------
+    ValueError
+        For an unknown quantity (the message lists the valid ones), a
+        scheme of the wrong derivative order, or a grid the schemes cannot
+        use.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> from numkin.compare import compare
+    >>> sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 361)))
+    >>> c = compare(sweep, "450 rad/min", "omega_beta", schemes=("forward", "centred"))
+    >>> print(c.table.loc[100, ["theta [deg]", "analytic [rad/s]", "forward [rad/s]", "centred [rad/s]"]]
+    ...       .round(4).to_string())
+    theta [deg]         100.0000
+    analytic [rad/s]     10.6329
+    forward [rad/s]      10.6000
+    centred [rad/s]      10.6330
+    >>> print(c.summary["order"].to_dict())
+    {'forward': '1', 'centred': '2'}
+    """
+    import pandas as pd
+
+    mech, t, q = _check_sweep(sweep)
+    order, unit, kind, name, axis = _resolve(mech, quantity)
+    grid = sweep_grid(sweep, periodic)
+    w, a = input_rates(omega, alpha, t.size)
+
+    # the signal and its exact theta-derivatives
+    if kind == "unknown":
+        k = mech.unknowns.index(name)
+        dq, d2q = derivatives(sweep)
+        y, d1, d2 = q[k], dq[k], d2q[k]
+        is_angle = name in mech.angles
+    else:
+        P, dP, d2P = point_derivatives(sweep, name)[name]
+        y, d1, d2 = P[axis], dP[axis], d2P[axis]
+        is_angle = False
+    rows = prepare_rows(y[None, :], [is_angle], [quantity], t, grid, mech.length_scale, periodic)
+    exact = w * d1 if order == 1 else w**2 * d2 + a * d1
+
+    if schemes is None:
+        schemes = DEFAULT_SCHEMES[order] + ((_SPECTRAL[order],) if rows.periodic else ())
+    elif isinstance(schemes, str):
+        schemes = (schemes,)
+    parameter = "schemes" + ("" if order == 1 else f" (for the acceleration {quantity})")
+    chosen = [scheme_for(s, order, parameter) for s in schemes]
+    if not chosen:
+        raise ValueError("schemes must name at least one finite-difference scheme")
+
+    in_col = f"{mech.input_symbol} [deg]"
+    table = {in_col: np.degrees(t), f"analytic [{unit}]": exact}
+    scale = float(np.nanmax(np.abs(exact))) if np.any(np.isfinite(exact)) else float("nan")
+    summary = []
+    keep = slice(None, -1) if rows.periodic else slice(None)  # the last row repeats the first
+    for s in chosen:
+        if order == 1:
+            value = w * rows.apply(s)[0]
+        else:
+            value = w**2 * rows.apply(s)[0] + a * rows.apply(_d.get_scheme(PARTNER[s.name]))[0]
+        err = np.abs(value - exact)
+        rel = err / scale if scale > 0 else np.full_like(err, np.nan)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            pointwise = np.where(exact != 0, err / np.abs(exact), np.nan)
+        table[f"{s.name} [{unit}]"] = value
+        table[f"{s.name} abs error [{unit}]"] = err
+        table[f"{s.name} rel error"] = rel
+        table[f"{s.name} pointwise rel error"] = pointwise
+        worst = int(np.nanargmax(err)) if np.any(np.isfinite(err)) else 0
+        summary.append({
+            "scheme": s.name,
+            "order": "spectral" if s.order == 0 else str(s.order),
+            f"max abs error [{unit}]": float(np.nanmax(err)),
+            f"rms abs error [{unit}]": float(np.sqrt(np.nanmean(err[keep] ** 2))),
+            "max rel error": float(np.nanmax(rel)),
+            "rms rel error": float(np.sqrt(np.nanmean(rel[keep] ** 2))),
+            f"max at {in_col}": float(np.degrees(t[worst])),
+        })
+    table_df = pd.DataFrame(table)
+    summary_df = pd.DataFrame(summary).set_index("scheme")
+    for df in (table_df, summary_df):
+        df.attrs.update({"quantity": quantity, "unit": unit, "h": rows.h, "periodic": rows.periodic})
+    return Comparison(quantity, unit, table_df, summary_df, scale, rows.h, rows.periodic)

@@ -1,0 +1,404 @@
+"""Velocity and acceleration by finite differences of a sampled sweep.
+
+The position sweep gives every unknown ``q`` at the grid inputs
+``theta_0, theta_0 + h, ...``; the schemes of :mod:`numkin.derivatives`
+estimate ``q'`` and ``q''`` (d/dtheta) from those samples, and the input's
+speed and acceleration turn them into time derivatives exactly as in
+:mod:`numkin.analytic`::
+
+    omega = omega_in * q'          alpha = omega_in**2 * q'' + alpha_in * q'
+
+so that :func:`finite_difference` returns the same columns as
+:func:`numkin.analytic.kinematics` and the two can be compared column by
+column (:mod:`numkin.compare`).
+
+Grids
+-----
+* The grid must be uniform (``sweep.step`` not None); a descending sweep is
+  differenced as the same data in ascending order.
+* A sweep spanning exactly one turn (``inputs[-1] == inputs[0] + 2*pi``;
+  the last sample repeats the first configuration) is *periodic* under
+  ``periodic="auto"``: the first N-1 samples are differenced with wrapping
+  stencils and ``period_offset = value[-1] - value[0]`` (2*pi k for an
+  angle that turns k times per turn of the input, 0 otherwise), and the
+  first sample's result is copied to the last. If some unknown does not
+  return to its starting value (e.g. the sweep changed branch), "auto"
+  falls back to the open grid with a warning; ``periodic=True`` raises.
+* Any other sweep is an open grid: one-sided end stencils of the same
+  order (see :mod:`numkin.derivatives`).
+
+Angles are differenced unwrapped: the sweep's angles are continuous, and a
+jump larger than pi between neighbouring samples (data that were wrapped,
+e.g. reduced modulo 2*pi) is removed with :func:`numpy.unwrap`, with a
+warning, before any difference quotient is formed.
+
+Conventions of the student schemes
+----------------------------------
+``forward`` at sample i is ``(q[i+1] - q[i]) / h`` and
+``forward_of_forward`` at sample i is ``(q[i+2] - 2 q[i+1] + q[i]) / h**2``,
+i.e. :func:`~numkin.derivatives.forward` applied twice, with the result
+kept at the left sample i, as the homework computed it. On the homework's
+1° grid this gives, at theta = 100°, 10.5999 rad/s and -28.1266 rad/s^2
+for beta (the exact values are 10.6329 and -28.3750).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import derivatives as _d
+from .analytic import _check_sweep, _frame, input_rates
+
+__all__ = ["finite_difference", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "PARTNER"]
+
+#: First-derivative scheme used with each second-derivative scheme (for the
+#: ``alpha_in * q'`` term of an accelerating input, and by :mod:`numkin.compare`).
+PARTNER = {
+    "second_difference": "centred",
+    "forward_of_forward": "forward",
+    "centred_of_centred": "centred",
+    "five_point_second": "five_point",
+    "spectral_second": "spectral",
+}
+
+_TURN = 2.0 * math.pi
+
+
+@dataclass(frozen=True)
+class SweepGrid:
+    """The grid of a sweep as seen by the finite-difference schemes.
+
+    Attributes
+    ----------
+    h : float
+        Step (rad), positive.
+    periodic : bool
+        True if the sweep is to be treated as periodic (it spans exactly one
+        turn, and ``periodic`` was "auto" or True).
+    reverse : bool
+        True if the inputs descend (data are differenced reversed).
+    full_turn : bool
+        True if the inputs span exactly one turn.
+    """
+
+    h: float
+    periodic: bool
+    reverse: bool
+    full_turn: bool
+
+
+def sweep_grid(sweep, periodic="auto") -> SweepGrid:
+    """Check that a sweep can be differenced and describe its grid.
+
+    Parameters
+    ----------
+    sweep : Sweep
+    periodic : {"auto", True, False}
+        "auto": periodic if the sweep spans exactly one turn.
+
+    Returns
+    -------
+    SweepGrid
+
+    Raises
+    ------
+    ValueError
+        For fewer than 2 points, a non-uniform grid, an invalid `periodic`,
+        or ``periodic=True`` on a sweep that does not span exactly one turn.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.linspace(0, 2 * np.pi, 37))
+    >>> g = sweep_grid(sweep)
+    >>> round(float(np.degrees(g.h)), 6), g.periodic
+    (10.0, True)
+    """
+    _, t, _ = _check_sweep(sweep)
+    if periodic not in ("auto", True, False):
+        raise ValueError(f"periodic must be 'auto', True or False, got {periodic!r}")
+    if t.size < 2:
+        raise ValueError(f"finite differences need at least 2 points in the sweep, got {t.size}")
+    d = np.diff(t)
+    if not np.allclose(d, d[0], rtol=1e-9, atol=1e-14):
+        raise ValueError(
+            "finite differences need a uniform grid: the steps of sweep.inputs vary from "
+            f"{math.degrees(np.min(np.abs(d))):.6g}° to {math.degrees(np.max(np.abs(d))):.6g}°; "
+            "sweep a uniform grid (np.linspace) or use numkin.analytic"
+        )
+    h = float(np.mean(d))
+    span = float(t[-1] - t[0])
+    full_turn = bool(t.size >= 3 and abs(abs(span) - _TURN) <= 1e-9 * _TURN)
+    if periodic is True and not full_turn:
+        raise ValueError(
+            "periodic=True needs a sweep over exactly one turn, inputs[-1] = inputs[0] + 360° "
+            f"(the last sample repeating the first); this sweep spans {math.degrees(span):.6g}°"
+        )
+    is_periodic = full_turn if periodic == "auto" else bool(periodic)
+    return SweepGrid(h=abs(h), periodic=is_periodic, reverse=h < 0, full_turn=full_turn)
+
+
+def _unwrapped(y: np.ndarray, angle: np.ndarray, names, inputs) -> np.ndarray:
+    """Angle rows with any jump larger than pi between neighbours removed (warns)."""
+    y = np.array(y, dtype=float, copy=True)
+    if not angle.any():
+        return y
+    un = np.unwrap(y[angle], axis=-1)
+    changed = np.any(un != y[angle], axis=-1)
+    if changed.any():
+        rows = np.flatnonzero(angle)[changed]
+        r = rows[0]
+        k = int(np.flatnonzero(np.abs(np.diff(y[r])) > math.pi)[0])
+        warnings.warn(
+            f"angle(s) {[names[i] for i in rows]} jump by more than 180° between neighbouring samples "
+            f"(first {names[r]} between inputs {math.degrees(inputs[k]):.3f}° and "
+            f"{math.degrees(inputs[k + 1]):.3f}°): wrapped data; unwrapped before differencing",
+            UserWarning,
+            stacklevel=4,
+        )
+        y[angle] = un
+    return y
+
+
+def _closure(y: np.ndarray, angle: np.ndarray, length_scale: float) -> tuple[np.ndarray, np.ndarray]:
+    """Period offsets ``y[:, -1] - y[:, 0]`` and whether each row closes after one turn."""
+    offset = y[:, -1] - y[:, 0]
+    turns = np.round(offset / _TURN)
+    ok = np.where(angle, np.abs(offset - _TURN * turns) <= 1e-7, np.abs(offset) <= 1e-7 * length_scale)
+    return offset, ok
+
+
+@dataclass
+class Rows:
+    """Sampled rows ready for differencing: unwrapped, ascending, periodicity settled.
+
+    Made by :func:`prepare_rows`; :meth:`apply` runs one scheme on all rows.
+    """
+
+    y: np.ndarray  # (k, N), ascending input
+    h: float
+    periodic: bool
+    reverse: bool
+    offset: np.ndarray | None  # (k,) period offsets when periodic
+
+    def apply(self, scheme) -> np.ndarray:
+        """One scheme (a :class:`numkin.derivatives.Scheme`) on all rows: (k, N) in the sweep's order."""
+        if scheme.periodic_only and not self.periodic:
+            raise ValueError(
+                f"scheme {scheme.name!r} needs a periodic sweep over exactly one turn "
+                "(inputs[-1] = inputs[0] + 360°, e.g. np.linspace(0, 2*np.pi, N + 1)); "
+                "use five_point or five_point_second on a partial sweep"
+            )
+        if self.periodic:
+            d = scheme.function(self.y[:, :-1], self.h, periodic=True, period_offset=self.offset)
+            d = np.concatenate([d, d[:, :1]], axis=1)
+        else:
+            d = scheme.function(self.y, self.h, periodic=False)
+        return d[:, ::-1] if self.reverse else d
+
+
+def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, periodic="auto") -> Rows:
+    """Unwrap the angle rows of ``y`` (k, N), orient them ascending and settle periodicity.
+
+    On a full-turn grid every row must return to its starting value (up to
+    whole turns for angles); otherwise ``periodic=True`` raises and "auto"
+    warns and falls back to the open grid. Used to difference quantities
+    other than the unknowns (point coordinates) exactly as the unknowns are.
+
+    Parameters
+    ----------
+    y : array_like, shape (k, N)
+        Samples over the sweep's inputs.
+    angle : bool or sequence of bool
+        Which rows are angles (rad; unwrapped, may gain whole turns).
+    names : sequence of str
+        Row names, for messages.
+    inputs : ndarray, shape (N,)
+        The sweep's inputs (rad), for messages.
+    grid : SweepGrid
+        From :func:`sweep_grid`.
+    length_scale : float
+        Scale of the length rows, for the closure test.
+    periodic : {"auto", True, False}
+        As passed by the user (decides between raising and falling back).
+
+    Returns
+    -------
+    Rows
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> from numkin.derivatives import get_scheme
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.linspace(0, 2 * np.pi, 361))
+    >>> ax = sweep.points()["A"][0]                      # x of the crank pin, 80 cos(theta)
+    >>> rows = prepare_rows(ax[None], False, ["x_A"], sweep.inputs, sweep_grid(sweep), 200.0)
+    >>> print(np.round(rows.apply(get_scheme("spectral"))[0, 90], 9))   # -80 sin(90 deg)
+    -80.0
+    """
+    y = np.atleast_2d(np.asarray(y, dtype=float))
+    angle = np.broadcast_to(np.asarray(angle, dtype=bool), y.shape[:1])
+    bad = ~np.all(np.isfinite(y), axis=0)
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        row = names[int(np.flatnonzero(~np.isfinite(y[:, k]))[0])]
+        raise ValueError(f"{row} is not finite at input {math.degrees(inputs[k]):.3f}°: cannot difference it")
+    y = _unwrapped(y, angle, names, inputs)
+    if grid.reverse:
+        y = y[:, ::-1]
+    is_periodic, offset = grid.periodic, None
+    if is_periodic:
+        offset, ok = _closure(y, angle, length_scale)
+        if not ok.all():
+            bad_names = [names[i] for i in np.flatnonzero(~ok)]
+            msg = (
+                f"{bad_names} do not return to their starting value after one turn of the input "
+                f"(value[-1] - value[0] = {offset[~ok][0]:.6g}, not a whole number of turns): "
+                "the sweep is not periodic (did it change branch?)"
+            )
+            if periodic is True:
+                raise ValueError(msg)
+            warnings.warn(msg + "; differenced as an open grid", UserWarning, stacklevel=3)
+            is_periodic, offset = False, None
+    return Rows(y, grid.h, is_periodic, grid.reverse, offset)
+
+
+def _unknown_rows(sweep, periodic):
+    """(mechanism, inputs, prepared rows of the unknowns)."""
+    grid = sweep_grid(sweep, periodic)
+    mech, t, q = _check_sweep(sweep)
+    angle = np.array([u in mech.angles for u in mech.unknowns], dtype=bool)
+    return mech, t, prepare_rows(q, angle, mech.unknowns, t, grid, mech.length_scale, periodic)
+
+
+def scheme_for(name, derivative: int, parameter: str):
+    """The :class:`~numkin.derivatives.Scheme` called `name`, checked to estimate `derivative`.
+
+    Raises a ValueError naming `parameter` and listing the valid schemes if
+    the scheme estimates the other derivative.
+
+    Examples
+    --------
+    >>> scheme_for("central", 1, "method").name
+    'centred'
+    >>> scheme_for("forward", 2, "second_method")
+    Traceback (most recent call last):
+    ...
+    ValueError: second_method='forward' estimates a first derivative; second_method must be one of ['second_difference', 'forward_of_forward', 'centred_of_centred', 'five_point_second', 'spectral_second']
+    """
+    scheme = _d.get_scheme(name)
+    if scheme.derivative != derivative:
+        valid = [s for s, v in _d.SCHEMES.items() if v.derivative == derivative]
+        kind = "first" if scheme.derivative == 1 else "second"
+        raise ValueError(f"{parameter}={name!r} estimates a {kind} derivative; {parameter} must be one of {valid}")
+    return scheme
+
+
+def sweep_derivative(sweep, method="centred", periodic="auto") -> np.ndarray:
+    """dq/dtheta (or d2q/dtheta2) of all unknowns by one finite-difference scheme.
+
+    Parameters
+    ----------
+    sweep : Sweep
+        A sweep on a uniform grid.
+    method : str
+        Any scheme of :data:`numkin.derivatives.SCHEMES` (or alias); a
+        second-derivative scheme returns d2q/dtheta2.
+    periodic : {"auto", True, False}
+        See the module notes.
+
+    Returns
+    -------
+    ndarray, shape (n, N)
+        Rows in ``sweep.unknowns`` order, per rad (per rad^2).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0, 181)))
+    >>> dx = sweep_derivative(sweep, "centred")[1]
+    >>> print(f"{dx[90]:.4f}")   # exact -80; error h**2/6 * 80
+    -79.9959
+    """
+    scheme = _d.get_scheme(method)
+    _, _, rows = _unknown_rows(sweep, periodic)
+    return rows.apply(scheme)
+
+
+def finite_difference(sweep, omega, alpha=0.0, method="centred", second_method="second_difference", periodic="auto"):
+    """Angular velocities and accelerations from finite differences of a sweep.
+
+    Parameters
+    ----------
+    sweep : Sweep
+        A solved sweep on a uniform grid.
+    omega : float, str or array_like
+        Input angular speed: rad/s, a string with units (``"450 rad/min"``,
+        ``"6000 rpm"``, ``"-10 rad/s"``) or one value per point.
+    alpha : float, str or array_like, default 0
+        Input angular acceleration: rad/s^2, a string, or one value per point.
+    method : str, default "centred"
+        First-derivative scheme for ``q'`` (``forward``, ``backward``,
+        ``centred``, ``five_point``, ``richardson``, ``spectral``).
+    second_method : str, default "second_difference"
+        Second-derivative scheme for ``q''`` (``second_difference``,
+        ``forward_of_forward``, ``centred_of_centred``,
+        ``five_point_second``, ``spectral_second``).
+    periodic : {"auto", True, False}, default "auto"
+        "auto" treats a sweep over exactly one turn as periodic.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The columns of :func:`numkin.analytic.kinematics`: ``<input>``
+        (rad), ``omega_<name>`` [rad/s] and ``alpha_<name>`` [rad/s^2] for
+        angles, ``v_<name>`` [length unit/s] and ``a_<name>`` [length
+        unit/s^2] for lengths. ``frame.attrs`` holds the units, the schemes,
+        the step ``h`` (rad) and whether the grid was treated as periodic.
+
+    Raises
+    ------
+    ValueError
+        For a non-uniform grid, an unknown scheme or one of the wrong
+        derivative order, a spectral scheme on a sweep that is not one full
+        turn, or too few points for the scheme.
+    numkin.units.UnitError
+        If `omega` or `alpha` has the wrong dimension.
+
+    Notes
+    -----
+    ``alpha_q = omega_in**2 D2(q) + alpha_in D1(q)`` with D1 = `method` and
+    D2 = `second_method`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import kinematics, linkages
+    >>> sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 361)))
+    >>> fd = kinematics.finite_difference(sweep, "450 rad/min")
+    >>> print(f"{fd['omega_beta'][100]:.4f} {fd['alpha_beta'][100]:.4f}")
+    10.6330 -28.3765
+    >>> fw = kinematics.finite_difference(sweep, "450 rad/min", method="forward",
+    ...                                   second_method="forward_of_forward")
+    >>> print(f"{fw['omega_beta'][100]:.5f} {fw['alpha_beta'][100]:.4f}")
+    10.59998 -28.1266
+    """
+    import pandas as pd
+
+    s1 = scheme_for(method, 1, "method")
+    s2 = scheme_for(second_method, 2, "second_method")
+    mech, t, rows = _unknown_rows(sweep, periodic)
+    w, a = input_rates(omega, alpha, t.size)
+    d1, d2 = rows.apply(s1), rows.apply(s2)
+    attrs = {
+        "omega": w, "alpha": a, "method": s1.name, "second_method": s2.name,
+        "h": rows.h, "periodic": rows.periodic,
+    }
+    return _frame(pd, mech, t, w * d1, w**2 * d2 + a * d1, attrs)

@@ -1,0 +1,138 @@
+"""Tests for numkin.compare: schemes side by side with the analytic value."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+import pytest
+
+from numkin import derivatives, linkages
+from numkin.compare import Comparison, compare, quantities
+
+DEG = np.radians(np.arange(0.0, 361.0))
+W_HW = 7.5  # 450 rad/min
+
+
+@pytest.fixture(scope="module")
+def homework():
+    return linkages.chained_four_bars().sweep(DEG)
+
+
+@pytest.fixture(scope="module")
+def six_bar():
+    return linkages.six_bar().sweep(DEG)
+
+
+def test_homework_velocity_table(homework):
+    c = compare(homework, "450 rad/min", "omega_beta", schemes=("forward", "centred"))
+    assert isinstance(c, Comparison)
+    assert c.quantity == "omega_beta" and c.unit == "rad/s" and c.periodic
+    assert c.h == pytest.approx(math.radians(1))
+    row = c.table.loc[100]
+    assert row["theta [deg]"] == pytest.approx(100.0)
+    assert row["analytic [rad/s]"] == pytest.approx(10.6329, abs=5e-5)
+    assert row["centred [rad/s]"] == pytest.approx(10.6330, abs=5e-5)
+    assert row["forward [rad/s]"] == pytest.approx(10.5999, abs=1e-4)
+    b, h = homework["beta"], math.radians(1)
+    assert row["forward [rad/s]"] == pytest.approx(W_HW * (b[101] - b[100]) / h, rel=1e-13)
+    err = abs(row["forward [rad/s]"] - row["analytic [rad/s]"])
+    assert row["forward abs error [rad/s]"] == pytest.approx(err, rel=1e-12)
+    assert row["forward pointwise rel error"] == pytest.approx(err / abs(row["analytic [rad/s]"]), rel=1e-12)
+    scale = np.abs(c.table["analytic [rad/s]"]).max()
+    assert c.scale == pytest.approx(scale)
+    assert row["forward rel error"] == pytest.approx(err / scale, rel=1e-12)
+    assert list(c.table.columns) == [
+        "theta [deg]", "analytic [rad/s]",
+        "forward [rad/s]", "forward abs error [rad/s]", "forward rel error", "forward pointwise rel error",
+        "centred [rad/s]", "centred abs error [rad/s]", "centred rel error", "centred pointwise rel error",
+    ]
+
+
+def test_homework_acceleration_defaults(homework):
+    c = compare(homework, W_HW, "alpha_beta")
+    assert list(c.summary.index) == ["forward_of_forward", "second_difference", "five_point_second", "spectral_second"]
+    assert list(c.summary["order"]) == ["1", "2", "4", "spectral"]
+    row = c.table.loc[100]
+    assert row["analytic [rad/s^2]"] == pytest.approx(-28.3750, abs=5e-5)
+    assert row["second_difference [rad/s^2]"] == pytest.approx(-28.3765, abs=5e-5)
+    assert row["forward_of_forward [rad/s^2]"] == pytest.approx(-28.1266, abs=5e-5)
+    # errors fall with the order
+    errors = c.summary["max abs error [rad/s^2]"].to_numpy()
+    assert np.all(np.diff(errors) < 0)
+    assert errors[-1] < 1e-5
+
+
+def test_summary_statistics(homework):
+    c = compare(homework, W_HW, "omega_phi", schemes=["centred", "five_point"])
+    for s in ("centred", "five_point"):
+        err = c.table[f"{s} abs error [rad/s]"].to_numpy()
+        rel = c.table[f"{s} rel error"].to_numpy()
+        summary = c.summary.loc[s]
+        assert summary["max abs error [rad/s]"] == pytest.approx(err.max())
+        assert summary["rms abs error [rad/s]"] == pytest.approx(np.sqrt(np.mean(err[:-1] ** 2)))  # last row repeats
+        assert summary["max rel error"] == pytest.approx(rel.max())
+        assert summary["rms rel error"] == pytest.approx(np.sqrt(np.mean(rel[:-1] ** 2)))
+        assert summary["max at theta [deg]"] == pytest.approx(float(np.degrees(DEG[np.argmax(err)])))
+    assert "centred" in repr(c) and "omega_phi" in repr(c)
+
+
+def test_open_grid_keeps_all_rows():
+    part = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0.0, 181.0)))
+    c = compare(part, "6000 rpm", "a_x")
+    assert not c.periodic
+    assert "spectral_second" not in c.summary.index
+    err = c.table["second_difference abs error [mm/s^2]"].to_numpy()
+    assert c.summary.loc["second_difference", "rms abs error [mm/s^2]"] == pytest.approx(np.sqrt(np.mean(err**2)))
+    with pytest.raises(ValueError, match="one turn"):
+        compare(part, 1.0, "v_x", schemes=("spectral",))
+
+
+def test_points_and_unknowns_agree(six_bar):
+    a = compare(six_bar, "-10 rad/s", "vx_D", schemes=("centred",))
+    b = compare(six_bar, "-10 rad/s", "v_x", schemes=("centred",))
+    assert a.unit == "cm/s"
+    np.testing.assert_allclose(a.table["analytic [cm/s]"], b.table["analytic [cm/s]"], rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(a.table["centred [cm/s]"], b.table["centred [cm/s]"], rtol=1e-12, atol=1e-9)
+    c = compare(six_bar, "-10 rad/s", "ay_C", schemes=("second_difference",))
+    assert c.unit == "cm/s^2" and c.table.columns[0] == "theta2 [deg]"
+
+
+def test_accelerating_input_uses_the_partner_scheme(homework):
+    c = compare(homework, W_HW, "alpha_beta", schemes=("forward_of_forward",), alpha=2.0)
+    b, h = homework["beta"], math.radians(1)
+    kw = {"periodic": True, "period_offset": b[-1] - b[0]}  # the sample after the last is b[-1]
+    expected = W_HW**2 * derivatives.forward_of_forward(b[:-1], h, **kw) + 2.0 * derivatives.forward(b[:-1], h, **kw)
+    np.testing.assert_allclose(c.table["forward_of_forward [rad/s^2]"][:-1], expected, rtol=1e-12)
+
+
+def test_columns_are_labelled(homework):
+    """Every column with a dimension names its unit; degrees appear only in '[deg]' columns."""
+    c = compare(homework, W_HW, "omega_gamma")
+    for col in c.table.columns:
+        assert re.search(r"\[[^\]]+\]$", col) or col.endswith("rel error"), col
+    assert [col for col in c.table.columns if "deg" in col] == ["theta [deg]"]
+    np.testing.assert_allclose(c.table["theta [deg]"], np.arange(0.0, 361.0))
+
+
+@pytest.mark.parametrize(
+    "quantity, schemes, match",
+    [
+        ("beta", None, r"unknown quantity 'beta'.*use 'omega_beta' or 'alpha_beta'"),
+        ("v_beta", None, r"unknown quantity 'v_beta'.*valid: .*'omega_beta'"),
+        ("alpha_beta", ("forward",), r"estimates a first derivative.*forward_of_forward"),
+        ("omega_beta", ("second_difference",), r"estimates a second derivative"),
+        ("omega_beta", (), "at least one"),
+    ],
+)
+def test_errors(homework, quantity, schemes, match):
+    with pytest.raises(ValueError, match=match):
+        compare(homework, 1.0, quantity, schemes=schemes)
+
+
+def test_quantities_catalogue():
+    q = quantities(linkages.six_bar())
+    assert q["omega_theta5"] == (1, "rad/s")
+    assert q["a_x"] == (2, "cm/s^2")
+    assert q["vx_D"] == (1, "cm/s")
