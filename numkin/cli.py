@@ -1,0 +1,501 @@
+"""The ``numkin`` command: run scenes, write their tables, figures and animations.
+
+::
+
+    numkin scenes                                   list the built-in scenes
+    numkin run SCENE [--out DIR] [--at ANGLE_DEG] [--format text|json]
+    numkin report SCENE [--out DIR]                 error-analysis tables
+    numkin figures [SCENE ... | --all] --out DIR    regenerate figures
+    numkin animate SCENE --out FILE.gif [--frames N]
+    numkin bench [--repeat N]                       speed comparison
+
+SCENE is a built-in name (``numkin scenes``) or the path of a scene file
+(see :mod:`numkin.scene` for the format). A mistake in a scene or in the
+arguments is reported on one line of stderr with exit status 2; a check point
+that disagrees with its expected value gives exit status 1.
+
+Examples
+--------
+>>> from numkin.cli import main
+>>> main(["run", "quick-return", "--at", "30", "--format", "json"])  # doctest: +SKIP
+0
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+import warnings
+from contextlib import contextmanager
+from pathlib import Path
+
+from .errors import NumkinError
+
+__all__ = ["main", "build_parser", "format_result"]
+
+PROG = "numkin"
+
+
+# ----------------------------------------------------------------------- output
+def _fmt(value: float, expected: float | None = None) -> str:
+    """A value to the decimals of its expected value, else to 6 significant digits."""
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "-"
+    if value == 0:
+        value = 0.0  # no "-0"
+    if expected is not None:
+        text = repr(float(expected))
+        if "e" not in text.lower():
+            decimals = 0 if text.endswith(".0") else len(text.split(".")[1])
+            return f"{value:.{decimals}f}"
+    return f"{value:#.6g}".rstrip(".")
+
+
+def _label(name: str, unit: str) -> str:
+    base = name[:-4] if name.endswith("_deg") else name
+    return f"{base} [{unit}]"
+
+
+def _check_lines(check, input_name: str, title: str) -> list[str]:
+    head = f"{title} {input_name} = {check.at_deg:g}°"
+    if not check.on_grid:
+        head += " (between grid points: no finite differences)"
+    lines = [head]
+    width = max((len(_label(k, check.units[k])) for k in check.values), default=10) + 2
+    for key, value in check.values.items():
+        expected = check.expected.get(key)
+        line = f"  {_label(key, check.units[key]):<{width}}{_fmt(value, expected):>12}"
+        if expected is not None:
+            mark = "ok" if check.ok[key] else f"MISMATCH (tolerance {check.tolerance[key]:.1g})"
+            line += f"   expected {_fmt(expected, expected)} {mark}"
+        schemes = [f"{s} {_fmt(vals[key])}" for s, vals in check.schemes.items() if key in vals]
+        if schemes:
+            line += "   " + "   ".join(schemes)
+        lines.append(line.rstrip())
+    return lines
+
+
+def format_result(result) -> str:
+    """The text summary printed by ``numkin run``: sweep, check points, largest errors, files."""
+    scene = result.scene
+    lines = [f"{scene.name}: {scene.title or scene.description}"]
+    if scene.kind == "stability":
+        lines += _suite_lines(result.suite)
+    else:
+        mech, sweep = result.mechanism, result.sweep
+        name = str(mech.input_symbol)
+        motion = f"{name} {scene.start_deg:g}..{scene.stop_deg:g}° step {scene.step_deg:g}° ({scene.n_points} points)"
+        if result.omega is not None:
+            speed = f"{result.omega:.6g} rad/s"
+            if scene.speed_text and scene.speed_text.strip() != speed:
+                speed = f"{scene.speed_text} = {speed}"
+            motion += f", speed {speed}"
+            if result.alpha:
+                motion += f", acceleration {result.alpha:.6g} rad/s^2"
+        lines.append(f"  {mech.name}; {motion}")
+        lines.append(
+            f"  Newton: max {int(sweep.iterations.max())} iterations, max residual "
+            f"{float(sweep.residual.max()):.1e}, max condition number {float(sweep.cond.max()):.3g}"
+        )
+        for event in sweep.events:
+            lines.append(f"  {event.kind} at {name} = {math.degrees(event.input_value):.3f}°: {event.message}")
+        for check in result.checks:
+            lines += [""] + _check_lines(check, name, "check at")
+        if result.at is not None:
+            lines += [""] + _check_lines(result.at, name, "every quantity at")
+        if result.comparisons:
+            lines += ["", "largest error over the sweep, against the exact (analytic) solution"]
+            rows = []
+            for quantity, comparison in result.comparisons.items():
+                unit = comparison.unit
+                for scheme, row in comparison.summary.iterrows():
+                    rows.append((
+                        f"{quantity} [{unit}]", str(scheme), f"{row[f'max abs error [{unit}]']:.3g}",
+                        f"{100 * row['max rel error']:.3g}%", f"{row[f'max at {name} [deg]']:g}",
+                    ))
+            head = ("quantity", "scheme", "max abs error", "max rel error", f"at {name} [deg]")
+            widths = [max(len(r[k]) for r in [head, *rows]) for k in range(len(head))]
+            for r in [head, *rows]:
+                lines.append("  " + "  ".join(
+                    (f"{c:<{w}}" if k < 2 else f"{c:>{w}}") for k, (c, w) in enumerate(zip(r, widths))
+                ).rstrip())
+    if result.written:
+        lines += ["", "written:"] + [f"  {p}" for p in result.written]
+    return "\n".join(lines)
+
+
+def _suite_lines(suite) -> list[str]:
+    """The stability suite, one line per case plus what happened (the full table goes to --out / JSON)."""
+    columns = [
+        ("case", "case", str), ("outcome", "outcome", str),
+        ("as expected", "as expected", lambda v: "yes" if v else "NO"),
+        ("max cond [-]", "max cond", lambda v: _fmt(float(v))),
+        ("Newton iterations (max)", "iterations", lambda v: "-" if int(v) < 0 else str(int(v))),
+        ("centred max rel error [-]", "centred rel err", lambda v: "-" if v != v else f"{float(v):.2e}"),
+        ("second_difference max rel error [-]", "2nd diff rel err", lambda v: "-" if v != v else f"{float(v):.2e}"),
+    ]
+    columns = [c for c in columns if c[0] in suite.columns]
+    rows = [[head for _, head, _ in columns]]
+    for _, record in suite.iterrows():
+        rows.append([fmt(record[col]) for col, _, fmt in columns])
+    widths = [max(len(r[k]) for r in rows) for k in range(len(columns))]
+    lines = []
+    for n, r in enumerate(rows):
+        lines.append("  " + "  ".join(f"{c:<{w}}" for c, w in zip(r, widths)).rstrip())
+    notes = []
+    for _, record in suite.iterrows():
+        what = " ".join(str(record.get("what happened", "") or "").split())
+        raised = " ".join(str(record.get("error or warning raised", "") or "").split())
+        text = "; ".join(t for t in (what, raised) if t)
+        if text:
+            notes.append(f"  {record['case']}: {text}")
+    return lines + ([""] + notes if notes else [])
+
+
+# ----------------------------------------------------------------------- progress
+@contextmanager
+def _progress(desc: str, total: int | None = None):
+    """A tqdm bar on stderr, shown only on a terminal and only after a second of work.
+
+    Yields ``step(label, advance=True)``: advance by one (not before the first
+    step) and show ``label``.
+    """
+    from tqdm import tqdm
+
+    bar = tqdm(
+        total=total, desc=desc, file=sys.stderr, disable=not sys.stderr.isatty(), delay=1.0,
+        leave=False, dynamic_ncols=True, unit="step",
+    )
+    started = [False]
+
+    def step(label: str = "", advance: bool = True) -> None:
+        if advance and started[0]:
+            bar.update(1)
+        started[0] = started[0] or advance
+        if label:
+            bar.set_postfix_str(label, refresh=False)
+
+    try:
+        yield step
+    finally:
+        bar.close()
+
+
+# ----------------------------------------------------------------------- commands
+def _cmd_scenes(args) -> int:
+    from .scene import list_scenes
+
+    scenes = list_scenes()
+    width = max(map(len, scenes), default=0)
+    for name, description in scenes.items():
+        print(f"{name:<{width}}  {description}")
+    return 0
+
+
+def _cmd_run(args) -> int:
+    from .scene import load_scene, run_scene
+
+    scene = load_scene(args.scene)
+    with _progress(scene.name) as step:
+        result = run_scene(scene, out=args.out, at=args.at, progress=step)
+    if args.format == "json":
+        print(json.dumps(result.to_dict(), indent=2, allow_nan=False))
+    else:
+        print(format_result(result))
+    if args.out and not result.written:
+        print(f"{PROG}: note: scene '{scene.name}' asks for no tables or figures; nothing written to {args.out}", file=sys.stderr)
+    if result.scene.kind == "stability" and "as expected" in result.suite:
+        bad = [str(c) for c, ok in zip(result.suite["case"], result.suite["as expected"]) if not ok]
+        if bad:
+            print(f"{PROG}: not as expected: " + "; ".join(bad), file=sys.stderr)
+            return 1
+    failed = [
+        f"{key} = {_fmt(c.values[key])} at {c.at_deg:g}° (expected {_fmt(c.expected[key], c.expected[key])})"
+        for c in result.checks for key, ok in c.ok.items() if not ok
+    ]
+    if failed:
+        print(f"{PROG}: check failed: " + "; ".join(failed), file=sys.stderr)
+        return 1
+    return 0
+
+
+def _cmd_report(args) -> int:
+    import pandas as pd
+
+    from . import report
+    from .scene import load_scene
+
+    scene = load_scene(args.scene)
+    if scene.kind != "mechanism" or not scene.speed:
+        raise ValueError(f"scene '{scene.name}' has no mechanism with an input speed: nothing to report")
+    with _progress(f"{scene.name} report") as step:
+        step("mechanism")
+        mech = scene.build_mechanism()
+        step("tables")
+        tables = report.full_report(mech, **scene.report_options(mech))
+        written = []
+        if args.out:
+            step("writing")
+            named = {f"{scene.name}-{k}": v for k, v in tables.items()}
+            written = list(report.write_tables(named, Path(args.out)))
+    with pd.option_context("display.width", 200, "display.max_columns", 50):
+        for name, table in tables.items():
+            print(f"## {name}\n{table.to_string(index=not isinstance(table.index, pd.RangeIndex))}\n")
+    for path in written:
+        print(f"written: {path}")
+    return 0
+
+
+def _scenes_for_figures(args) -> list[str]:
+    from .scene import list_scenes
+
+    if args.all and args.scenes:
+        raise ValueError("give scene names or --all, not both")
+    if args.all:
+        return list(list_scenes())
+    if not args.scenes:
+        raise ValueError("name at least one scene, or give --all")
+    return list(args.scenes)
+
+
+def _cmd_figures(args) -> int:
+    from .scene import load_scene, render_figures, run_scene
+
+    names = _scenes_for_figures(args)
+    scenes = [load_scene(n) for n in names]  # every file checked before any work
+    out = Path(args.out)
+    written = []
+    with _progress("figures", total=len(scenes)) as step:
+        for scene in scenes:
+            step(scene.name)
+            if not scene.figures:
+                if not args.all:
+                    print(f"{PROG}: scene '{scene.name}' asks for no figures", file=sys.stderr)
+                continue
+            result = run_scene(scene, figures=False)
+            written += render_figures(result, out / scene.name, formats=tuple(args.formats),
+                                      progress=lambda label: step(f"{scene.name}: {label}", advance=False))
+        step()
+    for path in written:
+        print(path)
+    return 0
+
+
+def _cmd_animate(args) -> int:
+    from .scene import load_scene, run_scene
+
+    scene = load_scene(args.scene).positions_only()
+    if scene.kind != "mechanism":
+        raise ValueError(f"scene '{scene.name}' has no mechanism to animate")
+    path = Path(args.out)
+    if path.suffix.lower() != ".gif":
+        raise ValueError(f"--out {args.out!r}: the animation is written as a GIF (Pillow); give a .gif file")
+    frames = args.frames or scene.animation.get("frames", 72)
+    with _progress(f"{scene.name} animation") as step:
+        result = run_scene(scene, progress=step)
+        step("frames")
+        from . import animate
+
+        written = animate.animate(result.sweep, path, frames=frames)
+    print(written if written is not None else path)
+    return 0
+
+
+def _cmd_bench(args) -> int:
+    from . import bench
+
+    kwargs = {} if args.repeat is None else {"repeat": args.repeat}
+    with _progress("bench") as step:
+        step("timing")
+        table = bench.run(**kwargs)
+    print(bench.format_report(table))
+    return 0
+
+
+# ----------------------------------------------------------------------- parser
+class _Formatter(argparse.RawDescriptionHelpFormatter):
+    pass
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
+    return value
+
+
+def _finite_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number (degrees)") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a finite number")
+    return value
+
+
+class _Parser(argparse.ArgumentParser):
+    """An ArgumentParser whose usage errors are one line (and exit status 2)."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of the ``numkin`` command."""
+    parser = _Parser(
+        prog=PROG,
+        formatter_class=_Formatter,
+        description=(
+            "Numerical kinematics of planar linkages: solve a scene (a problem declared in a TOML\n"
+            "file), compare finite-difference velocities and accelerations with the exact ones,\n"
+            "and write the tables, figures and animations it asks for."
+        ),
+        epilog=(
+            "examples:\n"
+            "  numkin scenes\n"
+            "  numkin run homework                 # omega_beta and alpha_beta at theta = 100°\n"
+            "  numkin run homework --at 100 --format json\n"
+            "  numkin run my-linkage.toml --out results/\n"
+            "  numkin figures --all --out figures/\n"
+            "\nSCENE is a built-in name (numkin scenes) or the path of a .toml scene file."
+        ),
+    )
+    from . import __version__
+
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub.required = True
+
+    p = sub.add_parser(
+        "scenes", help="list the built-in scenes", formatter_class=_Formatter,
+        description="List the built-in scenes with a one-line description each.",
+        epilog="example:\n  numkin scenes",
+    )
+    p.set_defaults(func=_cmd_scenes)
+
+    p = sub.add_parser(
+        "run", help="solve a scene and print its check points and errors", formatter_class=_Formatter,
+        description=(
+            "Solve a scene: the positions over the input sweep, and the velocities and accelerations\n"
+            "(exact and by the scene's finite-difference schemes) if it asks for them. Prints the\n"
+            "check points and the largest error of each scheme; with --out, writes the tables and\n"
+            "figures the scene asks for. Exit status 1 if a check point disagrees."
+        ),
+        epilog=(
+            "examples:\n"
+            "  numkin run homework\n"
+            "  numkin run homework --at 100                # every quantity at theta = 100°\n"
+            "  numkin run slider-crank --out results/     # tables (and figures) into results/\n"
+            "  numkin run homework --format json | python -m json.tool"
+        ),
+    )
+    p.add_argument("scene", metavar="SCENE", help="built-in scene name or path of a .toml file")
+    p.add_argument("--out", metavar="DIR", help="write the scene's tables and figures into DIR")
+    p.add_argument("--at", metavar="ANGLE_DEG", type=_finite_float, help="print every quantity at this input angle (degrees)")
+    p.add_argument("--format", choices=("text", "json"), default="text", help="output format (default text)")
+    p.set_defaults(func=_cmd_run)
+
+    p = sub.add_parser(
+        "report", help="write the error-analysis tables of a scene", formatter_class=_Formatter,
+        description=(
+            "Error-analysis tables of a scene: convergence with the step, error against run time,\n"
+            "the roundoff floor, Newton's iterations and Jacobians, the solver tolerance. Prints\n"
+            "them; with --out also writes them as Markdown, CSV and LaTeX. Timings vary between runs."
+        ),
+        epilog="example:\n  numkin report homework --out report/",
+    )
+    p.add_argument("scene", metavar="SCENE", help="built-in scene name or path of a .toml file")
+    p.add_argument("--out", metavar="DIR", help="write the tables into DIR")
+    p.set_defaults(func=_cmd_report)
+
+    p = sub.add_parser(
+        "figures", help="regenerate the figures of scenes", formatter_class=_Formatter,
+        description=(
+            "Regenerate the figures the scenes ask for, into DIR/<scene>/ (PNG and SVG, the same\n"
+            "bytes on every run)."
+        ),
+        epilog="examples:\n  numkin figures homework --out figures/\n  numkin figures --all --out figures/",
+    )
+    p.add_argument("scenes", metavar="SCENE", nargs="*", help="built-in scene names or .toml paths")
+    p.add_argument("--all", action="store_true", help="every built-in scene")
+    p.add_argument("--out", metavar="DIR", required=True, help="folder for the figures")
+    p.add_argument("--formats", metavar="FMT", nargs="+", default=["png", "svg"], choices=("png", "svg", "pdf"),
+                   help="file formats (default png svg)")
+    p.set_defaults(func=_cmd_figures)
+
+    p = sub.add_parser(
+        "animate", help="animate the mechanism of a scene as a GIF", formatter_class=_Formatter,
+        description=(
+            "Animate a scene's mechanism over its input sweep: links, joints and ground pivots, the\n"
+            "input angle stamped on each frame. Written as a GIF with Pillow (no ffmpeg needed)."
+        ),
+        epilog="example:\n  numkin animate quick-return --out quick-return.gif --frames 90",
+    )
+    p.add_argument("scene", metavar="SCENE", help="built-in scene name or path of a .toml file")
+    p.add_argument("--out", metavar="FILE.gif", required=True, help="the GIF to write")
+    p.add_argument("--frames", metavar="N", type=_positive_int, help="frame count (default: the scene's, else 72)")
+    p.set_defaults(func=_cmd_animate)
+
+    p = sub.add_parser(
+        "bench", help="time numkin's sweep against the textbook way", formatter_class=_Formatter,
+        description=(
+            "Time the chained four-bars over 361 angles three ways, side by side: a sympy Jacobian\n"
+            "rebuilt in every Newton call (the textbook way), numkin's sweep, and the vectorised\n"
+            "closed form. Prints the times and ratios."
+        ),
+        epilog="example:\n  numkin bench",
+    )
+    p.add_argument("--repeat", metavar="N", type=_positive_int, help="timing repeats")
+    p.set_defaults(func=_cmd_bench)
+    return parser
+
+
+def main(argv=None) -> int:
+    """Run the ``numkin`` command; returns the exit status.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        0 on success, 1 if a check point disagrees, 2 for a mistake in a scene
+        or in the arguments (one line on stderr).
+    """
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exit_:
+        return exit_.code if isinstance(exit_.code, int) else (0 if exit_.code is None else 2)
+    try:
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning
+            return args.func(args)
+    except (NumkinError, ValueError) as error:
+        print(f"{PROG}: error: {_one_line(error)}", file=sys.stderr)
+        return 2
+    except OSError as error:
+        where = f" {error.filename!r}" if error.filename else ""
+        print(f"{PROG}: error: cannot write or read{where}: {error.strerror or error}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print(f"{PROG}: interrupted", file=sys.stderr)
+        return 130
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """Warnings (near-singular positions, skipped figures) as one line on stderr."""
+    print(f"{PROG}: warning: {_one_line(message)}", file=sys.stderr)
+
+
+def _one_line(error: BaseException) -> str:
+    text = " ".join(str(error).split())
+    return text or type(error).__name__

@@ -1,0 +1,320 @@
+"""The ``numkin`` command: subcommands in-process through ``numkin.cli.main``, one real subprocess.
+
+Numbers are checked against the source documents' values (the homework's exact
+omega_beta = 10.633 rad/s and alpha_beta = -28.375 rad/s^2 at theta = 100°)
+and closed forms derived here (the slider-crank's piston).
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+import subprocess
+import sys
+import textwrap
+
+import pytest
+
+from numkin.cli import main
+
+BUILTINS = ["homework", "quick-return", "six-bar", "slider-crank", "stability"]
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def one_line_error(err: str) -> str:
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    assert lines[0].startswith("numkin: error: ") and "Traceback" not in err
+    return lines[0]
+
+
+def write(tmp_path, text, name="scene.toml"):
+    path = tmp_path / name
+    path.write_text(textwrap.dedent(text))
+    return str(path)
+
+
+FOUR_BAR = """
+[scene]
+description = "four-bar"
+[mechanism]
+linkage = "four_bar"
+[mechanism.dimensions]
+ground = {ground}
+crank = {crank}
+coupler = {coupler}
+rocker = {rocker}
+[input]
+speed = "{speed}"
+stop_deg = 90
+step_deg = 5
+[output]
+quantities = ["position", "velocity"]
+"""
+
+
+def four_bar(tmp_path, ground=4, crank=1, coupler=3, rocker=3, speed="10 rad/s", extra=""):
+    text = FOUR_BAR.format(ground=ground, crank=crank, coupler=coupler, rocker=rocker, speed=speed) + extra
+    return write(tmp_path, text)
+
+
+# ------------------------------------------------------------------- scenes
+def test_scenes_lists_every_builtin(capsys):
+    code, out, err = run(capsys, "scenes")
+    assert code == 0 and err == ""
+    names = [line.split()[0] for line in out.strip().splitlines()]
+    assert names == BUILTINS
+    assert all(len(line.split(None, 1)) == 2 for line in out.strip().splitlines())
+
+
+# ---------------------------------------------------------------------- run
+def test_run_homework_prints_the_check_point(capsys):
+    code, out, err = run(capsys, "run", "homework")
+    assert code == 0
+    line = next(x for x in out.splitlines() if x.strip().startswith("omega_beta [rad/s]"))
+    assert "10.633" in line and "expected 10.633 ok" in line
+    line = next(x for x in out.splitlines() if x.strip().startswith("alpha_beta [rad/s^2]"))
+    assert "-28.375" in line
+    assert "largest error over the sweep" in out
+
+
+def test_run_homework_json(capsys):
+    code, out, _ = run(capsys, "run", "homework", "--format", "json", "--at", "100")
+    assert code == 0
+    data = json.loads(out)
+    check = data["checks"][0]
+    assert check["at_deg"] == 100 and check["passed"] and data["passed"]
+    assert round(check["values"]["omega_beta"], 3) == 10.633
+    assert round(check["values"]["alpha_beta"], 3) == -28.375
+    assert check["units"]["omega_beta"] == "rad/s" and check["units"]["alpha_beta"] == "rad/s^2"
+    # --at prints every quantity: all four unknowns, not only the reported phi and beta
+    at = data["at"]
+    assert {"phi_deg", "psi_deg", "beta_deg", "gamma_deg", "omega_gamma", "alpha_psi"} <= set(at["values"])
+    assert at["values"]["omega_beta"] == check["values"]["omega_beta"]
+    errors = data["errors"]["omega_beta"]
+    assert errors["unit"] == "rad/s" and errors["forward"]["max_abs_error"] > errors["centred"]["max_abs_error"]
+    assert data["input"] == {
+        "name": "theta", "start_deg": 0, "stop_deg": 360, "step_deg": 1, "points": 361,
+        "speed_rad_s": 7.5, "acceleration_rad_s2": 0,
+    }
+
+
+def test_run_at_between_grid_points_and_out(capsys, tmp_path):
+    out_dir = tmp_path / "results"
+    code, out, _ = run(capsys, "run", "slider-crank", "--at", "33.3", "--out", str(out_dir))
+    assert code == 0
+    assert "every quantity at theta = 33.3° (between grid points" in out
+    R, L, w = 0.080, 0.200, 200 * math.pi
+    t = math.radians(33.3)
+    s, c = math.sin(t), math.cos(t)
+    root = math.sqrt(L**2 - (R * s) ** 2)
+    x = R * c + root
+    # the last x line is the --at block's (6 significant digits)
+    lines = [x_ for x_ in out.splitlines() if x_.strip().startswith("x [m]")]
+    assert float(lines[-1].split()[-1]) == pytest.approx(x, rel=1e-5)
+    files = sorted(p.name for p in out_dir.iterdir())
+    assert "slider-crank-kinematics.csv" in files and "slider-crank-positions.csv" in files
+    assert "acceleration-x.png" in files and "slider-x.svg" in files  # the figures it asks for
+    with open(out_dir / "slider-crank-kinematics.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert list(rows[0]) == ["theta [deg]", "v_x [m/s]", "a_x [m/s^2]"]
+    assert len(rows) == 181
+    # piston at theta = 90°: v = -R w, a = R^2 w^2 / sqrt(L^2 - R^2)
+    assert float(rows[90]["v_x [m/s]"]) == pytest.approx(-R * w, rel=1e-9)
+    assert float(rows[90]["a_x [m/s^2]"]) == pytest.approx(R**2 * w**2 / math.sqrt(L**2 - R**2), rel=1e-9)
+
+
+def test_run_quick_return_json_without_speed(capsys):
+    code, out, _ = run(capsys, "run", "quick-return", "--format", "json")
+    data = json.loads(out)
+    assert code == 0 and data["input"]["speed_rad_s"] is None and data["errors"] == {}
+    assert [round(data["checks"][0]["values"][k], 3) for k in ("r3", "theta3_deg", "r4", "r5")] == [
+        87.178, 66.587, 130.767, 51.962,
+    ]
+
+
+def test_failed_check_exits_1(capsys, tmp_path):
+    path = four_bar(tmp_path, extra="[[check]]\nat_deg = 90\ntheta4_deg = 100.0\n")
+    code, out, err = run(capsys, "run", path)
+    assert code == 1
+    assert "MISMATCH" in out
+    assert err.startswith("numkin: check failed: theta4_deg = 119.371 at 90° (expected 100)")
+    assert len(err.strip().splitlines()) == 1
+
+
+# -------------------------------------------------------------- error paths
+@pytest.mark.parametrize(
+    "make, words",
+    [
+        (lambda p: "homwork", ["unknown scene 'homwork'", "did you mean 'homework'"]),
+        (lambda p: str(p / "absent.toml"), ["not found"]),
+        (lambda p: write(p, "[scene]\ndescription = 'x\n"), ["malformed TOML"]),
+        (lambda p: write(p, open(four_bar(p)).read().replace("crank =", "crnak =")),
+         ["unknown key 'crnak'", "did you mean 'crank'"]),
+        (lambda p: four_bar(p, speed="450 rad/mn"), ["[input] speed", "rad/mn"]),
+        (lambda p: four_bar(p, rocker='"3 lightyears"'), ["rocker", "lightyears"]),
+        (lambda p: write(p, open(four_bar(p)).read().replace("rocker = 3\n", "")), ["missing dimension 'rocker'"]),
+        (lambda p: four_bar(p, ground=10, crank=6, coupler=1, rocker=1), ["cannot be assembled", "non-Grashof"]),
+    ],
+    ids=["unknown-scene", "missing-file", "bad-toml", "unknown-key", "bad-unit", "bad-length-unit",
+         "missing-dimension", "cannot-assemble"],
+)
+def test_scene_mistakes_exit_2_with_one_line(capsys, tmp_path, make, words):
+    code, out, err = run(capsys, "run", make(tmp_path))
+    assert code == 2 and out == ""
+    line = one_line_error(err)
+    for word in words:
+        assert word in line
+
+
+def test_at_outside_the_sweep_exits_2(capsys):
+    code, _, err = run(capsys, "run", "quick-return", "--at", "400")
+    assert code == 2 and "outside the sweep" in one_line_error(err)
+
+
+@pytest.mark.parametrize(
+    "argv", [["run"], ["run", "homework", "--format", "xml"], ["run", "homework", "--at", "ten"], ["frobnicate"], []],
+)
+def test_usage_errors_exit_2(capsys, argv):
+    code, out, err = run(capsys, *argv)
+    assert code == 2 and out == ""
+    assert len(err.strip().splitlines()) <= 2 and "error:" in err and "Traceback" not in err
+
+
+def test_figures_needs_scenes_or_all(capsys, tmp_path):
+    code, _, err = run(capsys, "figures", "--out", str(tmp_path))
+    assert code == 2 and "--all" in one_line_error(err)
+    code, _, err = run(capsys, "figures", "homework", "--all", "--out", str(tmp_path))
+    assert code == 2
+
+
+def test_animate_wants_a_gif(capsys, tmp_path):
+    code, _, err = run(capsys, "animate", "quick-return", "--out", str(tmp_path / "a.mp4"))
+    assert code == 2 and ".gif" in one_line_error(err)
+
+
+# --------------------------------------------------------------------- help
+@pytest.mark.parametrize("command", ["", "scenes", "run", "report", "figures", "animate", "bench"])
+def test_help_has_an_example(capsys, command):
+    code, out, _ = run(capsys, *([command] if command else []), "--help")
+    assert code == 0
+    assert "example" in out and "numkin" in out
+
+
+# --------------------------------------------------------------- subprocess
+def test_console_command_in_a_subprocess():
+    proc = subprocess.run(
+        [sys.executable, "-m", "numkin", "run", "homework", "--format", "json"],
+        capture_output=True, text=True, timeout=120,
+    )
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    assert round(data["checks"][0]["values"]["omega_beta"], 3) == 10.633
+    proc = subprocess.run([sys.executable, "-m", "numkin", "run", "nosuch"], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2 and proc.stdout == ""
+    one_line_error(proc.stderr)
+
+
+# ------------------------------------------------- figures, animate, report, bench
+def test_figures_of_a_scene_twice_give_the_same_bytes(capsys, tmp_path):
+    runs = []
+    for k in range(2):
+        code, out, err = run(capsys, "figures", "quick-return", "--out", str(tmp_path / f"run{k}"))
+        assert code == 0, err
+        runs.append(sorted(out.split()))
+    names = [p.rsplit("/", 1)[1] for p in runs[0]]
+    assert names == ["mechanism-30deg.png", "mechanism-30deg.svg", "position.png", "position.svg"]
+    for a, b in zip(*runs):
+        assert a.split("/run0/")[1] == b.split("/run1/")[1]
+        assert open(a, "rb").read() == open(b, "rb").read()
+
+
+def test_unknown_figure_is_a_scene_mistake(capsys, tmp_path):
+    text = open(four_bar(tmp_path)).read().replace("[output]\n", '[output]\nfigures = ["kinematik:theta4"]\n')
+    path = write(tmp_path, text)
+    code, _, err = run(capsys, "figures", path, "--out", str(tmp_path / "figs"))
+    assert code == 2
+    line = one_line_error(err)
+    assert "[output] figures" in line and "did you mean 'kinematics'" in line
+
+
+def test_animate_writes_a_gif(capsys, tmp_path):
+    from PIL import Image
+
+    gif = tmp_path / "qr.gif"
+    code, out, err = run(capsys, "animate", "quick-return", "--out", str(gif), "--frames", "4")
+    assert code == 0, err
+    with Image.open(gif) as im:
+        assert im.n_frames == 4
+
+
+def test_report_writes_the_error_tables(capsys, tmp_path):
+    pytest.importorskip("tabulate")
+    path = write(
+        tmp_path,
+        """
+        [scene]
+        description = "slider-crank report on small grids"
+        [mechanism]
+        linkage = "slider_crank"
+        unit = "m"
+        [mechanism.dimensions]
+        crank = "80 mm"
+        rod = "200 mm"
+        [input]
+        speed = "6000 rpm"
+        step_deg = 10
+        [[check]]
+        at_deg = 0
+        [report]
+        quantity = "x"
+        grids = [36, 72]
+        schemes = ["centred", "second_difference"]
+        points_per_turn = 36
+        repeat = 1
+        """,
+    )
+    out_dir = tmp_path / "report"
+    code, out, err = run(capsys, "report", path, "--out", str(out_dir))
+    assert code == 0, err
+    for name in ("convergence", "work_precision", "roundoff", "newton", "jacobian", "tolerance"):
+        assert f"## {name}" in out
+        assert (out_dir / f"scene-{name}.csv").is_file()
+    with open(out_dir / "scene-convergence.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert {r["scheme"] for r in rows} == {"centred", "second_difference"}
+
+
+def test_bench_prints_the_report(capsys, monkeypatch):
+    import types
+
+    import numkin
+
+    calls = {}
+    fake = types.SimpleNamespace(
+        run=lambda **kw: calls.setdefault("run", kw) or "table",
+        format_report=lambda table: f"speed report of {table!r}",
+    )
+    monkeypatch.setitem(sys.modules, "numkin.bench", fake)
+    monkeypatch.setattr(numkin, "bench", fake, raising=False)
+    code, out, _ = run(capsys, "bench", "--repeat", "2")
+    assert code == 0 and out.strip() == "speed report of {'repeat': 2}"
+    assert calls["run"] == {"repeat": 2}
+
+
+def test_stability_scene_with_chosen_cases(capsys, tmp_path):
+    scene = '[scene]\ndescription = "two cases"\n[stability]\ncases = ["cannot assemble (10, 6, 1, 1)", "{second}"]\n'
+    path = write(tmp_path, scene.format(second="non-Grashof (7, 4, 3, 5), full turn"))
+    code, out, err = run(capsys, "run", path, "--format", "json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert [c["outcome"] for c in data["stability"]] == ["AssemblyError", "AssemblyError"] and data["passed"]
+    path = write(tmp_path, scene.format(second="cannot asemble (10, 6, 1, 1)"))
+    code, _, err = run(capsys, "run", path)
+    assert code == 2 and "did you mean 'cannot assemble (10, 6, 1, 1)'" in one_line_error(err)
