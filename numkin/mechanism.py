@@ -15,7 +15,7 @@ from typing import Callable, Mapping, Sequence
 import numpy as np
 import sympy as sp
 
-from .compiled import CompiledMechanism
+from .compiled import BlockStructure, CompiledMechanism
 from .errors import AssemblyError
 from .loops import Loop, as_symbol
 from .newton import JACOBIANS, NewtonResult, iterate, scaled_cond
@@ -188,18 +188,31 @@ class Mechanism:
 
         return J
 
+    @cached_property
+    def block_structure(self) -> BlockStructure:
+        """The block lower-triangular shape of the Jacobian (one block per loop) and its solves."""
+        jac = self.compiled.jacobian_matrix
+        zeros = [(i, j) for i in range(jac.rows) for j in range(jac.cols) if jac[i, j] == 0]
+        return BlockStructure(self.loop_slices, self.length_scale, self.xscale, zeros)
+
+    def _jacobian_rows(self, x, inputs):
+        jac = self.compiled.J(np.asarray(x), np.asarray(inputs, dtype=float), self.parameter_values)
+        return jac.reshape(jac.shape[0], -1).T
+
     def loop_residuals(self, x, inputs) -> dict:
         """Scaled residual norm of every loop, name -> (N,) array."""
         f = self.compiled.F(x, np.asarray(inputs), self.parameter_values)
         return {lp.name: np.max(np.abs(f[s]), axis=0) / self.length_scale for lp, s in zip(self.loops, self.loop_slices)}
 
     def loop_conditions(self, x, inputs) -> dict:
-        """Condition number of every loop's own Jacobian block, name -> (N,) array."""
-        jac = self.compiled.J(x, np.asarray(inputs), self.parameter_values)
-        out = {}
-        for lp, s in zip(self.loops, self.loop_slices):
-            out[lp.name] = scaled_cond(jac[:, s, s], self.length_scale, self.xscale[s])
-        return out
+        """Condition number of every loop's own scaled Jacobian block, name -> (N,) array.
+
+        Rows are divided by ``length_scale``, columns multiplied by ``xscale``;
+        ``inf`` where the block is singular.
+        """
+        rows = self._jacobian_rows(x, inputs)
+        conds = self.block_structure.cond(rows, rows.shape[1])
+        return {lp.name: c for lp, c in zip(self.loops, conds)}
 
     def loop_orientations(self, x, inputs) -> np.ndarray:
         """Sign of the determinant of every loop's Jacobian block, shape (loops, N).
@@ -207,8 +220,8 @@ class Mechanism:
         It is constant along a branch and changes only through a singular
         (toggle or change-point) position.
         """
-        jac = self.compiled.J(x, np.asarray(inputs), self.parameter_values)
-        return np.array([np.sign(np.linalg.det(jac[:, s, s])) for s in self.loop_slices])
+        rows = self._jacobian_rows(x, inputs)
+        return self.block_structure.signs(rows, rows.shape[1])
 
     def guess_vector(self, guess, at: float) -> np.ndarray:
         """The guess as a vector in unknown order; ``guess`` may be a mapping, sequence or callable."""
@@ -261,8 +274,18 @@ class Mechanism:
         NewtonResult
             ``x`` in unknown order (``self.unknowns``).
         """
-        t = np.array([float(input_value)])
-        x0 = self.guess_vector(self._guess if guess is None else guess, float(input_value))
+        try:
+            input_value = float(input_value)
+        except (TypeError, ValueError):
+            raise ValueError(f"input_value must be a number (rad), got {input_value!r}") from None
+        if not math.isfinite(input_value):
+            raise ValueError(f"input_value must be finite, got {input_value}")
+        if not (isinstance(tol, (int, float, np.number)) and tol > 0 and math.isfinite(tol)):
+            raise ValueError(f"tol must be a positive number, got {tol!r}")
+        if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
+            raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")
+        t = np.array([input_value])
+        x0 = self.guess_vector(self._guess if guess is None else guess, input_value)
         F = self.residual_function(t)
         J = self.jacobian_function(t, jacobian)
         out = iterate(F, J, x0[:, None], fscale=self.length_scale, xscale=self.xscale, tol=tol, maxiter=maxiter)
@@ -271,7 +294,12 @@ class Mechanism:
         if out.converged[0]:
             msg = f"converged in {out.iterations[0]} iterations"
         elif out.singular[0]:
-            msg = f"singular Jacobian (condition number {cond:.3g}): not divided through"
+            conds = self.loop_conditions(out.x, t)
+            loop = max(conds, key=lambda k: np.nan_to_num(conds[k][0], nan=np.inf))
+            msg = (
+                f"singular Jacobian of loop '{loop}' at input {math.degrees(float(input_value)):.3f}° "
+                f"(condition number {cond:.3g}) after {out.iterations[0]} iterations: not divided through"
+            )
         else:
             worst = max(self.loop_residuals(out.x, t).items(), key=lambda kv: np.nan_to_num(kv[1][0], nan=np.inf))
             msg = f"did not converge: loop '{worst[0]}' residual {worst[1][0]:.3g} after {out.iterations[0]} iterations"
@@ -294,7 +322,7 @@ class Mechanism:
         jacobian: str = "symbolic",
         tol: float = 1e-12,
         maxiter: int = 50,
-        max_step: float = math.radians(10.0),
+        max_step: float = math.radians(30.0),
         on_singular: str = "raise",
         progress: bool = False,
     ):
@@ -314,8 +342,11 @@ class Mechanism:
         maxiter : int
             Newton iterations allowed at the starting point.
         max_step : float
-            Largest input step (rad) of the sequential continuation; finer
-            grids are then filled in batches.
+            Largest input step (rad) between the points solved one after
+            the other (each step is also shrunk as needed: it is accepted only
+            when Newton converges, the correction is small and no loop changes
+            orientation); the grid points between them are then solved in
+            one batch.
         on_singular : {"raise", "report"}
             What to do at a toggle or change point: raise
             :class:`~numkin.BranchError`, or record it in ``Sweep.events``,

@@ -11,10 +11,16 @@ Stopping rule
 A system has converged when, after a step,
 
 * the scaled residual ``max|F| / fscale`` is at most ``tol`` **and**
-* the scaled step ``max|dx / xscale|`` that led there is at most
-  ``sqrt(tol)`` (Newton converges quadratically, so the error left after
-  that step is of order ``step**2 <= tol``), or has stopped shrinking (it is
-  at the round-off floor ``~eps * cond(J)``).
+* the scaled step ``max|dx / xscale|`` that led there is either at most
+  ``tol``, or at most ``sqrt(tol)`` *and* at most a quarter of the step
+  before it (convergence is superlinear, so the error left is of order
+  ``step**2 <= tol``), or no smaller than 0.9 times the step before it (it
+  is stuck at the round-off floor ``~eps * cond(J)``).
+
+Linear convergence, the signature of a singular Jacobian at the root (steps
+that halve at a double root), meets none of these until the error itself is
+below ``tol`` or at the round-off floor, where the condition number reported
+with the result tells how many digits are left.
 
 ``fscale`` is the mechanism's characteristic length (residuals of vector
 loops are lengths); ``xscale`` is 1 rad for angles and the characteristic
@@ -31,17 +37,29 @@ representable.
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
 import numpy as np
 
-__all__ = ["newton", "NewtonResult", "JACOBIANS"]
+__all__ = ["newton", "NewtonResult", "JACOBIANS", "has_converged"]
 
 EPS = np.finfo(float).eps
 #: Jacobian choices accepted by :func:`newton` and :meth:`Mechanism.sweep`.
 JACOBIANS = ("symbolic", "forward", "central")
 _FD_STEP = {"forward": np.sqrt(EPS), "central": EPS ** (1.0 / 3.0)}
+
+
+def has_converged(res, step, prev_step, tol):
+    """The stopping rule of the module docstring, for floats or arrays.
+
+    ``res`` is the scaled residual after a step, ``step`` the scaled step
+    that led to it and ``prev_step`` the one before (``inf`` at the first).
+    """
+    superlinear = (step <= math.sqrt(tol)) & (step <= 0.25 * prev_step)
+    return (res <= tol) & ((step <= tol) | superlinear | (step >= 0.9 * prev_step))
 
 
 @dataclass(frozen=True, repr=False)
@@ -206,7 +224,6 @@ def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=1e12, c
     active = np.isfinite(res)
     res_hist = [res.copy()]
     step_hist = []
-    step_tol = np.sqrt(tol)
     prev_step = np.full(N, np.inf)
     for _ in range(maxiter):
         if not active.any():
@@ -231,9 +248,7 @@ def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=1e12, c
             res[good] = np.max(np.abs(f_new), axis=0) / fscale_arr[good]
         step_hist.append(step)
         res_hist.append(res.copy())
-        small_res = res <= tol
-        stalled = step >= 0.5 * prev_step
-        done = small_res & ((step <= step_tol) | stalled)
+        done = has_converged(res, step, prev_step, tol)
         converged |= done & active
         diverged = ~np.isfinite(res) | ~np.all(np.isfinite(x), axis=0)
         active &= ~(converged | singular | diverged)
@@ -257,7 +272,9 @@ def _sympy_system(exprs, unknowns):
             "or list them in `unknowns`"
         )
     if len(exprs) != len(syms):
-        raise ValueError(f"{len(exprs)} residuals for {len(syms)} unknowns: the system must be square")
+        raise ValueError(
+            f"`fun` has {len(exprs)} residuals for {len(syms)} unknowns: the system must be square"
+        )
     jac = sp.Matrix(exprs).jacobian(syms)
     f = vector_function(exprs, syms)
     j = vector_function(list(jac), syms)
@@ -333,6 +350,8 @@ def newton(
         raise ValueError(f"x0 has a non-finite entry at index {int(np.flatnonzero(~np.isfinite(x0))[0])}")
     if not (np.isfinite(tol) and tol > 0):
         raise ValueError(f"tol must be a positive number, got {tol!r}")
+    if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
+        raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")
     n = x0.size
     symbolic = not callable(fun)
     if symbolic:
@@ -353,7 +372,11 @@ def newton(
         user_jac = jacobian
 
         def J(x, idx=None):
-            return np.stack([np.asarray(user_jac(x[:, k], *args), dtype=x.dtype) for k in range(x.shape[1])])
+            mats = [np.asarray(user_jac(x[:, k], *args), dtype=x.dtype) for k in range(x.shape[1])]
+            for m in mats:
+                if m.shape != (n, n):
+                    raise ValueError(f"the callable jacobian returned shape {m.shape}; expected ({n}, {n})")
+            return np.stack(mats)
 
     elif jacobian == "symbolic":
         if not symbolic:
@@ -368,7 +391,10 @@ def newton(
 
     f0 = F(x0[:, None])
     if f0.shape[0] != n:
-        raise ValueError(f"the residual has {f0.shape[0]} components for {n} unknowns: the system must be square")
+        raise ValueError(
+            f"`fun` has {f0.shape[0]} residual components for {n} unknowns (the size of x0): "
+            "the system must be square"
+        )
     xs = np.broadcast_to(np.asarray(xscale, dtype=float), (n,))
     out = iterate(F, J, x0[:, None], fscale=fscale, xscale=xs, tol=tol, maxiter=maxiter, cond_max=cond_max)
     x = out.x[:, 0]

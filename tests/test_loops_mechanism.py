@@ -1,0 +1,248 @@
+"""Tests for Loop, Mechanism and the compiled functions, on linkages written by hand."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from numkin import AssemblyError, Loop, Mechanism
+
+TH, T3, X, T4, T5, XS = sp.symbols("theta theta3 x theta4 theta5 xs", real=True)
+R, L, E = sp.symbols("r l e", positive=True)
+FULL_TURN = np.radians(np.arange(0.0, 361.0))
+
+
+def slider_loop():
+    return Loop.from_vectors([(R, TH), (L, T3), (-X, 0), (-E, sp.pi / 2)], [T3, X], name="crank-rod")
+
+
+def slider_mechanism(r=1.0, rod=3.0, e=0.4, **kw):
+    return Mechanism([slider_loop()], TH, {R: r, L: rod, E: e}, name="slider", **kw)
+
+
+def slider_closed_form(theta, r, rod, e):
+    s = r * np.sin(theta) - e
+    root = np.sqrt(rod**2 - s**2)
+    return np.arcsin(-s / rod), r * np.cos(theta) + root
+
+
+# ------------------------------------------------------------------- Loop
+def test_from_vectors_residuals_are_the_complex_sum():
+    loop = slider_loop()
+    assert [str(u) for u in loop.unknowns] == ["theta3", "x"]
+    assert {str(a) for a in loop.angles} == {"theta3"}
+    assert {str(s) for s in loop.length_symbols} == {"r", "l", "e"}
+    rng = np.random.default_rng(1)
+    for _ in range(5):
+        th, t3, x, r, rod, e = rng.uniform(-3, 3, 6)
+        z = r * np.exp(1j * th) + rod * np.exp(1j * t3) - x - 1j * e
+        subs = {TH: th, T3: t3, X: x, R: r, L: rod, E: e}
+        re, im = (float(res.subs(subs)) for res in loop.residuals)
+        assert re == pytest.approx(z.real, abs=1e-12) and im == pytest.approx(z.imag, abs=1e-12)
+
+
+def test_loop_from_raw_residuals_infers_angles():
+    loop = Loop([R * sp.cos(TH) + L * sp.cos(T3) - X, R * sp.sin(TH) + L * sp.sin(T3) - E], ["theta3", "x"])
+    assert {str(a) for a in loop.angles} == {"theta3"}
+    assert loop.name == "theta3-x"
+
+
+@pytest.mark.parametrize(
+    "make, fragment",
+    [
+        (lambda: Loop([sp.cos(T3) - 1], [T3, X], name="L1"), "1 equations for 2 unknowns"),
+        (lambda: Loop([sp.cos(T3) - 1, T3 - 1], [T3, X], name="L1"), "x appear in no equation"),
+        (lambda: Loop([sp.cos(T3) - 1, T3 - 1], [T3, T3], name="L1"), "twice"),
+        (lambda: Loop([], [], name="L1"), "no unknowns"),
+        (lambda: Loop([sp.cos(T3) - X, X - 1], ["theta 3", "x"]), "not a symbol name"),
+        (lambda: Loop([sp.cos(T3) - X, X - 1], [T3, X], angles=["theta4"]), "theta4"),
+        (lambda: Loop.from_vectors([(1, T3)], [T3], name="L1"), "at least two vectors"),
+        (lambda: Loop.from_vectors([(1, T3), 3], [T3], name="L1"), "vector 1"),
+    ],
+)
+def test_loop_errors(make, fragment):
+    with pytest.raises(ValueError, match=fragment):
+        make()
+
+
+# -------------------------------------------------------------- Mechanism
+def test_mechanism_attributes():
+    m = slider_mechanism(r=1.0, rod=3.0, e=0.4)
+    assert m.unknowns == ("theta3", "x")
+    assert m.angles == ("theta3",)
+    assert str(m.input_symbol) == "theta"
+    assert m.length_scale == 3.0  # the largest vector length
+    np.testing.assert_array_equal(m.xscale, [1.0, 3.0])
+    assert m.loop_slices == [slice(0, 2)]
+    np.testing.assert_array_equal(m.parameter_values, [1.0, 3.0, 0.4])
+    assert m.length_unit == "mm"
+    assert "slider" in repr(m)
+
+
+def test_hand_written_slider_crank_matches_closed_form():
+    r, rod, e = 1.0, 3.0, 0.4
+    m = slider_mechanism(r, rod, e, guess={"theta3": 0.0, "x": 3.0}, guess_input=0.0)
+    sweep = m.sweep(FULL_TURN)
+    t3, x = slider_closed_form(FULL_TURN, r, rod, e)
+    np.testing.assert_allclose(sweep["x"], x, rtol=0, atol=1e-10 * rod)
+    np.testing.assert_allclose(sweep["theta3"], t3, rtol=0, atol=1e-10)
+    res = m.solve(math.radians(40), guess=[0.0, 3.0])
+    assert res.converged
+    np.testing.assert_allclose(res.x, [v[40] for v in (t3, x)], atol=1e-10 * rod)
+
+
+def test_sweep_without_any_guess_says_so():
+    m = slider_mechanism()
+    with pytest.raises(ValueError, match="guess"):
+        m.sweep(FULL_TURN)
+
+
+def test_two_loops_later_loop_uses_earlier_unknowns():
+    """A four-bar whose rocker drives a slider through a rod: loop 2 uses theta4 of loop 1."""
+    r1, r2, r3, r4, rod, h = 4.0, 1.0, 3.0, 3.0, 5.0, 2.0
+    A1, A2, A3, A4, LR, H = sp.symbols("a1 a2 a3 a4 lr h", positive=True)
+    t2 = sp.Symbol("theta2", real=True)
+    loop1 = Loop.from_vectors([(A2, t2), (A3, T3), (-A4, T4), (-A1, 0)], [T3, T4], name="four-bar")
+    loop2 = Loop.from_vectors([(A1, 0), (A4, T4), (LR, T5), (-XS, 0), (-H, sp.pi / 2)], [T5, XS], name="rod")
+    m = Mechanism(
+        [loop1, loop2], t2, {A1: r1, A2: r2, A3: r3, A4: r4, LR: rod, H: h},
+        guess={"theta3": 0.5, "theta4": 2.0, "theta5": -0.3, "xs": 6.0}, guess_input=0.0,
+        points={"B": (A1 + A4 * sp.cos(T4), A4 * sp.sin(T4)), "S": (XS, H)}, links=[("B", "S")],
+    )
+    assert m.unknowns == ("theta3", "theta4", "theta5", "xs")
+    assert m.loop_slices == [slice(0, 2), slice(2, 4)]
+    sweep = m.sweep(FULL_TURN)
+    # closed form: B by circle intersection (open branch), slider to the right of B
+    ax, ay = r2 * np.cos(FULL_TURN), r2 * np.sin(FULL_TURN)
+    dx, dy = r1 - ax, -ay
+    d = np.hypot(dx, dy)
+    along = (r3**2 - r4**2 + d**2) / (2 * d)
+    hh = np.sqrt(r3**2 - along**2)
+    bx = ax + along * dx / d - hh * dy / d
+    by = ay + along * dy / d + hh * dx / d
+    xs = bx + np.sqrt(rod**2 - (h - by) ** 2)
+    np.testing.assert_allclose(sweep["xs"], xs, rtol=0, atol=1e-10 * rod)
+    np.testing.assert_allclose(np.cos(sweep["theta4"]), (bx - r1) / r4, atol=1e-10)
+    pts = sweep.points()
+    np.testing.assert_allclose(pts["B"], [bx, by], atol=1e-10 * rod)
+    np.testing.assert_allclose(np.hypot(*(pts["S"] - pts["B"])), rod, atol=1e-11 * rod)
+    # block lower-triangular Jacobian: loop 1 does not depend on loop 2's unknowns
+    jac = m.compiled.J(sweep.values, sweep.inputs, m.parameter_values)
+    assert np.all(jac[:, 0:2, 2:4] == 0)
+    res = m.loop_residuals(sweep.values, sweep.inputs)
+    assert set(res) == {"four-bar", "rod"}
+    assert max(v.max() for v in res.values()) <= 1e-12  # the stopping tolerance
+    conds = m.loop_conditions(sweep.values, sweep.inputs)
+    assert set(conds) == {"four-bar", "rod"} and all(np.all(c >= 1) for c in conds.values())
+    orient = m.loop_orientations(sweep.values, sweep.inputs)
+    assert orient.shape == (2, 361)
+    assert np.all(orient == orient[:, :1])
+
+
+@pytest.mark.parametrize(
+    "kwargs, fragment",
+    [
+        (dict(parameters={R: 1.0, L: 3.0}), "e"),  # e has no value
+        (dict(parameters={R: 1.0, L: 3.0, E: math.nan}), "e"),
+        (dict(parameters={R: 1.0, L: "long", E: 0.0}), "l"),
+        (dict(parameters={R: 1.0, L: 3.0, E: 0.0, X: 2.0}), "x"),  # an unknown given a value
+        (dict(parameters={R: 1.0, L: 3.0, E: 0.0}, links=[("O", "Q")]), "Q"),
+        (dict(parameters={R: 1.0, L: 3.0, E: 0.0}, length_scale=-1.0), "length_scale"),
+    ],
+)
+def test_mechanism_errors_name_the_culprit(kwargs, fragment):
+    params = kwargs.pop("parameters")
+    if "links" in kwargs:
+        kwargs["points"] = {"O": (0, 0)}
+    with pytest.raises(ValueError, match=rf"\b{fragment}\b"):
+        Mechanism([slider_loop()], TH, params, **kwargs)
+
+
+def test_mechanism_needs_loops():
+    with pytest.raises(ValueError, match="loops"):
+        Mechanism([], TH, {})
+
+
+def test_assembly_check_hook():
+    m = slider_mechanism(assembly_check=lambda t: "never" if np.any(t > 1) else None, guess=[0.0, 3.0])
+    with pytest.raises(AssemblyError, match="never"):
+        m.sweep(FULL_TURN)
+    assert m.sweep(np.linspace(0.0, 1.0, 5)).values.shape == (2, 5)
+
+
+# ------------------------------------------------------- compiled functions
+def test_compiled_jacobian_tangent_and_second_derivative_against_closed_form():
+    r, rod, e = 1.0, 3.0, 0.4
+    m = slider_mechanism(r, rod, e)
+    c = m.compiled
+    p = m.parameter_values
+    theta = np.radians(np.arange(0.0, 360.0, 7.0))
+    q = np.array(slider_closed_form(theta, r, rod, e))
+    np.testing.assert_allclose(c.F(q, theta, p), 0.0, atol=1e-14)
+    # Jacobian by complex step through F (F accepts complex arrays)
+    h = 1e-30
+    for j in range(2):
+        dq = np.zeros_like(q, dtype=complex)
+        dq[j] = 1j * h
+        col = c.F(q + dq, theta, p).imag / h
+        np.testing.assert_allclose(c.J(q, theta, p)[:, :, j], col.T, rtol=1e-14, atol=1e-15)
+    # dq/dtheta and d2q/dtheta2 from differentiating the closed form with sympy, here
+    th = sp.Symbol("th")
+    s = r * sp.sin(th) - e
+    x_expr = r * sp.cos(th) + sp.sqrt(rod**2 - s**2)
+    t3_expr = sp.asin(-s / rod)
+    d1 = sp.lambdify(th, [sp.diff(t3_expr, th), sp.diff(x_expr, th)])
+    d2 = sp.lambdify(th, [sp.diff(t3_expr, th, 2), sp.diff(x_expr, th, 2)])
+    dq = c.tangent(q, theta, p)
+    np.testing.assert_allclose(dq, np.array(d1(theta)), rtol=0, atol=1e-13)
+    np.testing.assert_allclose(c.second_derivative(q, dq, theta, p), np.array(d2(theta)), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(c.F_t(q, theta, p), [-r * np.sin(theta), r * np.cos(theta)], atol=1e-15)
+
+
+def test_point_function_and_complex_inputs():
+    m = slider_mechanism(points={"A": (R * sp.cos(TH), R * sp.sin(TH)), "P": (X, E)})
+    theta = np.array([0.0, 1.0])
+    q = np.array(slider_closed_form(theta, 1.0, 3.0, 0.4))
+    pts = m.point_coordinates(q, theta)
+    np.testing.assert_allclose(pts["A"], [np.cos(theta), np.sin(theta)])
+    np.testing.assert_allclose(pts["P"], [q[1], [0.4, 0.4]])
+    out = m.compiled.F(q.astype(complex), theta + 1e-20j, m.parameter_values)
+    assert np.iscomplexobj(out)
+    np.testing.assert_allclose(out.imag / 1e-20, m.compiled.F_t(q, theta, m.parameter_values), atol=1e-14)
+
+
+def test_loops_of_three_and_one_unknowns():
+    """Blocks other than 2 x 2: a three-equation loop, then a one-equation loop using its unknowns."""
+    y, z = sp.symbols("y z", real=True)
+    r, rod, e = 1.0, 3.0, 0.4
+    loop3 = Loop(
+        [R * sp.cos(TH) + L * sp.cos(T3) - X, R * sp.sin(TH) + L * sp.sin(T3) - E, y - X**2 / 2],
+        [T3, X, y], name="three",
+    )
+    loop1 = Loop([z**3 + z - y], [z], name="one")
+    m = Mechanism([loop3, loop1], TH, {R: r, L: rod, E: e}, guess=[0.0, 3.0, 4.5, 1.5], guess_input=0.0)
+    sweep = m.sweep(FULL_TURN)
+    t3, x = slider_closed_form(FULL_TURN, r, rod, e)
+    np.testing.assert_allclose(sweep["x"], x, rtol=0, atol=1e-10 * rod)
+    np.testing.assert_allclose(sweep["y"], x**2 / 2, rtol=0, atol=1e-10 * rod**2)
+    zz = sweep["z"]
+    np.testing.assert_allclose(zz**3 + zz, x**2 / 2, rtol=0, atol=1e-9)
+    conds = m.loop_conditions(sweep.values, sweep.inputs)
+    assert np.all(conds["one"] == 1.0) and np.all(conds["three"] >= 1.0)
+    for jacobian in ("forward", "central"):
+        fd = m.sweep(FULL_TURN, jacobian=jacobian)
+        np.testing.assert_allclose(fd.values, sweep.values, rtol=0, atol=1e-9)
+
+
+def test_functions_outside_the_math_module():
+    """A residual with a function the math module lacks (``re``) still sweeps: numpy evaluates it."""
+    c = sp.Symbol("c")  # not declared real: re(c) stays
+    m = Mechanism(
+        [Loop([X - 2 - sp.re(c) * sp.sin(TH) / 4], [X], name="re")], TH, {c: 1.0},
+        guess=[2.0], guess_input=0.0,
+    )
+    sweep = m.sweep(np.linspace(0.0, 3.0, 31))
+    np.testing.assert_allclose(sweep["x"], 2 + np.sin(np.linspace(0.0, 3.0, 31)) / 4, atol=1e-12)
