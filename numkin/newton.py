@@ -12,10 +12,11 @@ A system has converged when, after a step,
 
 * the scaled residual ``max|F| / fscale`` is at most ``tol`` **and**
 * the scaled step ``max|dx / xscale|`` that led there is either at most
-  ``tol``, or at most ``sqrt(tol)`` *and* at most a quarter of the step
+  ``tol``, or at most ``tol**(2/3)`` *and* at most a quarter of the step
   before it (convergence is superlinear, so the error left is of order
-  ``step**2 <= tol``), or no smaller than 0.9 times the step before it (it
-  is stuck at the round-off floor ``~eps * cond(J)``).
+  ``step**2 <= tol**(4/3)``, well below ``tol``), or no smaller than 0.9
+  times the step before it (it is stuck at the round-off floor
+  ``~eps * cond(J)``).
 
 Linear convergence, the signature of a singular Jacobian at the root (steps
 that halve at a double root), meets none of these until the error itself is
@@ -58,7 +59,7 @@ def has_converged(res, step, prev_step, tol):
     ``res`` is the scaled residual after a step, ``step`` the scaled step
     that led to it and ``prev_step`` the one before (``inf`` at the first).
     """
-    superlinear = (step <= math.sqrt(tol)) & (step <= 0.25 * prev_step)
+    superlinear = (step <= tol ** (2.0 / 3.0)) & (step <= 0.25 * prev_step)
     return (res <= tol) & ((step <= tol) | superlinear | (step >= 0.9 * prev_step))
 
 
