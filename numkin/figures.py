@@ -29,7 +29,7 @@ name                       figure                                               
 ``acceleration``           numerical against analytic acceleration, and the error  analytic and finite
 ``mechanism``              the linkage drawn at one input, dimensions labelled     sweep with points
 ``convergence``            error against h (log-log), reference slopes 1, 2, 4     convergence table
-``work-precision``         error against run time                                  work-precision table
+``work-precision``         error against work (exact evaluation counts)            work-precision table
 ``roundoff``               error against h down to rounding: the V-curve           roundoff table
 ``newton``                 Newton's residual per iteration, per Jacobian           newton table
 =========================  ======================================================  ====================
@@ -93,7 +93,7 @@ FIGURES: dict[str, str] = {
     "acceleration": "numerical against analytic acceleration of one unknown, with the error",
     "mechanism": "the linkage drawn at one input angle with its dimensions",
     "convergence": "error against step h (log-log) with reference slopes 1, 2, 4",
-    "work-precision": "error against run time",
+    "work-precision": "error against work (evaluations; or against run time)",
     "roundoff": "error against h down to rounding: the V-curve",
     "newton": "Newton's residual per iteration for each Jacobian",
 }
@@ -1180,20 +1180,59 @@ def convergence(table, *, error: str = "max abs error"):
     return fig
 
 
-def work_precision(table, *, time: str = "sweep + derivative time", error: str = "max abs error"):
-    """Error against run time (log-log) for each method, the Pareto front ringed.
+def _front(x, y) -> np.ndarray:
+    """Pareto front of points (cost x, error y): no other point is no worse in both and better in one.
 
-    Run times vary from run to run, so this figure is only as reproducible
-    as the table it is drawn from.
+    Points with a non-finite or non-positive coordinate are not on it.
+    """
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    ok = np.isfinite(x) & np.isfinite(y) & (x > 0) & (y > 0)
+    out = np.zeros(x.size, dtype=bool)
+    for k in np.flatnonzero(ok):
+        dominated = ok & (x <= x[k]) & (y <= y[k]) & ((x < x[k]) | (y < y[k]))
+        out[k] = not dominated.any()
+    return out
+
+
+#: Markers of the work-precision figure: (marker, size, filled). Methods that give the same points
+#: (forward and backward, five-point and Richardson: the same errors on the same grids) stay
+#: visible one over the other: a large open marker around a small filled one.
+_WP_MARKERS = {
+    "analytic": ("o", 4.0, True), "complex step": ("s", 8.0, False),
+    "forward": ("^", 8.5, False), "backward": ("v", 4.5, True), "centred": ("o", 4.5, True),
+    "five_point": ("D", 8.0, False), "richardson": ("o", 3.5, True), "spectral": ("*", 7.0, True),
+    "second_difference": ("o", 4.5, True), "forward_of_forward": ("^", 5.5, True),
+    "centred_of_centred": ("v", 5.5, True), "five_point_second": ("D", 8.0, False),
+    "spectral_second": ("*", 7.0, True),
+}
+
+
+def work_precision(table, *, work: str = "work", time: str | None = None, error: str = "max abs error"):
+    """Error against work (log-log) for each method, the Pareto front ringed; or against run time.
+
+    By default the cost is the table's exact work count (``work
+    [evaluations]``: point evaluations of the compiled loop equations plus
+    stencil evaluations, see :func:`numkin.report.work_precision_table`),
+    the same in every run, so the figure is reproducible byte for byte.
+    With `time` the measured run time is drawn instead, and the axis says
+    that it varies between runs. The Pareto front (no other point of the
+    panel has less cost and no larger error) is computed from the points
+    drawn, so it always matches the axes.
 
     Parameters
     ----------
     table : DataFrame
         From :func:`numkin.report.work_precision_table`: columns ``method``,
-        ``quantity``, the time column (ms), the error column and optionally
-        ``Pareto front``. One panel per quantity.
-    time : str
-        Start of the time column's name (``"sweep time"``, ``"derivative time"``).
+        ``quantity``, the work or time column and the error column. One
+        panel per quantity.
+    work : str
+        Start of the work column's name: ``"work"`` (sweep + derivative,
+        default), ``"sweep work"`` or ``"derivative work"``.
+    time : str, optional
+        Start of a time column's name (``"sweep + derivative time"``,
+        ``"sweep time"``, ``"derivative time"``): draw the measured time
+        (ms, varies between runs) instead of the work.
     error : str
         Start of the error column's name.
 
@@ -1206,44 +1245,63 @@ def work_precision(table, *, time: str = "sweep + derivative time", error: str =
     >>> from numkin import linkages, report, figures
     >>> wp = report.work_precision_table(linkages.slider_crank(80, 200), omega="6000 rpm", quantity="x",
     ...                                  grids=(36, 72), schemes=("centred", "second_difference"), repeat=1)
-    >>> figures.save(figures.work_precision(wp), "/tmp/numkin-doc-wp", ["png"])[0].suffix
+    >>> fig = figures.work_precision(wp)
+    >>> fig.axes[0].get_xlabel()
+    'work [point evaluations + stencil evaluations]'
+    >>> figures.save(fig, "/tmp/numkin-doc-wp", ["png"])[0].suffix
     '.png'
+    >>> figures.work_precision(wp, time="sweep + derivative time").axes[0].get_xlabel()
+    'sweep + derivative time [ms] (varies between runs)'
     """
     what = "work-precision table"
-    tcol = _col(table, time, what)
+    if time is not None:
+        xcol = _col(table, time, what)
+        unit = re.search(r"\[(.*?)\]", str(xcol))
+        xlabel = f"{time} [{unit.group(1) if unit else 's'}] (varies between runs)"
+        title = "error against run time, each method from coarse to fine grid (times vary between runs)"
+    else:
+        xcol = _col(table, work, what, required=False)
+        if xcol is None:
+            raise ValueError(
+                f"{what}: no column starting with {work!r} (a table from an older numkin?); columns are "
+                f"{list(table.columns)}; pass time='sweep + derivative time' to draw the measured run time"
+            )
+        xlabel = f"{work} [point evaluations + stencil evaluations]"
+        title = ("error against work: evaluations of the loop equations + stencil evaluations, "
+                 "each method from coarse to fine grid")
     ecol = _col(table, error, what)
     mcol = _col(table, "method", what)
-    pcol = _col(table, "Pareto front", what, required=False)
-    t_unit = re.search(r"\[(.*?)\]", str(tcol))
-    t_unit = t_unit.group(1) if t_unit else "s"
     groups = _groups(table)
     with style():
-        fig, axes = _new_figure(1, len(groups), size=(6.4 if len(groups) == 1 else 9.6, 4.4))
+        fig, axes = _new_figure(1, len(groups), size=(6.4 if len(groups) == 1 else 9.6, 5.0))
         for ax, (quantity, sub) in zip(axes[0], groups):
             qtext, unit = _quantity_text(quantity) if quantity is not None else ("", "")
             if "rel" in error:
                 unit = "–"
-            order_col = "points per turn" if "points per turn" in sub.columns else tcol
+            order_col = "points per turn" if "points per turn" in sub.columns else xcol
             for k, method in enumerate(dict.fromkeys(sub[mcol])):
-                rows = sub[sub[mcol] == method].sort_values(order_col)
+                rows = sub[sub[mcol] == method].sort_values(order_col, kind="mergesort")
                 st = _source_style(method, k)
-                st["linewidth"] = min(st.get("linewidth", 1.5), 1.6)
+                st["linewidth"] = min(st.get("linewidth", 1.5), 1.4)
                 st.pop("alpha", None)
                 st.pop("zorder", None)
-                ax.plot(rows[tcol], _positive(rows[ecol]), marker="o", label=_source_label(method), **st)
-            if pcol is not None:
-                front = sub[sub[pcol].astype(bool)]
-                ax.plot(front[tcol], _positive(front[ecol]), linestyle="none", marker="o", markersize=10,
-                        markerfacecolor="none", markeredgecolor="black", markeredgewidth=0.9, label="Pareto front")
+                marker, size, filled = _WP_MARKERS.get(str(method), ("o", 4.5, True))
+                ax.plot(np.asarray(rows[xcol], dtype=float), _positive(rows[ecol]), marker=marker, markersize=size,
+                        markerfacecolor=st["color"] if filled else "none", markeredgecolor=st["color"],
+                        markeredgewidth=1.0, label=_source_label(method), **st)
+            on_front = _front(sub[xcol], sub[ecol])
+            front = sub[on_front]
+            ax.plot(np.asarray(front[xcol], dtype=float), _positive(front[ecol]), linestyle="none", marker="o",
+                    markersize=14, markerfacecolor="none", markeredgecolor="black", markeredgewidth=1.0,
+                    label="Pareto front", zorder=5)
             ax.set_xscale("log")
             ax.set_yscale("log")
-            _plain_log_ticks(ax.xaxis, sub[tcol])
-            ax.set_xlabel(f"{time} [{t_unit}]")
+            _plain_log_ticks(ax.xaxis, sub[xcol])
+            ax.set_xlabel(xlabel)
             ax.set_ylabel(f"{error} [{unit}]")
             ax.set_title(qtext or "work and precision")
-            ax.legend(loc="best", fontsize=7.5)
-        fig.suptitle("error against run time, each method from coarse to fine grid (times vary between runs)",
-                     fontsize=9)
+            ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncols=3, fontsize=7.5)
+        fig.suptitle(title, fontsize=9)
     return fig
 
 

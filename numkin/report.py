@@ -10,11 +10,14 @@ function                      what the table shows
 ============================  ===============================================================
 :func:`convergence_table`     max / RMS error of every scheme on every grid against the
                               analytic solution, the error at a check angle, observed order
-:func:`work_precision_table`  run time (sweep, differencing, both) beside the error reached,
+:func:`work_precision_table`  work (exact counts of evaluations, the same in every run) and
+                              run time (sweep, differencing, both) beside the error reached,
                               with the analytic solution and the complex step as rows, and
-                              the Pareto front
+                              the Pareto fronts by work and by time
 :func:`cheapest_table`        from a work-precision table: the cheapest method for each
-                              wanted accuracy
+                              wanted accuracy, by run time or by work
+:func:`count_evaluations`     context manager counting the point evaluations of a
+                              mechanism's compiled loop equations (the work measure)
 :func:`roundoff_table`        error against the step h (1e-1 ... 1e-12 rad) at one angle;
                               the measured optimal h beside the textbook estimates
 :func:`newton_table`          residual, step and error norms per Newton iteration of one
@@ -43,7 +46,10 @@ Conventions
   are taken over the N distinct points.
 * Row order is fixed by the arguments (scheme order, then grid order), so
   two runs give the same table; **timings are the only entries that vary
-  between runs**, and every column holding them says ``(varies)``.
+  between runs**, and every column holding them (or chosen by them) says
+  ``(varies)``. Work is measured by exact counts instead
+  (``work [evaluations]``, see :func:`work_precision_table`): the same in
+  every run, so figures drawn from it are reproducible byte for byte.
 * Warnings of the main sweeps (a near-singular point, data that had to be
   differenced as an open grid) reach the caller; the repeated sweeps of
   the timings and of the loose-tolerance solves are quiet.
@@ -69,8 +75,10 @@ import math
 import statistics
 import time
 import warnings
+from contextlib import contextmanager
+from functools import cached_property
 from pathlib import Path
-from typing import Callable, Iterable, Mapping, Sequence
+from typing import Callable, Iterable, Iterator, Mapping, Sequence
 
 import numpy as np
 
@@ -82,6 +90,9 @@ from .sweep import Sweep
 __all__ = [
     "DEFAULT_GRIDS",
     "ROUNDOFF_SCHEMES",
+    "COUNTED_FUNCTIONS",
+    "EvaluationCounter",
+    "count_evaluations",
     "convergence_table",
     "work_precision_table",
     "cheapest_table",
@@ -104,6 +115,11 @@ ROUNDOFF_SCHEMES = ("forward", "centred", "five_point", "second_difference", "co
 ROUNDOFF_STEPS = tuple(10.0 ** -k for k in range(1, 13))
 _UNIT = "[unit of quantity]"
 _VARIES = "(varies)"
+#: Work columns of :func:`work_precision_table` (exact counts; see its docstring).
+_WORK_SWEEP = "sweep work [evaluations]"
+_WORK_DERIVATIVE = "derivative work [evaluations]"
+_WORK = "work [evaluations]"
+_PARETO_WORK = "Pareto front by work"
 
 
 # =========================================================================== helpers
@@ -232,6 +248,174 @@ def _median_time(fn: Callable[[], object], repeat: int, warmup: bool = True) -> 
             fn()
         samples.append((time.perf_counter() - t0) / number)
     return statistics.median(samples)
+
+
+# ================================================================ counting the work
+#: Functions of :class:`~numkin.compiled.CompiledMechanism` counted by :func:`count_evaluations`,
+#: and where each call finds its input angles: ``"qt"`` ``f(q, t, ...)``, ``"t"`` ``f(t, ...)``,
+#: ``"second"`` ``f(*q, *dq, t, *p)``, ``"scalar"`` one point per call. Methods built on these
+#: (``tangent``, ``second_derivative``) are counted through them.
+COUNTED_FUNCTIONS = {
+    "F": "qt",
+    "J": "qt",
+    "F_t": "qt",
+    "FJ_rows": "qt",
+    "fixed_terms": "t",
+    "_second": "second",
+    "scalar_F": "scalar",
+    "scalar_FJT": "scalar",
+}
+
+
+class EvaluationCounter:
+    """Point evaluations of a mechanism's compiled functions, as counted by :func:`count_evaluations`.
+
+    A *point evaluation* is one call of one compiled function of the loop
+    equations (residuals, Jacobian, both together, dF/dtheta, the terms of
+    the input alone, the acceleration right-hand side) at one input angle,
+    real or complex: a call on N inputs counts N.
+
+    Attributes
+    ----------
+    calls : dict
+        Function name -> number of calls.
+    points : dict
+        Function name -> point evaluations.
+    """
+
+    def __init__(self) -> None:
+        self.calls: dict = {}
+        self.points: dict = {}
+
+    @property
+    def total(self) -> int:
+        """All point evaluations counted."""
+        return int(sum(self.points.values()))
+
+    def add(self, name: str, points: int) -> None:
+        self.calls[name] = self.calls.get(name, 0) + 1
+        self.points[name] = self.points.get(name, 0) + int(points)
+
+    def __repr__(self) -> str:
+        return f"EvaluationCounter(total={self.total}, points={self.points})"
+
+
+_ABSENT = object()
+
+
+def _size(shape) -> int:
+    return int(np.prod(shape, dtype=np.int64)) if shape else 1
+
+
+def _points_of(kind: str, n: int, args, kwargs) -> int:
+    """Number of input angles a call of a counted function evaluates at."""
+    if kind == "scalar":
+        return 1
+    if kind == "t":
+        t = args[0] if args else kwargs["t"]
+        return _size(np.shape(t))
+    if kind == "second":
+        q0, t = args[0], args[2 * n]
+    else:
+        q = args[0] if args else kwargs["q"]
+        t = args[1] if len(args) > 1 else kwargs["t"]
+        q0 = q[0] if len(q) else 0.0
+    return _size(np.broadcast_shapes(np.shape(t), np.shape(q0)))
+
+
+@contextmanager
+def count_evaluations(mechanism) -> Iterator[EvaluationCounter]:
+    """Count the point evaluations of a mechanism's compiled functions inside a ``with`` block.
+
+    The functions named in :data:`COUNTED_FUNCTIONS` of ``mechanism.compiled``
+    are wrapped, for the duration of the block, by counters of calls and of
+    input angles (a call on N inputs is N point evaluations; a call of a
+    scalar function one). Everything that evaluates the loop equations --
+    the sweep's sequential and batched Newton steps, the tangent and
+    acceleration solves of :mod:`numkin.analytic`, the complex-step Newton
+    -- goes through them, so the count is exact: it is what the code did,
+    not an estimate, and it is the same in every run (it depends on the
+    algorithm and the data, not on the machine's speed or load).
+
+    The wrappers sit on this mechanism's ``compiled`` object only and are
+    removed on leaving the block (functions compiled meanwhile are kept);
+    calls from other threads during the block are counted too.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+
+    Yields
+    ------
+    EvaluationCounter
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import analytic, linkages
+    >>> mech = linkages.slider_crank(80, 200)
+    >>> sweep = mech.sweep(np.radians(np.arange(0, 91, 10)))      # 10 points
+    >>> with count_evaluations(mech) as count:
+    ...     dq = analytic.tangent(sweep)                            # J q' = -dF/dtheta
+    >>> count.total, count.points                                   # J and dF/dtheta at 10 points
+    (20, {'F_t': 10, 'J': 10})
+    """
+    comp = mechanism.compiled
+    counter = EvaluationCounter()
+    n = len(mechanism.unknowns)
+    saved = []  # (name, value in the instance's __dict__ before, or _ABSENT; lazily compiled box)
+    try:
+        for name, kind in COUNTED_FUNCTIONS.items():
+            attr = getattr(type(comp), name, None)
+            box: dict = {}
+            if name in vars(comp):  # a function stored on the instance, or a cached property already compiled
+                box["f"] = vars(comp)[name]
+                before = vars(comp)[name]
+            elif isinstance(attr, cached_property):  # compiled on first use: not before (position-only work
+                before = _ABSENT                      # must not compile the acceleration equations)
+
+                def compile_now(_attr=attr):
+                    return _attr.func(comp)
+
+                box["compile"] = compile_now
+            elif callable(attr):
+                box["f"] = getattr(comp, name)  # a method, bound
+                before = _ABSENT
+            else:
+                continue
+
+            def counted(*args, _box=box, _name=name, _kind=kind, **kwargs):
+                if "f" not in _box:
+                    _box["f"] = _box["compile"]()
+                counter.add(_name, _points_of(_kind, n, args, kwargs))
+                return _box["f"](*args, **kwargs)
+
+            saved.append((name, before, box, isinstance(attr, cached_property)))
+            setattr(comp, name, counted)
+        yield counter
+    finally:
+        for name, before, box, lazy in reversed(saved):
+            if before is not _ABSENT:
+                setattr(comp, name, before)
+            elif lazy and "f" in box:  # compiled meanwhile: keep it, as the cached property would
+                setattr(comp, name, box["f"])
+            else:
+                delattr(comp, name)
+
+
+def _stencil_evaluations(sweep: Sweep) -> int:
+    """Grid points at which a finite-difference scheme is evaluated on `sweep`.
+
+    As :func:`numkin.kinematics.sweep_derivative` does it: every sample of
+    an open grid; on a full turn differenced as periodic, the N distinct
+    samples (the closing sample repeats the first and is copied).
+    """
+    mech = sweep.mechanism
+    grid = kinematics.sweep_grid(sweep)
+    angle = np.array([u in mech.angles for u in mech.unknowns], dtype=bool)
+    rows = _quiet(kinematics.prepare_rows, np.asarray(sweep.values), angle, mech.unknowns, sweep.inputs, grid,
+                  mech.length_scale)
+    return int(rows.y.shape[-1] - (1 if rows.periodic else 0))
 
 
 def _polish(mechanism, x, t, *, max_iterations: int = 30):
@@ -421,13 +605,37 @@ def work_precision_table(
     span: float = TURN,
     guess=None,
 ):
-    """Run time against error for every scheme and grid, the analytic solution and the complex step.
+    """Work and run time against error for every scheme and grid, the analytic solution and the complex step.
 
-    Times are medians over `repeat` repeats of :func:`time.perf_counter`
-    (after an untimed warm-up): the sweep (``Mechanism.sweep``), the
-    derivative alone (:func:`numkin.kinematics.sweep_derivative`, or
-    :func:`numkin.analytic.tangent` / :func:`~numkin.analytic.derivatives`,
-    or :func:`numkin.analytic.complex_step`), and both in one timed block.
+    Two measures of cost stand beside the error reached:
+
+    * **work** -- exact counts, the same in every run: they depend on the
+      algorithms and the data, not on the machine's speed or load.
+      ``sweep work`` is the number of *point evaluations* of the
+      mechanism's compiled loop equations spent by ``Mechanism.sweep``:
+      calls of the compiled residuals, Jacobian, dF/dtheta (and the
+      functions combining them) times the input angles of each call,
+      counted by instrumenting them (:func:`count_evaluations`).
+      ``derivative work`` is what the derivative adds: for the analytic
+      solution and the complex step, point evaluations again, counted the
+      same way (the velocity equations ``J q' = -dF/dtheta`` take J and
+      dF/dtheta at every point, the acceleration equations another J and
+      their right-hand side; the complex step runs Newton in complex
+      arithmetic at every point); for a finite-difference scheme, which
+      evaluates no compiled function, the *stencil evaluations*: one per
+      grid point at which its formula is applied (to all unknowns at once,
+      as a compiled function is). ``work`` is their sum. It tracks the run
+      time because what a row costs is set by how often the loop equations
+      are evaluated: the number of points, Newton iterations and linear
+      solves. A stencil evaluation (a few multiply-adds) is cheaper than a
+      point evaluation (trigonometric functions), so counting each as one
+      overstates, if anything, the cost of the finite differences;
+    * **run time** -- medians over `repeat` repeats of
+      :func:`time.perf_counter` (after an untimed warm-up): the sweep, the
+      derivative alone (:func:`numkin.kinematics.sweep_derivative`, or
+      :func:`numkin.analytic.tangent` / :func:`~numkin.analytic.derivatives`,
+      or :func:`numkin.analytic.complex_step`), and both in one timed block.
+      These vary between runs and say so in their column names.
 
     Parameters
     ----------
@@ -451,13 +659,16 @@ def work_precision_table(
         Rows: for the first derivative, then the second: ``analytic``,
         ``complex step``, then each scheme of that derivative order; each on
         every grid. Columns ``method``, ``quantity``, ``points per turn``,
-        ``h [deg]``, ``sweep time [ms] (varies)``, ``derivative time [ms]
-        (varies)``, ``sweep + derivative time [ms] (varies)``, ``max abs
-        error [unit of quantity]``, ``max rel error [-]`` and ``Pareto front
-        (varies)`` (no other row of the same quantity is both faster,
-        by total time, and at least as accurate). The error of the analytic
-        rows is measured against the complex step, all others against the
-        analytic solution.
+        ``h [deg]``, ``sweep work [evaluations]``, ``derivative work
+        [evaluations]``, ``work [evaluations]`` (their sum; integers),
+        ``sweep time [ms] (varies)``, ``derivative time [ms] (varies)``,
+        ``sweep + derivative time [ms] (varies)``, ``max abs error [unit of
+        quantity]``, ``max rel error [-]``, ``Pareto front (varies)`` (no
+        other row of the same quantity is both faster, by total time, and at
+        least as accurate) and ``Pareto front by work`` (the same by
+        ``work``: the same in every run). The error of the analytic rows is
+        measured against the complex step, all others against the analytic
+        solution.
 
     Examples
     --------
@@ -466,6 +677,9 @@ def work_precision_table(
     ...                          grids=(36,), schemes=("centred",), repeat=1)
     >>> list(t["method"])
     ['analytic', 'complex step', 'centred', 'analytic', 'complex step']
+    >>> wd = t["derivative work [evaluations]"]
+    >>> int(wd[0]), int(wd[2])   # analytic: J and dF/dtheta at the 37 inputs; centred: 36 distinct points
+    (74, 36)
     """
     import pandas as pd
 
@@ -483,32 +697,41 @@ def work_precision_table(
         def run_sweep(inputs=inputs):
             return _sweep(mechanism, inputs, guess)
 
-        s = run_sweep()
+        with count_evaluations(mechanism) as count:
+            s = run_sweep()
+        if count.total <= 0:  # pragma: no cover - numkin.compiled no longer goes through the counted functions
+            raise RuntimeError(
+                f"{mechanism.name}: no evaluation of the compiled loop equations was counted during the sweep; "
+                f"report.COUNTED_FUNCTIONS {sorted(COUNTED_FUNCTIONS)} no longer match numkin.compiled"
+            )
         dq, d2q = _exact(s)
         cs1 = _quiet(analytic.complex_step, s, order=1)[j]
         cs2 = _quiet(analytic.complex_step, s, order=2)[j]
-        per_grid[n] = (run_sweep, s, dq[j], d2q[j], cs1, cs2, _median_time(run_sweep, repeat))
+        per_grid[n] = (run_sweep, s, dq[j], d2q[j], cs1, cs2, _median_time(run_sweep, repeat), count.total,
+                       _stencil_evaluations(s))
 
     def method_fns(order):
         fns = [
-            ("analytic", (lambda s: _quiet(analytic.tangent, s)) if order == 1 else _exact),
-            ("complex step", lambda s, o=order: _quiet(analytic.complex_step, s, order=o)),
+            ("analytic", (lambda s: _quiet(analytic.tangent, s)) if order == 1 else _exact, False),
+            ("complex step", lambda s, o=order: _quiet(analytic.complex_step, s, order=o), False),
         ]
         for scheme in scheme_list:
             if scheme.derivative == order:
-                fns.append((scheme.name, lambda s, sc=scheme: _derivative(s, sc)))
+                fns.append((scheme.name, lambda s, sc=scheme: _derivative(s, sc), True))
         return fns
 
     for order in (1, 2):
         scale = w if order == 1 else w * w
-        for name, fn in method_fns(order):
+        for name, fn, differences in method_fns(order):
             for n in grid_list:
-                run_sweep, s, dq, d2q, cs1, cs2, t_sweep = per_grid[n]
+                run_sweep, s, dq, d2q, cs1, cs2, t_sweep, sweep_work, stencils = per_grid[n]
                 exact = dq if order == 1 else d2q
+                with count_evaluations(mechanism) as count:
+                    out = fn(s)
+                derivative_work = count.total + (stencils if differences else 0)
                 if name == "analytic":
                     est, ref = exact, (cs1 if order == 1 else cs2)
                 else:
-                    out = fn(s)
                     est = (out[1] if order == 2 and isinstance(out, tuple) else out)
                     est = est[j] if np.ndim(est) == 2 else est
                     ref = exact
@@ -525,6 +748,9 @@ def work_precision_table(
                         "quantity": lab[order],
                         "points per turn": n,
                         "h [deg]": 360.0 / n,
+                        _WORK_SWEEP: int(sweep_work),
+                        _WORK_DERIVATIVE: int(derivative_work),
+                        _WORK: int(sweep_work + derivative_work),
                         f"sweep time [ms] {_VARIES}": 1e3 * t_sweep,
                         f"derivative time [ms] {_VARIES}": 1e3 * t_diff,
                         f"sweep + derivative time [ms] {_VARIES}": 1e3 * t_both,
@@ -533,29 +759,41 @@ def work_precision_table(
                     }
                 )
     df = pd.DataFrame(rows)
-    df[f"Pareto front {_VARIES}"] = _pareto(df)
+    df[f"Pareto front {_VARIES}"] = _pareto(df, f"sweep + derivative time [ms] {_VARIES}")
+    df[_PARETO_WORK] = _pareto(df, _WORK)
     return _caption(
         df,
-        f"Work and precision: {mechanism.name}, {quantity}, input speed {w:g} rad/s; median times of "
-        f"{int(repeat)} repeats (vary between runs) beside the max error over the sweep.",
+        f"Work and precision: {mechanism.name}, {quantity}, input speed {w:g} rad/s; work = point evaluations of "
+        "the compiled loop equations (sweep, analytic and complex-step derivatives) plus stencil evaluations "
+        f"(finite differences), exact and the same in every run; median times of {int(repeat)} repeats (vary "
+        "between runs); beside the max error over the sweep.",
     )
 
 
-def _pareto(df) -> list:
-    """Rows on the Pareto front (total time, max rel error) within their quantity."""
-    t = df[f"sweep + derivative time [ms] {_VARIES}"].to_numpy()
-    e = df["max rel error [-]"].to_numpy()
+def _pareto(df, cost: str) -> list:
+    """Rows on the Pareto front (`cost` column, max rel error) within their quantity.
+
+    A row is on the front if no other row of its quantity costs no more and
+    is no less accurate, and is strictly better in one of the two; rows
+    without a finite cost and error are not on it.
+    """
+    t = df[cost].to_numpy(dtype=float)
+    e = df["max rel error [-]"].to_numpy(dtype=float)
     q = df["quantity"].to_numpy()
+    ok = np.isfinite(t) & np.isfinite(e)
     out = []
     for k in range(len(df)):
-        same = q == q[k]
+        if not ok[k]:
+            out.append(False)
+            continue
+        same = (q == q[k]) & ok
         dominated = same & (t <= t[k]) & (e <= e[k]) & ((t < t[k]) | (e < e[k]))
         out.append(not bool(dominated.any()))
     return out
 
 
-def cheapest_table(work_precision, targets: Sequence[float] = (1e-2, 1e-4, 1e-6, 1e-8, 1e-10)):
-    """The fastest method (by total time) reaching each wanted max relative error.
+def cheapest_table(work_precision, targets: Sequence[float] = (1e-2, 1e-4, 1e-6, 1e-8, 1e-10), *, by: str = "time"):
+    """The cheapest method reaching each wanted max relative error: by total run time or by work.
 
     Parameters
     ----------
@@ -563,51 +801,67 @@ def cheapest_table(work_precision, targets: Sequence[float] = (1e-2, 1e-4, 1e-6,
         A table from :func:`work_precision_table`.
     targets : sequence of float
         Wanted max relative errors.
+    by : {"time", "work"}
+        ``"time"``: the fastest by ``sweep + derivative time`` (measured, so
+        the choice varies between runs). ``"work"``: the least ``work
+        [evaluations]`` (exact: the same in every run); among equal work
+        the more accurate.
 
     Returns
     -------
     pandas.DataFrame
         One row per quantity and target: ``quantity``, ``wanted max rel
-        error [-]``, and, chosen by timings (so all varying), ``cheapest
-        method (varies)``, ``points per turn (varies)``, ``time [ms]
-        (varies)``, ``max rel error [-] (varies)``; the method is
-        ``"none"`` (and the rest blank) if no row reaches the target.
+        error [-]``, and the choice: with ``by="time"`` ``cheapest method
+        (varies)``, ``points per turn (varies)``, ``time [ms] (varies)``,
+        ``max rel error [-] (varies)``; with ``by="work"`` ``cheapest
+        method``, ``points per turn``, ``work [evaluations]``, ``max rel
+        error [-]``. The method is ``"none"`` (and the rest blank) if no
+        row reaches the target.
 
     Examples
     --------
     >>> import pandas as pd
     >>> wp = pd.DataFrame({"method": ["centred", "analytic"], "quantity": ["omega_b [rad/s]"] * 2,
     ...                    "points per turn": [36, 36], "sweep + derivative time [ms] (varies)": [1.0, 2.0],
-    ...                    "max rel error [-]": [1e-3, 1e-15]})
+    ...                    "work [evaluations]": [180, 218], "max rel error [-]": [1e-3, 1e-15]})
     >>> list(cheapest_table(wp, targets=(1e-2, 1e-6))["cheapest method (varies)"])
     ['centred', 'analytic']
+    >>> list(cheapest_table(wp, targets=(1e-2, 1e-6), by="work")["work [evaluations]"])
+    [180.0, 218.0]
     """
     import pandas as pd
 
-    tcol = f"sweep + derivative time [ms] {_VARIES}"
+    if by == "time":
+        cost, tag = f"sweep + derivative time [ms] {_VARIES}", f" {_VARIES}"
+        names = (f"cheapest method{tag}", f"points per turn{tag}", f"time [ms]{tag}", f"max rel error [-]{tag}")
+        caption = "Cheapest method for a wanted accuracy (chosen by timings: varies between runs)."
+    elif by == "work":
+        cost = _WORK
+        names = ("cheapest method", "points per turn", _WORK, "max rel error [-]")
+        caption = ("Cheapest method for a wanted accuracy, by work (point evaluations of the compiled loop "
+                   "equations plus stencil evaluations: the same in every run).")
+    else:
+        raise ValueError(f"by must be 'time' or 'work', got {by!r}")
+    if cost not in work_precision.columns:
+        raise ValueError(f"work_precision table has no column {cost!r}; columns are {list(work_precision.columns)}")
+    err = "max rel error [-]"
     rows = []
     for quantity in dict.fromkeys(work_precision["quantity"]):
         sub = work_precision[work_precision["quantity"] == quantity]
         for target in targets:
-            ok = sub[sub["max rel error [-]"] <= target]
+            ok = sub[(sub[err] <= target) & np.isfinite(sub[cost].to_numpy(dtype=float))]
             if len(ok):
-                best = ok.loc[ok[tcol].idxmin()]
+                best = ok.sort_values([cost, err], kind="mergesort").iloc[0]
                 method, n = best["method"], float(best["points per turn"])
-                t, e = float(best[tcol]), float(best["max rel error [-]"])
+                c, e = float(best[cost]), float(best[err])
             else:
-                method, n, t, e = "none", math.nan, math.nan, math.nan
+                method, n, c, e = "none", math.nan, math.nan, math.nan
             rows.append(
-                {
-                    "quantity": quantity,
-                    "wanted max rel error [-]": float(target),
-                    f"cheapest method {_VARIES}": method,
-                    f"points per turn {_VARIES}": n,
-                    f"time [ms] {_VARIES}": t,
-                    f"max rel error [-] {_VARIES}": e,
-                }
+                {"quantity": quantity, "wanted max rel error [-]": float(target),
+                 names[0]: method, names[1]: n, names[2]: c, names[3]: e}
             )
     df = pd.DataFrame(rows)
-    return _caption(df, "Cheapest method for a wanted accuracy (chosen by timings: varies between runs).")
+    return _caption(df, caption)
 
 
 # ========================================================================== roundoff
@@ -1182,7 +1436,7 @@ def tolerance_table(
          lambda: student_sweep(mechanism, inputs, rule="step", tol=loose_tol, guess=guess)),
         ("residual rule max|F| < tol, Newton from the previous solution (as students do it)", loose_tol,
          lambda: student_sweep(mechanism, inputs, rule="residual", tol=loose_tol, guess=guess)),
-        (f"numkin sweep, tol = {loose_tol:g}: scaled residual <= tol, step <= sqrt(tol) = {math.sqrt(loose_tol):g} "
+        (f"numkin sweep, tol = {loose_tol:g}: scaled residual <= tol, step <= tol^(2/3) = {loose_tol ** (2 / 3):.3g} "
          "(passes at once: in effect a residual rule)", loose_tol,
          lambda: _sweep(mechanism, inputs, guess, tol=loose_tol)),
         ("numkin sweep, tol = 1e-12 (default)", 1e-12, lambda: ref),
@@ -1388,7 +1642,7 @@ def _require_tabulate() -> None:
         import tabulate  # noqa: F401  (pandas.DataFrame.to_markdown needs it)
     except ImportError:
         raise ImportError(
-            "writing Markdown tables needs the 'tabulate' package (pip install tabulate, or numkin[test]); "
+            "writing Markdown tables needs the 'tabulate' package (pip install tabulate); "
             "or call write_tables(..., formats=('csv', 'tex'))"
         ) from None
 

@@ -235,6 +235,23 @@ def test_figures_of_a_scene_twice_give_the_same_bytes(capsys, tmp_path):
         assert open(a, "rb").read() == open(b, "rb").read()
 
 
+def test_homework_figures_twice_give_the_same_bytes(capsys, tmp_path):
+    """Every figure of the homework, work-precision included: its tables (and their timings) are computed
+    anew in each run, and the figure is drawn from exact work counts, not from times."""
+    runs = []
+    for k in range(2):
+        code, out, err = run(capsys, "figures", "homework", "--out", str(tmp_path / f"run{k}"))
+        assert code == 0, err
+        runs.append(sorted(out.split()))
+    names = [p.rsplit("/", 1)[1] for p in runs[0]]
+    stems = ["convergence", "derivative-phi", "difference-phi", "kinematics-beta", "mechanism", "newton",
+             "position-phi", "roundoff", "work-precision"]
+    assert names == sorted(f"{stem}.{ext}" for stem in stems for ext in ("png", "svg"))
+    for a, b in zip(*runs):
+        assert a.split("/run0/")[1] == b.split("/run1/")[1]
+        assert open(a, "rb").read() == open(b, "rb").read(), a
+
+
 def test_unknown_figure_is_a_scene_mistake(capsys, tmp_path):
     text = open(four_bar(tmp_path)).read().replace("[output]\n", '[output]\nfigures = ["kinematik:theta4"]\n')
     path = write(tmp_path, text)

@@ -56,6 +56,16 @@ def crank():
     )
 
 
+def _work_precision_table(mech=None):
+    """A fresh work-precision table of the homework's beta (its timings measured anew)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return report.work_precision_table(
+            mech or linkages.chained_four_bars(), omega="450 rad/min", quantity="beta", grids=(36, 72, 180),
+            schemes=("forward", "centred"), repeat=1,
+        )
+
+
 @pytest.fixture(scope="module")
 def tables():
     """Real report tables for the homework's beta, on small grids."""
@@ -67,10 +77,7 @@ def tables():
                 mech, omega="450 rad/min", quantity="beta", check_angle=THETA_CHECK, grids=(36, 72, 180, 360),
                 schemes=("forward", "centred", "five_point", "second_difference"),
             ),
-            "work_precision": report.work_precision_table(
-                mech, omega="450 rad/min", quantity="beta", grids=(36, 72, 180),
-                schemes=("forward", "centred"), repeat=1,
-            ),
+            "work_precision": _work_precision_table(mech),
             "roundoff": report.roundoff_table(
                 mech, quantity="beta", check_angle=THETA_CHECK, schemes=("forward", "centred", "second_difference"),
                 scan_per_decade=2,
@@ -289,11 +296,46 @@ def test_newton_residuals_per_jacobian(tables):
         assert np.log10(r[3]) / np.log10(r[2]) > 1.6
 
 
-def test_work_precision_rings_the_pareto_front(tables):
-    fig = figures.work_precision(tables["work_precision"])
+def _pareto_points(x, y):
+    """Points (x, y) that no other point beats in one coordinate without losing in the other."""
+    pts = list(zip(x, y))
+    return {(a, b) for a, b in pts if not any(c <= a and d <= b and (c, d) != (a, b) for c, d in pts)}
+
+
+def test_work_precision_plots_error_against_work_and_rings_the_pareto_front(tables):
+    wp = tables["work_precision"]
+    fig = figures.work_precision(wp)
+    assert len(fig.axes) == 2  # omega_beta, alpha_beta
+    for ax, quantity in zip(fig.axes, ["omega_beta [rad/s]", "alpha_beta [rad/s^2]"]):
+        assert (ax.get_xscale(), ax.get_yscale()) == ("log", "log")
+        assert ax.get_xlabel() == "work [point evaluations + stencil evaluations]"
+        assert "varies" not in ax.get_xlabel()
+        sub = wp[wp["quantity"] == quantity]
+        x, y = sub["work [evaluations]"].to_numpy(float), sub["max abs error [unit of quantity]"].to_numpy(float)
+        # each method's curve is its rows' work and error, coarse grid first
+        method = "centred" if quantity.startswith("omega") else "analytic"
+        k, e = line(ax, method)
+        rows = sub[sub["method"] == method]
+        assert list(k) == list(rows["work [evaluations]"])
+        assert list(e) == list(rows["max abs error [unit of quantity]"])
+        # the ringed points are exactly the non-dominated ones (computed here), the same in every run
+        fx, fy = line(ax, "Pareto front")
+        assert set(zip(fx, fy)) == _pareto_points(x, y)
+        assert fx.size >= 1
+    assert fig.get_suptitle().startswith("error against work")
+
+
+def test_work_precision_against_measured_time_says_it_varies(tables):
+    fig = figures.work_precision(tables["work_precision"], time="sweep + derivative time")
     ax = fig.axes[0]
-    assert (ax.get_xscale(), ax.get_yscale()) == ("log", "log")
-    assert "Pareto front" in [ln.get_label() for ln in ax.get_lines()]
+    assert ax.get_xlabel() == "sweep + derivative time [ms] (varies between runs)"
+    wp = tables["work_precision"]
+    sub = wp[wp["quantity"] == "omega_beta [rad/s]"]
+    fx, fy = line(ax, "Pareto front")
+    assert set(zip(fx, fy)) == _pareto_points(sub["sweep + derivative time [ms] (varies)"].to_numpy(float),
+                                              sub["max abs error [unit of quantity]"].to_numpy(float))
+    with pytest.raises(ValueError, match="time='sweep \\+ derivative time'"):
+        figures.work_precision(wp.drop(columns=[c for c in wp.columns if c.startswith("work")]))
 
 
 # ----------------------------------------------------------------------------- render + determinism
@@ -316,7 +358,10 @@ def test_render_twice_gives_identical_bytes(hw, crank, tables, tmp_path):
     for k in range(2):
         out = tmp_path / f"run{k}"
         written = []
-        for result in _results(hw, crank, tables):
+        # the work-precision table is computed anew for each run, as `numkin figures` does: its timings
+        # differ between the runs, its work counts do not, and the figure is drawn from the counts
+        fresh = dict(tables, work_precision=_work_precision_table())
+        for result in _results(hw, crank, fresh):
             written += figures.render(result, out_dir=out)
         runs.append(written)
         assert plt.get_fignums() == []

@@ -263,25 +263,121 @@ def _fixed(df):
     return df[[c for c in df.columns if "(varies)" not in c]]
 
 
-def test_work_precision_rows_and_determinism(slider):
+WORK_COLS = ["sweep work [evaluations]", "derivative work [evaluations]", "work [evaluations]"]
+
+
+@pytest.fixture(scope="module")
+def slider_wp(slider):
     kw = dict(omega="6000 rpm", quantity="x", grids=(36, 72), schemes=("forward", "centred", "second_difference"),
               repeat=1)
-    a = report.work_precision_table(slider, **kw)
-    b = report.work_precision_table(slider, **kw)
+    return report.work_precision_table(slider, **kw), report.work_precision_table(slider, **kw)
+
+
+def test_work_precision_rows_and_determinism(slider_wp):
+    a, b = slider_wp
+    # everything but the timings is the same in a second run: the work counts and the front by work too
     pd.testing.assert_frame_equal(_fixed(a), _fixed(b))
-    time_cols = [c for c in a.columns if "time" in c or "Pareto" in c]
-    assert time_cols and all(c.endswith("(varies)") for c in time_cols)
+    assert set(WORK_COLS + ["Pareto front by work"]) <= set(_fixed(a).columns)
+    time_cols = [c for c in a.columns if "time" in c]
+    assert len(time_cols) == 3 and all(c.endswith("(varies)") for c in time_cols)
+    assert "Pareto front (varies)" in a.columns
     assert list(a["method"]) == ["analytic"] * 2 + ["complex step"] * 2 + ["forward"] * 2 + ["centred"] * 2 + [
         "analytic"] * 2 + ["complex step"] * 2 + ["second_difference"] * 2
     assert (a[a.method.isin(["analytic", "complex step"])]["max rel error [-]"] < 1e-10).all()
-    assert (a[time_cols[:3]] > 0).all().all()
+    assert (a[time_cols] > 0).all().all()
     # the finite-difference errors are those of the closed form
     th = 2 * np.pi * np.arange(72) / 72
     x, dx, _ = piston(th)
     cen = (np.roll(x, -1) - np.roll(x, 1)) / (2 * th[1])
     row = _row(a, method="centred", **{"points per turn": 72})
     assert row["max abs error [unit of quantity]"] == pytest.approx(W_SC * np.abs(cen - dx).max(), rel=1e-6)
-    assert a["Pareto front (varies)"].any()
+    assert a["Pareto front (varies)"].any() and a["Pareto front by work"].any()
+
+
+def test_work_counts_are_exact(slider, slider_wp):
+    a, _ = slider_wp
+    assert all(a[c].dtype.kind == "i" for c in WORK_COLS)
+    assert (a["work [evaluations]"] == a["sweep work [evaluations]"] + a["derivative work [evaluations]"]).all()
+    for n in (36, 72):
+        rows = a[a["points per turn"] == n]
+        samples = n + 1  # a full turn: the last input repeats the first
+        # every row of a grid shares one sweep, and its count is that of the same sweep counted here
+        inputs = 2 * np.pi * np.arange(samples) / n
+        with report.count_evaluations(slider) as count:
+            sweep = slider.sweep(inputs)
+        assert set(rows["sweep work [evaluations]"]) == {count.total}
+        # a converged point costs at least one evaluation per Newton step plus the first
+        assert count.total >= int(np.sum(sweep.iterations + 1))
+        work = {(r["method"], r["quantity"][0]): r["derivative work [evaluations]"] for _, r in rows.iterrows()}
+        # velocity equations J q' = -dF/dtheta: J and dF/dtheta at every input
+        assert work[("analytic", "v")] == 2 * samples
+        # acceleration: those, then J q'' = -(G_q q' + G_theta): J and the right-hand side again
+        assert work[("analytic", "a")] == 4 * samples
+        # finite differences evaluate no compiled function: one stencil evaluation per distinct grid point
+        assert work[("forward", "v")] == work[("centred", "v")] == work[("second_difference", "a")] == n
+        # the complex step runs Newton at every point, at least F and J once each: dearer than analytic
+        assert work[("complex step", "v")] >= 2 * samples
+        assert work[("complex step", "v")] % samples == 0 and work[("complex step", "a")] % samples == 0
+
+
+def test_work_of_an_open_grid_counts_every_sample(slider):
+    t = report.work_precision_table(slider, omega=1.0, quantity="x", grids=(36,), span=math.pi, schemes=("centred",),
+                                    repeat=1)
+    # 0 .. 180 deg in 10 deg steps: 19 samples, the ends by one-sided stencils
+    assert _row(t, method="centred")["derivative work [evaluations]"] == 19
+    assert _row(t, method="analytic", quantity="v_x [mm/s]")["derivative work [evaluations]"] == 2 * 19
+
+
+def test_count_evaluations_of_one_newton_solve(slider, homework):
+    for mech, angle in ((slider, 0.3), (homework, CHECK)):
+        with report.count_evaluations(mech) as count:
+            res = mech.solve(angle)
+        k = res.iterations
+        assert res.converged and k >= 1
+        # Newton: the residual at the start and after each of the k steps; the Jacobian at the k iterates it
+        # steps from, and once at the solution for the condition number the result reports
+        assert count.points == {"F": k + 1, "J": k + 1}
+        assert count.total == 2 * (k + 1)
+
+
+def test_count_evaluations_counts_points_and_restores(slider):
+    comp, p = slider.compiled, slider.parameter_values
+    q = np.zeros((2, 7))
+    t = np.linspace(0, 1, 7)
+    before = dict(vars(comp))
+    with report.count_evaluations(slider) as outer:
+        comp.F(q, t, p)
+        comp.J(q, t, p)
+        comp.scalar_F(0.0, 0.0, 0.5, *p.tolist())
+        with report.count_evaluations(slider) as inner:
+            comp.tangent(q[:, :3] + 1.0, t[:3], p)  # built on F_t and J
+    assert outer.points == {"F": 7, "J": 7 + 3, "scalar_F": 1, "F_t": 3}
+    assert outer.calls == {"F": 1, "J": 2, "scalar_F": 1, "F_t": 1}
+    assert inner.total == 6
+    assert all(vars(comp)[k] is v for k, v in before.items())  # cached functions are back
+    assert not any(getattr(v, "__name__", "") == "counted" for v in vars(comp).values())
+    assert "F" not in vars(comp) and "J" not in vars(comp)  # the class's methods again
+
+
+def test_counting_a_sweep_does_not_compile_the_acceleration():
+    mech = linkages.four_bar(4, 1, 3.5, 3)
+    with report.count_evaluations(mech) as count:
+        mech.sweep(np.radians(np.arange(0, 91, 10)))
+    assert count.total > 0 and "_second" not in count.points
+    assert "_second" not in vars(mech.compiled)  # position-only work never differentiates
+
+
+def test_every_evaluating_function_of_compiled_is_counted():
+    """A new compiled function must be added to report.COUNTED_FUNCTIONS (or be built on counted ones)."""
+    from functools import cached_property
+
+    from numkin.compiled import CompiledMechanism
+
+    built_on_counted = {"tangent", "second_derivative"}  # J with F_t / _second
+    not_evaluating = {"point_function", "_fast"}  # a compiler; the functions FJ_rows and fixed_terms call
+    members = {name for name, v in vars(CompiledMechanism).items()
+               if (callable(v) or isinstance(v, cached_property)) and not name.startswith("__")}
+    assert members - built_on_counted - not_evaluating == set(report.COUNTED_FUNCTIONS)
 
 
 def test_cheapest_table():
@@ -290,11 +386,19 @@ def test_cheapest_table():
         "quantity": ["v [mm/s]"] * 4,
         "points per turn": [36, 36, 36, 720],
         "sweep + derivative time [ms] (varies)": [1.0, 1.1, 1.5, 3.0],
+        "work [evaluations]": [300, 300, 380, 5000],
         "max rel error [-]": [1e-2, 1e-4, 1e-15, 1e-3],
     })
     t = report.cheapest_table(wp, targets=(1e-1, 1e-3, 1e-5, 1e-16))
     assert list(t["cheapest method (varies)"]) == ["forward", "centred", "analytic", "none"]
     assert np.isnan(t["time [ms] (varies)"].iloc[-1])
+    # by work: equal work, the more accurate wins; nothing varies
+    w = report.cheapest_table(wp, targets=(1e-1, 1e-3, 1e-5, 1e-16), by="work")
+    assert list(w["cheapest method"]) == ["centred", "centred", "analytic", "none"]
+    assert list(w["work [evaluations]"][:3]) == [300, 300, 380]
+    assert not any("(varies)" in c for c in w.columns)
+    with pytest.raises(ValueError, match="by must be"):
+        report.cheapest_table(wp, by="speed")
 
 
 # ------------------------------------------------------------------ writing
