@@ -346,6 +346,17 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
 
+def _add_command(sub, name: str, func, *, help: str, description: str, epilog: str) -> argparse.ArgumentParser:
+    """The parser of subcommand `name`, run by `func`."""
+    p = sub.add_parser(name, help=help, formatter_class=_Formatter, description=description, epilog=epilog)
+    p.set_defaults(func=func)
+    return p
+
+
+def _add_scene_argument(p: argparse.ArgumentParser) -> None:
+    p.add_argument("scene", metavar="SCENE", help="built-in scene name or path of a .toml file")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``numkin`` command."""
     parser = _Parser(
@@ -372,15 +383,14 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
 
-    p = sub.add_parser(
-        "scenes", help="list the built-in scenes", formatter_class=_Formatter,
+    _add_command(
+        sub, "scenes", _cmd_scenes, help="list the built-in scenes",
         description="List the built-in scenes with a one-line description each.",
         epilog="example:\n  numkin scenes",
     )
-    p.set_defaults(func=_cmd_scenes)
 
-    p = sub.add_parser(
-        "run", help="solve a scene and print its check points and errors", formatter_class=_Formatter,
+    p = _add_command(
+        sub, "run", _cmd_run, help="solve a scene and print its check points and errors",
         description=(
             "Solve a scene: the positions over the input sweep, and the velocities and accelerations\n"
             "(exact and by the scene's finite-difference schemes) if it asks for them. Prints the\n"
@@ -395,14 +405,13 @@ def build_parser() -> argparse.ArgumentParser:
             "  numkin run homework --format json | python -m json.tool"
         ),
     )
-    p.add_argument("scene", metavar="SCENE", help="built-in scene name or path of a .toml file")
+    _add_scene_argument(p)
     p.add_argument("--out", metavar="DIR", help="write the scene's tables and figures into DIR")
     p.add_argument("--at", metavar="ANGLE_DEG", type=_finite_float, help="print every quantity at this input angle (degrees)")
     p.add_argument("--format", choices=("text", "json"), default="text", help="output format (default text)")
-    p.set_defaults(func=_cmd_run)
 
-    p = sub.add_parser(
-        "report", help="write the error-analysis tables of a scene", formatter_class=_Formatter,
+    p = _add_command(
+        sub, "report", _cmd_report, help="write the error-analysis tables of a scene",
         description=(
             "Error-analysis tables of a scene: convergence with the step, error against run time,\n"
             "the roundoff floor, Newton's iterations and Jacobians, the solver tolerance. Prints\n"
@@ -410,12 +419,11 @@ def build_parser() -> argparse.ArgumentParser:
         ),
         epilog="example:\n  numkin report homework --out report/",
     )
-    p.add_argument("scene", metavar="SCENE", help="built-in scene name or path of a .toml file")
+    _add_scene_argument(p)
     p.add_argument("--out", metavar="DIR", help="write the tables into DIR")
-    p.set_defaults(func=_cmd_report)
 
-    p = sub.add_parser(
-        "figures", help="regenerate the figures of scenes", formatter_class=_Formatter,
+    p = _add_command(
+        sub, "figures", _cmd_figures, help="regenerate the figures of scenes",
         description=(
             "Regenerate the figures the scenes ask for, into DIR/<scene>/ (PNG and SVG, the same\n"
             "bytes on every run)."
@@ -427,23 +435,21 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", metavar="DIR", required=True, help="folder for the figures")
     p.add_argument("--formats", metavar="FMT", nargs="+", default=["png", "svg"], choices=("png", "svg", "pdf"),
                    help="file formats (default png svg)")
-    p.set_defaults(func=_cmd_figures)
 
-    p = sub.add_parser(
-        "animate", help="animate the mechanism of a scene as a GIF", formatter_class=_Formatter,
+    p = _add_command(
+        sub, "animate", _cmd_animate, help="animate the mechanism of a scene as a GIF",
         description=(
             "Animate a scene's mechanism over its input sweep: links, joints and ground pivots, the\n"
             "input angle stamped on each frame. Written as a GIF with Pillow (no ffmpeg needed)."
         ),
         epilog="example:\n  numkin animate quick-return --out quick-return.gif --frames 90",
     )
-    p.add_argument("scene", metavar="SCENE", help="built-in scene name or path of a .toml file")
+    _add_scene_argument(p)
     p.add_argument("--out", metavar="FILE.gif", required=True, help="the GIF to write")
     p.add_argument("--frames", metavar="N", type=_positive_int, help="frame count (default: the scene's, else 72)")
-    p.set_defaults(func=_cmd_animate)
 
-    p = sub.add_parser(
-        "bench", help="time numkin's sweep against the textbook way", formatter_class=_Formatter,
+    p = _add_command(
+        sub, "bench", _cmd_bench, help="time numkin's sweep against the textbook way",
         description=(
             "Time the chained four-bars over 361 angles three ways, side by side: a sympy Jacobian\n"
             "rebuilt in every Newton call (the textbook way), numkin's sweep, and the vectorised\n"
@@ -452,7 +458,6 @@ def build_parser() -> argparse.ArgumentParser:
         epilog="example:\n  numkin bench",
     )
     p.add_argument("--repeat", metavar="N", type=_positive_int, help="timing repeats")
-    p.set_defaults(func=_cmd_bench)
     return parser
 
 

@@ -631,7 +631,7 @@ def kinematics(
             f"kinematics of {name!r}: no analytic or finite-difference frame holds {vcol!r} or {acol!r}"
         )
     labels = _quantity_labels(sweep, name)
-    units = [lab.rsplit("[", 1)[1].rstrip("]") for lab in labels]
+    units = [_unit_of(lab) for lab in labels]
     x = np.degrees(sweep.inputs)
     checks = _check_points(check_angles, sweep.inputs)
     pos = np.degrees(sweep[name]) if _is_angle(sweep, name) else sweep[name]
@@ -754,7 +754,7 @@ def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
         raise ValueError(f"acceleration of {name!r}: needs both the analytic frame and finite-difference frames")
     _, acol = _columns(sweep, name)
     _, _, alabel = _quantity_labels(sweep, name)
-    unit = alabel.rsplit("[", 1)[1].rstrip("]")
+    unit = _unit_of(alabel)
     xa_in = _frame_input(analytic, sweep)
     ya = _frame_column(analytic, acol, "analytic kinematics")
     x = np.degrees(xa_in)
@@ -1062,6 +1062,29 @@ def _quantity_text(q: str) -> tuple[str, str]:
     return name, unit
 
 
+def _panel_text(quantity, error: str) -> tuple[str, str]:
+    """Title text and error unit of one panel of a report figure (``"–"`` for a relative error)."""
+    qtext, unit = _quantity_text(quantity) if quantity is not None else ("", "")
+    if "rel" in error:
+        unit = "–"
+    return qtext, unit
+
+
+def _unit_of(label: str) -> str:
+    """``"$\\omega$ [rad/s]"`` -> ``"rad/s"``: the unit in the last brackets of an axis label."""
+    return label.rsplit("[", 1)[1].rstrip("]")
+
+
+def _order_label(scheme: str, order) -> str:
+    """A scheme's legend label, with its formal order when known."""
+    return _source_label(scheme) + (f" (order {order})" if order is not None else "")
+
+
+def _table_caption(table) -> str:
+    """The caption a report table carries in its ``attrs`` ("" if none)."""
+    return table.attrs.get("caption", "") if hasattr(table, "attrs") else ""
+
+
 def _groups(table, column: str = "quantity") -> list:
     """(value, sub-table) in order of first appearance; one group if the column is absent."""
     if column not in table.columns:
@@ -1141,15 +1164,13 @@ def convergence(table, *, error: str = "max abs error"):
     with style():
         fig, axes = _new_figure(1, len(groups), size=(6.4 if len(groups) == 1 else 9.6, 4.4))
         for ax, (quantity, sub) in zip(axes[0], groups):
-            qtext, unit = _quantity_text(quantity) if quantity is not None else ("", "")
-            if "rel" in error:
-                unit = "–"
+            qtext, unit = _panel_text(quantity, error)
             h_all = np.asarray(sub[hcol], dtype=float)
             e_all = _positive(sub[ecol])
             for k, scheme in enumerate(dict.fromkeys(sub[scol])):
                 rows = sub[sub[scol] == scheme].sort_values(hcol)
                 order = rows["formal order"].iloc[0] if "formal order" in rows.columns else None
-                label = _source_label(scheme) + (f" (order {order})" if order is not None else "")
+                label = _order_label(scheme, order)
                 st = _source_style(scheme, k)
                 st["linewidth"] = min(st.get("linewidth", 1.5), 1.6)
                 st.pop("alpha", None)
@@ -1174,7 +1195,7 @@ def convergence(table, *, error: str = "max abs error"):
             ax.set_ylabel(f"{error} [{unit}]")
             ax.set_title(f"{qtext}" if qtext else "error against step")
             ax.legend(loc="lower right", fontsize=7.5)
-        caption = table.attrs.get("caption", "") if hasattr(table, "attrs") else ""
+        caption = _table_caption(table)
         if caption:
             fig.suptitle(_caption_title(caption), fontsize=9)
     return fig
@@ -1275,9 +1296,7 @@ def work_precision(table, *, work: str = "work", time: str | None = None, error:
     with style():
         fig, axes = _new_figure(1, len(groups), size=(6.4 if len(groups) == 1 else 9.6, 5.0))
         for ax, (quantity, sub) in zip(axes[0], groups):
-            qtext, unit = _quantity_text(quantity) if quantity is not None else ("", "")
-            if "rel" in error:
-                unit = "–"
+            qtext, unit = _panel_text(quantity, error)
             order_col = "points per turn" if "points per turn" in sub.columns else xcol
             for k, method in enumerate(dict.fromkeys(sub[mcol])):
                 rows = sub[sub[mcol] == method].sort_values(order_col, kind="mergesort")
@@ -1357,7 +1376,7 @@ def roundoff(table):
             errs = _positive([row[c] for _, c in cols])
             allv.extend(errs)
             order = row.get("formal order")
-            label = _source_label(scheme) + (f" (order {order})" if order is not None else "")
+            label = _order_label(scheme, order)
             ax.plot(hs, errs, marker="o", markersize=3.5, label=label, **st)
             if "measured optimal h [rad]" in row.index:
                 ax.plot(row["measured optimal h [rad]"], row.get("rel error at measured optimal h [-]", np.nan),
@@ -1380,7 +1399,7 @@ def roundoff(table):
         ax.set_ylim(lo, hi)
         ax.set_xlabel("step $h$ [rad]")
         ax.set_ylabel("relative error [–]")
-        caption = table.attrs.get("caption", "") if hasattr(table, "attrs") else ""
+        caption = _table_caption(table)
         ax.set_title(_caption_title(caption) if caption else "round-off: error against step", fontsize=9)
         fig.legend(loc="outside lower center", fontsize=7.5, ncols=3)
     return fig
@@ -1441,7 +1460,7 @@ def newton_residuals(tables):
         ax.set_xlabel("iteration $k$ [–]")
         ax.set_ylabel("residual norm (scaled) [–]")
         first = next(iter(tables.values()))
-        caption = first.attrs.get("caption", "") if hasattr(first, "attrs") else ""
+        caption = _table_caption(first)
         where = re.search(r" at (\w+) = ([-0-9.]+) deg", caption)
         at = f" at {_sym(where.group(1))} = {where.group(2)}°" if where else ""
         ax.set_title(f"Newton: residual per iteration{at}")
@@ -1454,7 +1473,7 @@ def _jacobian_of(table, key: str) -> str:
     m = re.fullmatch(r"newton[_-](\w+)", key)
     if m:
         return m.group(1)
-    caption = table.attrs.get("caption", "") if hasattr(table, "attrs") else ""
+    caption = _table_caption(table)
     m = re.search(r"(\w+) Jacobian", caption)
     return m.group(1) if m else "symbolic"
 

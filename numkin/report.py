@@ -187,13 +187,18 @@ def _schemes(names, periodic: bool | None = None) -> list:
     return out
 
 
+def _full_turn(span: float) -> bool:
+    """Whether an input range of `span` rad is one full turn (a periodic grid)."""
+    return abs(span - TURN) <= 1e-12 * TURN
+
+
 def _grid(points: int, start: float, span: float) -> np.ndarray:
     """Inputs of a grid with `points` per turn: a full turn (N + 1 samples) or `span` rad."""
     if isinstance(points, bool) or int(points) != points or points < 4:
         raise ValueError(f"points per turn must be an integer >= 4, got {points!r}")
     points = int(points)
     h = TURN / points
-    if abs(span - TURN) <= 1e-12 * TURN:
+    if _full_turn(span):
         return start + h * np.arange(points + 1)
     if not (0 < span < TURN):
         raise ValueError(f"span must be in (0, 2 pi] rad, got {span!r}")
@@ -210,6 +215,20 @@ def _grids(grids) -> list:
     if not out:
         raise ValueError("grids must name at least one grid (points per turn)")
     return out
+
+
+def _grid_study(mechanism, omega, quantity: str, grids, span: float, schemes) -> tuple:
+    """The checked arguments of a study over grids: ``(w, j, labels, grid_list, periodic, scheme_list)``.
+
+    `w` is the input speed in rad/s, `j` the index of `quantity` among the
+    unknowns, `periodic` whether `span` is a full turn.
+    """
+    w = _omega(omega)
+    j = _index(mechanism, quantity)
+    lab = _labels(mechanism, quantity)
+    grid_list = _grids(grids)
+    periodic = _full_turn(span)
+    return w, j, lab, grid_list, periodic, _schemes(schemes, periodic)
 
 
 def _check_index(inputs: np.ndarray, angle: float | None) -> int | None:
@@ -536,12 +555,7 @@ def convergence_table(
     >>> print(t["quantity"].iloc[0], round(float(t["observed order [-]"].iloc[1]), 1))
     v_x [mm/s] 1.0
     """
-    w = _omega(omega)
-    j = _index(mechanism, quantity)
-    lab = _labels(mechanism, quantity)
-    grid_list = _grids(grids)
-    periodic = abs(span - TURN) <= 1e-12 * TURN
-    scheme_list = _schemes(schemes, periodic)
+    w, j, lab, grid_list, periodic, scheme_list = _grid_study(mechanism, omega, quantity, grids, span, schemes)
     check_col = (
         f"abs error at {lab['input']} = {_deg_text(check_angle)} deg {_UNIT}" if check_angle is not None else None
     )
@@ -683,12 +697,7 @@ def work_precision_table(
     """
     import pandas as pd
 
-    w = _omega(omega)
-    j = _index(mechanism, quantity)
-    lab = _labels(mechanism, quantity)
-    grid_list = _grids(grids)
-    periodic = abs(span - TURN) <= 1e-12 * TURN
-    scheme_list = _schemes(schemes, periodic)
+    w, j, lab, grid_list, periodic, scheme_list = _grid_study(mechanism, omega, quantity, grids, span, schemes)
     rows = []
     per_grid = {}
     for n in grid_list:
