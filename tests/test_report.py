@@ -38,7 +38,7 @@ def piston(t):
 
 
 def test_piston_reference_itself():
-    # -R (1 + R/L) at t = 0 (issue 3), and the derivative formulas against central differences
+    # -R (1 + R/L) at t = 0, and the derivative formulas against central differences
     assert piston(0.0)[2] == pytest.approx(-R * (1 + R / L), rel=1e-15)
     t, h = 0.7, 1e-5
     assert (piston(t + h)[0] - piston(t - h)[0]) / (2 * h) == pytest.approx(piston(t)[1], rel=1e-8)
