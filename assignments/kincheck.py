@@ -32,7 +32,9 @@ __all__ = [
     "closure",
     "continuity",
     "four_bar_gap",
+    "read_angle_group",
     "read_angles",
+    "six_bar_gap",
     "explain_factor",
     "series",
     "unit_of",
@@ -471,6 +473,39 @@ def four_bar_gap(out_rad, in_rad, r_fixed, r_in, r_coupler, r_out) -> np.ndarray
     return np.abs(reach - r_coupler)
 
 
+def six_bar_gap(crank_rad, t3, t4, t5, x, *, crank=1.0, coupler=4.0, o4=(3.7, -2.0), o4b=3.0, bc=3.2,
+                o4c=6.0, rod=6.5, slider_y=3.0) -> np.ndarray:
+    """Loop-closure residual of the six-bar homework, the larger of its two loops per sample.
+
+    Loop 1 ``crank e^{i θ2} + coupler e^{i θ3} - o4b e^{i θ4} - O4`` and loop 2
+    ``O4 + o4b e^{i θ4} + bc e^{i(θ4 + β)} - rod e^{i θ5} - (x + i slider_y)``,
+    with ``β = π - angle(O4 B C)`` from the ternary link's sides; the defaults
+    are the homework's dimensions (cm).
+    """
+    beta = np.pi - np.arccos((o4b**2 + bc**2 - o4c**2) / (2 * o4b * bc))
+    pivot = complex(*o4)
+    one = crank * np.exp(1j * crank_rad) + coupler * np.exp(1j * t3) - o4b * np.exp(1j * t4) - pivot
+    two = (pivot + o4b * np.exp(1j * t4) + bc * np.exp(1j * (t4 + beta)) - rod * np.exp(1j * t5)
+           - (np.asarray(x) + 1j * slider_y))
+    return np.maximum(np.abs(one), np.abs(two))
+
+
+def read_angle_group(arrays, gap):
+    """Read several angle arrays in one unit, deciding it by the loop equations.
+
+    ``gap(*angles_rad)`` returns the loop-closure residual; the unit (radians
+    or degrees) in which it is smaller wins.  Returns ``(unit, [angles in
+    radians], residual)``.
+    """
+    best = None
+    for unit in ("rad", "deg"):
+        read = [a if unit == "rad" else np.radians(a) for a in arrays]
+        residual = np.asarray(gap(*read), dtype=float)
+        if best is None or np.max(residual) < np.max(best[2]):
+            best = (unit, read, residual)
+    return best
+
+
 def read_angles(name: str, x, gap, *, grid=FULL_TURN):
     """Read the angle array ``x`` in radians, deciding its unit by the loop equations.
 
@@ -478,14 +513,8 @@ def read_angles(name: str, x, gap, *, grid=FULL_TURN):
     unit (radians or degrees) in which the residual is smaller wins.  Returns
     ``(unit, angles in radians, residual)``.
     """
-    values = array(x, name, grid)
-    best = None
-    for unit in ("rad", "deg"):
-        read = values if unit == "rad" else np.radians(values)
-        residual = np.asarray(gap(read), dtype=float)
-        if best is None or np.max(residual) < np.max(best[2]):
-            best = (unit, read, residual)
-    return best
+    unit, (read,), residual = read_angle_group([array(x, name, grid)], gap)
+    return unit, read, residual
 
 
 def closure(

@@ -142,18 +142,10 @@ def test_loops_close_on_one_branch(theta3, theta4, theta5, x_D):
 
     x = kc.array(x_D, "x_D")
     t2 = np.radians(np.arange(x.size))
-    beta = np.pi - np.arccos((3.0**2 + 3.2**2 - 6.0**2) / (2 * 3.0 * 3.2))
     raw = [kc.array(a, n)[: x.size] for a, n in ((theta3, "theta3"), (theta4, "theta4"), (theta5, "theta5"))]
-
-    def gaps(t3, t4, t5):
-        one = np.exp(1j * t2) + 4.0 * np.exp(1j * t3) - 3.0 * np.exp(1j * t4) - (3.7 - 2.0j)
-        two = (3.7 - 2.0j) + 3.0 * np.exp(1j * t4) + 3.2 * np.exp(1j * (t4 + beta)) - 6.5 * np.exp(1j * t5) - (x + 3.0j)
-        return np.maximum(np.abs(one), np.abs(two))
-
-    unit = min(("rad", "deg"), key=lambda u: np.max(gaps(*[a if u == "rad" else np.radians(a) for a in raw])))
-    angles = [a if unit == "rad" else np.radians(a) for a in raw]
+    unit, angles, residual = kc.read_angle_group(raw, lambda t3, t4, t5: kc.six_bar_gap(t2, t3, t4, t5, x))
     print(f"angles read as {'radians' if unit == 'rad' else 'degrees'}")
-    kc.closure("theta3, theta4, theta5, x_D", gaps(*angles), tol=1e-3)
+    kc.closure("theta3, theta4, theta5, x_D", residual, tol=1e-3)
     for name, a in zip(("theta3", "theta4", "theta5"), angles):
         kc.continuity(name, a)
 
@@ -181,15 +173,8 @@ def test_newton_converged(theta3, theta4, theta5, x_D):
 
     x = kc.array(x_D, "x_D")
     t2 = np.radians(np.arange(x.size))
-    beta = np.pi - np.arccos((3.0**2 + 3.2**2 - 6.0**2) / (2 * 3.0 * 3.2))
     raw = [kc.array(a, n)[: x.size] for a, n in ((theta3, "theta3"), (theta4, "theta4"), (theta5, "theta5"))]
-
-    def gaps(t3, t4, t5):
-        one = np.exp(1j * t2) + 4.0 * np.exp(1j * t3) - 3.0 * np.exp(1j * t4) - (3.7 - 2.0j)
-        two = (3.7 - 2.0j) + 3.0 * np.exp(1j * t4) + 3.2 * np.exp(1j * (t4 + beta)) - 6.5 * np.exp(1j * t5) - (x + 3.0j)
-        return np.maximum(np.abs(one), np.abs(two))
-
-    residual = min((gaps(*[a if u == "rad" else np.radians(a) for a in raw]) for u in ("rad", "deg")), key=np.max)
+    _, _, residual = kc.read_angle_group(raw, lambda t3, t4, t5: kc.six_bar_gap(t2, t3, t4, t5, x))
     kc.closure("theta3, theta4, theta5, x_D", residual, tol=1e-9)
 
 # %% [raw]
