@@ -1,0 +1,254 @@
+"""Quantities: what numkin computes, each knowing its name, unit and source.
+
+A :class:`Quantity` is the identity of one column of numbers: the unknown or
+named point it belongs to, its derivative order (0 position, 1 velocity,
+2 acceleration), with respect to time or to the input angle, its unit, and
+the source that computed it (``"analytic"``, a difference scheme by name,
+``"complex_step"``). Tables take their column labels from it, figures their
+axis labels, JSON its keys and checks their messages; nothing parses a
+column header back into a quantity.
+
+Names follow one rule:
+
+============  ==============  ==================  ===================
+of            position        velocity            acceleration
+============  ==============  ==================  ===================
+angle ``b``   ``b`` [rad]     ``omega_b`` [rad/s] ``alpha_b`` [rad/s^2]
+length ``x``  ``x`` [unit]    ``v_x`` [unit/s]    ``a_x`` [unit/s^2]
+point ``P``   ``x_P``, ``y_P`` ``vx_P``, ``vy_P`` ``ax_P``, ``ay_P``
+============  ==============  ==================  ===================
+
+Derivatives with respect to the input angle ``theta`` are named
+``dq/dtheta`` and ``d2q/dtheta2`` (``dbeta/dtheta`` [rad/rad],
+``d2x/dtheta2`` [mm/rad^2]).
+
+Examples
+--------
+>>> from numkin import linkages
+>>> from numkin.quantities import catalogue, resolve
+>>> mech = linkages.slider_crank(80, 200)
+>>> q = resolve(mech, "a_x")
+>>> q.unit, q.order, q.of, q.kind
+('mm/s^2', 2, 'x', 'acceleration')
+>>> q.with_source("second_difference").label
+'a_x, second_difference [mm/s^2]'
+>>> sorted(catalogue(mech, orders=(1,), points=False))
+['omega_theta3', 'v_x']
+"""
+
+from __future__ import annotations
+
+import difflib
+from dataclasses import dataclass, replace
+
+__all__ = ["Quantity", "catalogue", "resolve", "KINDS", "SOURCES"]
+
+#: Names of the derivative orders.
+KINDS = ("position", "velocity", "acceleration")
+#: Sources that are not difference schemes.
+SOURCES = ("analytic", "complex_step", "solved")
+
+_PREFIX = {  # (dimension, order) -> name prefix, time derivatives
+    ("angle", 1): "omega_",
+    ("angle", 2): "alpha_",
+    ("length", 1): "v_",
+    ("length", 2): "a_",
+}
+_POINT_PREFIX = {0: "", 1: "v", 2: "a"}
+_GREEK = {
+    "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa", "lambda",
+    "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi", "omega",
+}
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """One computed quantity of a mechanism.
+
+    Parameters
+    ----------
+    of : str
+        The unknown (``"beta"``, ``"x"``) or named point (``"P"``) it belongs to.
+    order : int
+        Derivative order: 0 position, 1 velocity, 2 acceleration.
+    dimension : {"angle", "length"}
+        What the position is.
+    length_unit : str
+        The mechanism's length unit (``"mm"``).
+    axis : {"x", "y"} or None
+        The coordinate, for a point.
+    wrt : {"time", "input"}
+        Derivative with respect to time (s) or to the input angle (rad).
+    source : str
+        What computed the values: ``"analytic"``, ``"solved"`` (positions
+        from Newton), ``"complex_step"`` or a difference scheme's name.
+    input_name : str
+        Name of the input angle, for derivatives with respect to it.
+    """
+
+    of: str
+    order: int
+    dimension: str
+    length_unit: str = "mm"
+    axis: str | None = None
+    wrt: str = "time"
+    source: str = "analytic"
+    input_name: str = "theta"
+
+    def __post_init__(self):
+        if self.order not in (0, 1, 2):
+            raise ValueError(f"order must be 0, 1 or 2, got {self.order!r}")
+        if self.dimension not in ("angle", "length"):
+            raise ValueError(f"dimension must be 'angle' or 'length', got {self.dimension!r}")
+        if self.wrt not in ("time", "input"):
+            raise ValueError(f"wrt must be 'time' or 'input', got {self.wrt!r}")
+        if self.axis not in (None, "x", "y"):
+            raise ValueError(f"axis must be 'x', 'y' or None, got {self.axis!r}")
+
+    # ------------------------------------------------------------ identity
+    @property
+    def kind(self) -> str:
+        """``"position"``, ``"velocity"`` or ``"acceleration"``."""
+        return KINDS[self.order]
+
+    @property
+    def is_point(self) -> bool:
+        """Whether this is a coordinate of a named point."""
+        return self.axis is not None
+
+    @property
+    def name(self) -> str:
+        """The quantity's name, without its source (``"omega_beta"``, ``"vx_P"``, ``"dbeta/dtheta"``)."""
+        base = f"{self.axis}_{self.of}" if self.is_point else self.of
+        if self.wrt == "input" and self.order:
+            d = "d" if self.order == 1 else "d2"
+            return f"{d}{base}/d{self.input_name}{'' if self.order == 1 else '2'}"
+        if self.is_point:
+            return f"{_POINT_PREFIX[self.order]}{base}"
+        return _PREFIX.get((self.dimension, self.order), "") + self.of
+
+    @property
+    def unit(self) -> str:
+        """SI-style unit string of the values (``"rad/s"``, ``"mm/s^2"``, ``"rad/rad"``)."""
+        base = "rad" if self.dimension == "angle" else self.length_unit
+        if not self.order:
+            return base
+        per = "s" if self.wrt == "time" else "rad"
+        return f"{base}/{per}" if self.order == 1 else f"{base}/{per}^2"
+
+    @property
+    def label(self) -> str:
+        """Column or axis label: name, source unless analytic or solved, and unit in brackets."""
+        source = "" if self.source in ("analytic", "solved") else f", {self.source}"
+        return f"{self.name}{source} [{self.unit}]"
+
+    @property
+    def symbol(self) -> str:
+        r"""Mathtext symbol for figures (``"\omega_{\beta}"``, ``"\ddot{x}_{P}"``)."""
+        of = _tex(self.of)
+        if self.wrt == "input" and self.order:
+            top = "d" if self.order == 1 else "d^2"
+            bottom = f"d{_tex(self.input_name)}" + ("" if self.order == 1 else "^2")
+            inner = f"{self.axis}_{{{of}}}" if self.is_point else of
+            return rf"\frac{{{top}{inner}}}{{{bottom}}}"
+        if self.is_point:
+            base = self.axis
+            dots = ("", r"\dot", r"\ddot")[self.order]
+            return f"{dots}{{{base}}}_{{{of}}}" if dots else f"{base}_{{{of}}}"
+        if self.dimension == "angle" and self.order:
+            return (r"\omega", r"\alpha")[self.order - 1] + f"_{{{of}}}"
+        dots = ("", r"\dot", r"\ddot")[self.order]
+        return f"{dots}{{{of}}}" if dots else of
+
+    # ------------------------------------------------------------ variants
+    def with_source(self, source: str) -> "Quantity":
+        """The same quantity computed by another source."""
+        return replace(self, source=str(source))
+
+    def derivative(self, wrt: str | None = None) -> "Quantity":
+        """The next derivative (velocity of a position, acceleration of a velocity)."""
+        if self.order == 2:
+            raise ValueError(f"{self.name} is an acceleration: numkin computes no third derivative")
+        return replace(self, order=self.order + 1, wrt=self.wrt if wrt is None else wrt)
+
+    def position(self) -> "Quantity":
+        """The position this quantity is a derivative of."""
+        return replace(self, order=0, wrt="time", source="solved")
+
+    def __str__(self) -> str:
+        return self.label
+
+
+def _tex(name: str) -> str:
+    head, _, tail = name.partition("_")
+    digits = head.rstrip("0123456789")
+    sub = head[len(digits):]
+    head = "\\" + digits if digits in _GREEK else digits
+    sub = "_".join(s for s in (sub, tail) if s)
+    return f"{head}_{{{sub}}}" if sub else head
+
+
+def catalogue(mechanism, orders=(0, 1, 2), *, wrt: str = "time", points: bool = True) -> dict:
+    """Every quantity numkin computes for a mechanism: name -> :class:`Quantity`.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    orders : sequence of int
+        Derivative orders to list (0 positions, 1 velocities, 2 accelerations).
+    wrt : {"time", "input"}
+        Derivatives with respect to time or to the input angle.
+    points : bool
+        Whether to list the coordinates of the named points too.
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> [q.label for q in catalogue(linkages.four_bar(4, 1, 3, 3), orders=(2,), points=False).values()]
+    ['alpha_theta3 [rad/s^2]', 'alpha_theta4 [rad/s^2]']
+    """
+    lu = mechanism.length_unit
+    common = dict(length_unit=lu, wrt=wrt, input_name=str(mechanism.input_symbol))
+    out = {}
+    for order in orders:
+        source = "solved" if order == 0 else "analytic"
+        for name in mechanism.unknowns:
+            dim = "angle" if name in mechanism.angles else "length"
+            q = Quantity(name, order, dim, source=source, **common)
+            out[q.name] = q
+        for point in mechanism.points if points else ():
+            for axis in "xy":
+                q = Quantity(point, order, "length", axis=axis, source=source, **common)
+                out.setdefault(q.name, q)
+    return out
+
+
+def resolve(mechanism, name, *, wrt: str = "time") -> Quantity:
+    """The :class:`Quantity` of a mechanism named ``name`` (a Quantity is returned as it is).
+
+    Raises
+    ------
+    ValueError
+        For a name the mechanism does not have; the message suggests the
+        nearest valid name and lists them all.
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> resolve(linkages.four_bar(4, 1, 3, 3), "omega_theta4").unit
+    'rad/s'
+    >>> resolve(linkages.four_bar(4, 1, 3, 3), "omega_theta5")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: unknown quantity 'omega_theta5' for four-bar ... (did you mean 'omega_theta4'?); valid: ...
+    """
+    if isinstance(name, Quantity):
+        return name
+    if not isinstance(name, str):
+        raise TypeError(f"a quantity is named by a string such as 'omega_{mechanism.unknowns[0]}', got {name!r}")
+    table = catalogue(mechanism, wrt=wrt)
+    if name in table:
+        return table[name]
+    near = difflib.get_close_matches(name, list(table), n=1)
+    hint = f" (did you mean {near[0]!r}?)" if near else ""
+    raise ValueError(f"unknown quantity {name!r} for {mechanism.name}{hint}; valid: {', '.join(table)}")
