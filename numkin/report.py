@@ -101,6 +101,7 @@ __all__ = [
     "jacobian_table",
     "tolerance_table",
     "student_sweep",
+    "STUDENT_RULES",
     "full_report",
     "write_tables",
 ]
@@ -111,6 +112,8 @@ TURN = 2.0 * math.pi
 DEFAULT_GRIDS = (36, 72, 180, 360, 720, 1440, 3600)
 #: Default schemes of :func:`roundoff_table` (``"complex_step"`` is not a finite difference).
 ROUNDOFF_SCHEMES = ("forward", "centred", "five_point", "second_difference", "complex_step")
+#: Stopping rules of :func:`student_sweep`: absolute step, relative step (loop by loop), residual.
+STUDENT_RULES = ("step", "relative", "residual")
 #: Steps shown as columns of :func:`roundoff_table`, rad.
 ROUNDOFF_STEPS = tuple(10.0 ** -k for k in range(1, 13))
 _UNIT = "[unit of quantity]"
@@ -471,11 +474,27 @@ def _sweep(mechanism, inputs, guess=None, *, quiet: bool = True, **kwargs) -> Sw
     return mechanism.sweep(inputs, guess, **kwargs)
 
 
-def _one_point(mechanism, angle: float, guess=None) -> Sweep:
-    """A one-point sweep at `angle` (on the default branch), polished to machine precision."""
-    s = _sweep(mechanism, np.array([float(angle)]), guess)
-    x = _polish(mechanism, s.values, s.inputs)
-    return Sweep(mechanism, s.inputs, x, s.iterations, s.residual, s.cond, list(s.events), s.jacobian, s.tol)
+def _one_point(mechanism, angle: float, guess=None, start: float = 0.0) -> Sweep:
+    """A one-point sweep at `angle` on the branch of the sweep from `start`, polished to machine precision.
+
+    `guess` is the starting guess at `start` (as for every sweep of this
+    module: default the mechanism's own); the point is reached by
+    continuation from `start` to `angle`, never by applying the guess at
+    `angle`, so that it lies on the branch the tables' sweeps follow.
+    """
+    a, s0 = float(angle), float(start)
+    inputs = np.array([s0]) if a == s0 else np.array([s0, a])
+    s = _sweep(mechanism, inputs, guess)
+    last = slice(inputs.size - 1, inputs.size)
+    x = _polish(mechanism, s.values[:, last], s.inputs[last])
+    return Sweep(mechanism, s.inputs[last], x, s.iterations[last], s.residual[last], s.cond[last], list(s.events),
+                 s.jacobian, s.tol)
+
+
+def _position(what: str, mechanism, angle: float, x) -> dict:
+    """One solved position of a table, as kept in ``DataFrame.attrs["positions"]``."""
+    x = np.asarray(x, dtype=float).reshape(-1)
+    return {"what": what, "input [rad]": float(angle), **{u: float(v) for u, v in zip(mechanism.unknowns, x)}}
 
 
 def _derivative(sweep: Sweep, scheme, quiet: bool = True) -> np.ndarray:
@@ -492,8 +511,11 @@ def _order_text(scheme) -> str:
     return "spectral" if scheme.order == 0 else str(scheme.order)
 
 
-def _caption(df, text: str):
+def _caption(df, text: str, positions: Sequence[dict] | None = None):
+    """Set a table's caption and, if given, the positions it was computed at (``attrs["positions"]``)."""
     df.attrs["caption"] = text
+    if positions is not None:
+        df.attrs["positions"] = list(positions)
     return df
 
 
@@ -603,7 +625,18 @@ def convergence_table(
         df,
         f"Convergence: {mechanism.name}, {quantity}, input speed {w:g} rad/s; error of each scheme "
         "against the analytic solution over the sweep; observed order from successive grids.",
+        _grid_positions(mechanism, {n: data[n][0] for n in grid_list}, check_angle),
     )
+
+
+def _grid_positions(mechanism, sweeps: Mapping, angle: float | None) -> list:
+    """``attrs["positions"]`` of a table of sweeps: each sweep at `angle` (or its middle sample, if None)."""
+    out = []
+    for n, s in sweeps.items():
+        k = s.inputs.size // 2 if angle is None else _check_index(s.inputs, angle)
+        if k is not None:
+            out.append(_position(f"{n} points per turn", mechanism, s.inputs[k], s.values[:, k]))
+    return out
 
 
 # ==================================================================== work-precision
@@ -776,6 +809,7 @@ def work_precision_table(
         "the compiled loop equations (sweep, analytic and complex-step derivatives) plus stencil evaluations "
         f"(finite differences), exact and the same in every run; median times of {int(repeat)} repeats (vary "
         "between runs); beside the max error over the sweep.",
+        _grid_positions(mechanism, {n: per_grid[n][1] for n in grid_list}, None),
     )
 
 
@@ -894,11 +928,14 @@ def roundoff_table(
     steps: Sequence[float] = ROUNDOFF_STEPS,
     scan_per_decade: int = 8,
     guess=None,
+    start: float = 0.0,
 ):
     """Error against the step h at one input angle: truncation above, rounding below the optimum.
 
-    The position is solved to machine precision (Newton iterated until the
-    step stops shrinking) at ``theta + k h`` for the stencil offsets k; each
+    The position at the check angle is the sweep's, continued from `start`
+    (where `guess` applies) and solved to machine precision (Newton
+    iterated until the step stops shrinking); from it, the positions at
+    ``theta + k h`` for the stencil offsets k; each
     scheme of :mod:`numkin.derivatives` is applied to those samples, and
     ``"complex_step"`` solves the position at ``theta + i h``
     (:func:`numkin.analytic.complex_step`). Steps are rounded so that
@@ -927,7 +964,9 @@ def roundoff_table(
     scan_per_decade : int
         Density of the scan for the measured optimum.
     guess : optional
-        Branch guess (default: the mechanism's).
+        Starting guess at `start` (default: the mechanism's); picks the branch.
+    start : float
+        Input (rad) where the sweep to the check angle starts.
 
     Returns
     -------
@@ -938,7 +977,8 @@ def roundoff_table(
         (one column per step), ``measured optimal h [rad]``, ``rel error at
         measured optimal h [-]``, ``textbook rule``, ``textbook optimal h
         [rad]``, ``textbook error [-]``. Errors are relative to the exact
-        value (absolute if it is exactly 0).
+        value (absolute if it is exactly 0). ``attrs["positions"]`` holds
+        the position at the check angle.
 
     Examples
     --------
@@ -961,7 +1001,7 @@ def roundoff_table(
     if any(s is not None and s.periodic_only for s in sch):
         raise ValueError("spectral schemes need a full periodic sweep; they have no step h at one angle")
     theta = float(check_angle)
-    base = _one_point(mechanism, theta, guess)
+    base = _one_point(mechanism, theta, guess, start)
     dq, d2q = _exact(base)
     x0, q1, q2 = base.values[:, 0], dq[:, 0], d2q[:, 0]
     lo, hi = math.log10(min(steps)), math.log10(max(steps))
@@ -1026,13 +1066,27 @@ def roundoff_table(
             f" The exact {' and '.join(zero)} is 0 at this angle: errors are absolute, and symmetric stencils "
             "may be exact by symmetry; choose another angle to see the round-off floor."
         )
-    return _caption(df, caption)
+    return _caption(df, caption, [_position("check angle", mechanism, theta, x0)])
 
 
 # ============================================================================ Newton
-def _start_point(mechanism, check_angle, start_offset, guess):
-    """Solution at ``check_angle - start_offset`` on the default branch: the starting guess of one solve."""
-    return _one_point(mechanism, check_angle - start_offset, guess).values[:, 0]
+def _solve_points(mechanism, check_angle, start_offset, guess, start) -> tuple:
+    """``(x_start, x_star)``: the sweep's positions at ``check_angle - start_offset`` and at `check_angle`.
+
+    Both on the branch of the sweep from `start` (where `guess` applies),
+    polished to machine precision: the starting point of one Newton solve
+    and the solution it should reach.
+    """
+    x_start = _one_point(mechanism, check_angle - start_offset, guess, start).values[:, 0]
+    x_star = _one_point(mechanism, check_angle, guess, start).values[:, 0]
+    return x_start, x_star
+
+
+def _solve_positions(mechanism, check_angle, start_offset, x_start, solves) -> list:
+    """``attrs["positions"]`` of a table of Newton solves: the start, then each solve's result."""
+    out = [_position("start of the solve", mechanism, check_angle - start_offset, x_start)]
+    out += [_position(f"{what} solve", mechanism, check_angle, x) for what, x in solves]
+    return out
 
 
 def _error_orders(errors: np.ndarray, floor: float = 1e-14) -> np.ndarray:
@@ -1072,13 +1126,15 @@ def newton_table(
     jacobian: str = "symbolic",
     tol: float = 1e-12,
     guess=None,
+    start: float = 0.0,
 ):
     """Residual, step and error norms per Newton iteration of one solve, with the order of convergence.
 
     The solve is :meth:`Mechanism.solve` at `check_angle`, started from the
     solution at ``check_angle - start_offset`` (as a continuation without
-    predictor would). Errors are measured against the solution polished to
-    machine precision. All norms are scaled max-norms (lengths divided by
+    predictor would). Both that solution and the reference the errors are
+    measured against (polished to machine precision) are the sweep's,
+    continued from `start` where `guess` applies. All norms are scaled max-norms (lengths divided by
     the mechanism's length scale, angles in rad).
 
     Parameters
@@ -1092,7 +1148,9 @@ def newton_table(
     tol : float
         numkin's stopping tolerance.
     guess : optional
-        Branch guess (default: the mechanism's).
+        Starting guess at `start` (default: the mechanism's); picks the branch.
+    start : float
+        Input (rad) where the sweep to the solve's inputs starts.
 
     Returns
     -------
@@ -1103,7 +1161,8 @@ def newton_table(
         errors [-]`` ``log(e_k/e_{k-1}) / log(e_{k-1}/e_{k-2})`` and ``order
         estimate from steps [-]`` (the same from step norms, as
         :meth:`NewtonResult.convergence_order`); NaN where the norms are at
-        round-off (< 1e-14) or too few.
+        round-off (< 1e-14) or too few. ``attrs["positions"]`` holds the
+        starting point and the solve's result.
 
     Examples
     --------
@@ -1115,9 +1174,8 @@ def newton_table(
     """
     import pandas as pd
 
-    x_start = _start_point(mechanism, check_angle, start_offset, guess)
+    x_start, x_star = _solve_points(mechanism, check_angle, start_offset, guess, start)
     res, iterates = _one_solve(mechanism, check_angle, x_start, jacobian, tol)
-    x_star = _polish(mechanism, res.x[:, None], np.array([float(check_angle)]))[:, 0]
     errors = np.max(np.abs(iterates - x_star[:, None]) / mechanism.xscale[:, None], axis=0)
     steps = np.asarray(res.step_norms, dtype=float)
     k = np.arange(res.iterations + 1)
@@ -1136,6 +1194,7 @@ def newton_table(
         f"Newton iterations: {mechanism.name} at {mechanism.input_symbol} = {_deg_text(check_angle)} deg, "
         f"{jacobian} Jacobian, started from the solution at {_deg_text(check_angle - start_offset)} deg "
         f"({res.message}).",
+        _solve_positions(mechanism, check_angle, start_offset, x_start, [(jacobian, res.x)]),
     )
 
 
@@ -1189,15 +1248,14 @@ def jacobian_table(
     """
     import pandas as pd
 
-    x_start = _start_point(mechanism, check_angle, start_offset, guess)
+    x_start, x_star = _solve_points(mechanism, check_angle, start_offset, guess, start)
     inputs = _grid(points_per_turn, start, span)
-    x_star = None
     ref = None
     rows = []
+    solved = []
     for jac in ("symbolic", "forward", "central"):
         res, iterates = _one_solve(mechanism, check_angle, x_start, jac)
-        if x_star is None:
-            x_star = _polish(mechanism, res.x[:, None], np.array([float(check_angle)]))[:, 0]
+        solved.append((jac, res.x))
         errors = np.max(np.abs(iterates - x_star[:, None]) / mechanism.xscale[:, None], axis=0)
         orders = _error_orders(errors)
         finite = orders[np.isfinite(orders)]
@@ -1227,6 +1285,7 @@ def jacobian_table(
         df,
         f"Jacobian choice: {mechanism.name}; one solve at {_deg_text(check_angle)} deg and a sweep of "
         f"{int(points_per_turn)} points per turn (times vary between runs).",
+        _solve_positions(mechanism, check_angle, start_offset, x_start, solved),
     )
 
 
@@ -1248,10 +1307,19 @@ def student_sweep(
     the previous input (from `guess` at the first) and stops by one rule
     only:
 
-    * ``rule="step"``: after a step ``dx`` with ``||dx||_2 < tol`` (in rad
-      and length units, unscaled), the rule of the source documents;
-    * ``rule="residual"``: as soon as ``max|F| < tol`` (length units,
-      unscaled), checked before each step.
+    * ``rule="step"``: the absolute step rule, after a step ``dx`` with
+      ``||dx||_2 < tol`` (in rad and length units, unscaled), as in report
+      001;
+    * ``rule="relative"``: the relative step rule of homework 003, after a
+      step with ``||dx||_2 / ||x + dx||_2 < tol``, applied as the homework
+      does it: loop by loop (each loop's unknowns by Newton on its own
+      equations, the earlier loops' unknowns held), from the previous
+      solution as it stands. ``||x||`` counts every turn the angles have
+      wandered through (a first Newton from a far guess can leave them
+      hundreds of rad from [0, 2 pi)), and the larger it is, the looser the
+      rule: on the homework it stops after about one step per loop;
+    * ``rule="residual"``: the residual rule, as soon as ``max|F| < tol``
+      (length units, unscaled), checked before each step.
 
     No predictor, no check of the branch, no scaling: what numkin's sweep
     (:mod:`numkin.sweep`, :mod:`numkin.newton`) does differently.
@@ -1261,7 +1329,7 @@ def student_sweep(
     mechanism : Mechanism
     inputs : array_like
         Input angles, rad.
-    rule : {"step", "residual"}
+    rule : {"step", "relative", "residual"}
     tol : float
     guess : optional
         Starting guess at ``inputs[0]`` (default: the mechanism's default
@@ -1284,8 +1352,8 @@ def student_sweep(
     >>> np.round(np.degrees(s["theta4"]), 4)
     array([120.    , 119.6689, 119.3426])
     """
-    if rule not in ("step", "residual"):
-        raise ValueError(f"rule must be 'step' or 'residual', got {rule!r}")
+    if rule not in STUDENT_RULES:
+        raise ValueError(f"rule must be one of {list(STUDENT_RULES)}, got {rule!r}")
     if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
         raise ValueError(f"tol must be a positive number, got {tol!r}")
     t = np.atleast_1d(np.asarray(inputs, dtype=float))
@@ -1293,33 +1361,45 @@ def student_sweep(
     g = mechanism.default_guess if guess is None else guess
     x = mechanism.guess_vector(g, float(t[0])).copy()
     n, N = x.size, t.size
+    blocks = list(mechanism.loop_slices) if rule == "relative" else [slice(0, n)]
     values = np.empty((n, N))
     iters = np.zeros(N, dtype=int)
     for k in range(N):
         tk = t[k : k + 1]
-        done = False
-        for it in range(maxiter + 1):
-            f = comp.F(x[:, None], tk, p)[:, 0]
-            if rule == "residual" and np.max(np.abs(f)) < tol:
-                done = True
-                break
-            if it == maxiter:
-                break
-            dx = np.linalg.solve(comp.J(x[:, None], tk, p)[0], -f)
-            x = x + dx
-            iters[k] += 1
-            if rule == "step" and np.linalg.norm(dx) < tol:
-                done = True
-                break
-        if not done:
-            raise RuntimeError(
-                f"{mechanism.name}: the {rule} rule was not met after {maxiter} Newton steps at input "
-                f"{math.degrees(t[k]):.3f} deg"
-            )
+        for block in blocks:
+            steps = _student_newton(comp, p, x, tk, block, rule, tol, maxiter)
+            if steps is None:
+                raise RuntimeError(
+                    f"{mechanism.name}: the {rule} rule was not met after {maxiter} Newton steps at input "
+                    f"{math.degrees(t[k]):.3f} deg"
+                )
+            iters[k] += steps
         values[:, k] = x
     residual = np.max(np.stack(list(mechanism.loop_residuals(values, t).values())), axis=0)
     cond = np.max(np.stack(list(mechanism.loop_conditions(values, t).values())), axis=0)
     return Sweep(mechanism, t, values, iters, residual, cond, [], f"student {rule} rule", float(tol))
+
+
+def _student_newton(comp, p, x, tk, block: slice, rule: str, tol: float, maxiter: int) -> int | None:
+    """Newton on the unknowns `block` of `x` (updated in place) at input `tk` until `rule` holds.
+
+    Returns the number of steps taken, or None if `maxiter` steps did not
+    meet the rule.
+    """
+    for it in range(maxiter + 1):
+        f = comp.F(x[:, None], tk, p)[:, 0]
+        if rule == "residual" and np.max(np.abs(f)) < tol:
+            return it
+        if it == maxiter:
+            return None
+        dx = np.linalg.solve(comp.J(x[:, None], tk, p)[0][block, block], -f[block])
+        x[block] += dx
+        size = np.linalg.norm(dx)
+        if rule == "relative":
+            size /= np.linalg.norm(x[block])
+        if rule != "residual" and size < tol:
+            return it + 1
+    return None  # pragma: no cover - the loop returns at it == maxiter
 
 
 def _percent(value, exact, exact_all) -> float:
@@ -1327,6 +1407,15 @@ def _percent(value, exact, exact_all) -> float:
     if not abs(exact) > 1e-12 * float(np.max(np.abs(exact_all))):
         return math.nan
     return 100.0 * float(abs(value - exact) / abs(exact))
+
+
+#: Row labels of :func:`tolerance_table` for the rules of :func:`student_sweep`.
+_RULE_LABELS = {
+    "step": "absolute step rule ||dx||_2 < tol, Newton from the previous solution (as in report 001)",
+    "relative": ("relative step rule ||dx||_2 / ||x||_2 < tol (x after the step), loop by loop, Newton from the "
+                 "previous solution (as in homework 003)"),
+    "residual": "residual rule max|F| < tol, Newton from the previous solution",
+}
 
 
 def tolerance_table(
@@ -1344,10 +1433,11 @@ def tolerance_table(
 ):
     """What a loose stopping rule does to differenced velocity and acceleration.
 
-    The sweep (`points_per_turn`, one full turn) is solved four ways: by
-    :func:`student_sweep` with the step rule and with the residual rule at
-    `loose_tol` (as in the source documents), and by numkin's own sweep at
-    `loose_tol` and at its default 1e-12. Each is differenced with `method`
+    The sweep (`points_per_turn`, one full turn) is solved five ways: by
+    :func:`student_sweep` at `loose_tol` with the absolute step rule (as in
+    report 001), the relative step rule (as in homework 003) and the
+    residual rule, and by numkin's own sweep at `loose_tol` and at its
+    default 1e-12. Each is differenced with `method`
     (omega) and `second_method` (alpha) and compared with the analytic
     values of the tight sweep. A rule that stops while the position is still
     off by e leaves an error ~e/h in omega and ~e/h**2 in alpha: negligible
@@ -1374,7 +1464,7 @@ def tolerance_table(
     Returns
     -------
     pandas.DataFrame
-        Rows: the analytic reference, then the four solves. Columns
+        Rows: the analytic reference, then the five solves. Columns
         ``stopping rule``, ``tol`` (in the rule's own terms), ``Newton iterations per point
         (mean)``, ``max |F| [length unit]``, ``position error estimate
         max|J^-1 F| [unit]`` (of the quantity, the size of the Newton step
@@ -1441,10 +1531,10 @@ def tolerance_table(
         }
     ]
     solves = [
-        ("step rule ||dx||_2 < tol, Newton from the previous solution (as in the sources)", loose_tol,
-         lambda: student_sweep(mechanism, inputs, rule="step", tol=loose_tol, guess=guess)),
-        ("residual rule max|F| < tol, Newton from the previous solution (as students do it)", loose_tol,
-         lambda: student_sweep(mechanism, inputs, rule="residual", tol=loose_tol, guess=guess)),
+        (_RULE_LABELS[rule], loose_tol,
+         lambda rule=rule: student_sweep(mechanism, inputs, rule=rule, tol=loose_tol, guess=guess))
+        for rule in STUDENT_RULES
+    ] + [
         (f"numkin sweep, tol = {loose_tol:g}: scaled residual <= tol, step <= tol^(2/3) = {loose_tol ** (2 / 3):.3g} "
          "(passes at once: in effect a residual rule)", loose_tol,
          lambda: _sweep(mechanism, inputs, guess, tol=loose_tol)),
@@ -1452,6 +1542,7 @@ def tolerance_table(
     ]
     comp, p = mechanism.compiled, mechanism.parameter_values
     angle_rows = np.array([u in mechanism.angles for u in mechanism.unknowns])
+    positions = []
     for label, tol, solve in solves:
         try:
             s = solve()
@@ -1459,6 +1550,7 @@ def tolerance_table(
             rows.append({**{c: math.nan for c in rows[0]}, "stopping rule": label, "tol": float(tol),
                          "note": f"failed: {exc}"})
             continue
+        positions.append(_position(label, mechanism, inputs[k], s.values[:, k]))
         diff = s.values - ref.values
         diff[angle_rows] = np.remainder(diff[angle_rows] + math.pi, TURN) - math.pi
         scaled = np.max(np.abs(diff) / mechanism.xscale[:, None], axis=0)
@@ -1504,6 +1596,7 @@ def tolerance_table(
         df,
         f"Solver tolerance: {mechanism.name}, {quantity}, {int(points_per_turn)} points per turn, input speed {w:g} rad/s; "
         f"omega by {s1.name}, alpha by {s2.name}, against the analytic values.",
+        positions,
     )
 
 
@@ -1544,7 +1637,7 @@ def full_report(
     start : float
         First input angle, rad.
     guess : optional
-        Branch guess (default: the mechanism's).
+        Starting guess at `start` (default: the mechanism's); picks the branch of every table.
 
     Returns
     -------
@@ -1572,8 +1665,8 @@ def full_report(
         ),
         "work_precision": wp,
         "cheapest": cheapest_table(wp),
-        "roundoff": roundoff_table(mechanism, quantity=quantity, check_angle=check_angle, guess=guess),
-        "newton": newton_table(mechanism, check_angle=check_angle, guess=guess),
+        "roundoff": roundoff_table(mechanism, quantity=quantity, check_angle=check_angle, guess=guess, start=start),
+        "newton": newton_table(mechanism, check_angle=check_angle, guess=guess, start=start),
         "jacobian": jacobian_table(
             mechanism, check_angle=check_angle, points_per_turn=points_per_turn, repeat=repeat, start=start, guess=guess
         ),
