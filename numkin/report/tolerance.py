@@ -52,7 +52,8 @@ def student_sweep(
       solution as it stands. ``||x||`` counts every turn the angles have
       wandered through (a first Newton from a far guess can leave them
       hundreds of rad from [0, 2 pi)), and the larger it is, the looser the
-      rule: on the homework it stops after about one step per loop;
+      rule: on the homework it stops after one step per point on linkage 1
+      and two on linkage 2;
     * ``rule="residual"``: the residual rule, as soon as ``max|F| < tol``
       (length units, unscaled), checked before each step.
 
