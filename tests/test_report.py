@@ -1,10 +1,13 @@
 """Tests for numkin.report: the numbers in each error-analysis table, against independent references.
 
-References: the homework values of the source document 003 (exact omega_beta
-= 10.6329 rad/s, alpha_beta = -28.3750 rad/s^2 at theta = 100 deg; on the 1 deg
-grid forward 10.5999, centred 10.6330, forward-of-forward -28.1266, second
-difference -28.3765), and the closed form of the slider-crank piston,
-x = r cos(t) + sqrt(l^2 - r^2 sin^2(t)), differentiated by hand below.
+References: the closed form of the homework's two chained four-bars (source
+document 003's dimensions), two circle intersections evaluated with mpmath at
+30 digits and differentiated by mpmath (exact values, and the finite
+differences of exact positions on the 1 deg grid); the values homework 003
+printed from its own loop (centred 10.63198 rad/s, second difference
+-28.36941 rad/s^2 at theta = 100 deg); and the closed form of the
+slider-crank piston, x = r cos(t) + sqrt(l^2 - r^2 sin^2(t)), differentiated
+by hand below.
 """
 
 from __future__ import annotations
@@ -12,11 +15,13 @@ from __future__ import annotations
 import math
 import sys
 
+import mpmath as mp
 import numpy as np
 import pandas as pd
 import pytest
 
 from numkin import linkages, report
+from numkin.scene import load_scene
 from numkin.units import UnitError
 
 EPS = np.finfo(float).eps
@@ -35,6 +40,53 @@ def piston(t):
     dx = -R * s - R**2 * s * c / d
     d2x = -R * c - R**2 * (c**2 - s**2) / d - R**4 * s**2 * c**2 / d**3
     return x, dx, d2x
+
+
+# homework 003: linkage 1 (fixed, input, coupler, output) and linkage 2, alpha = phi + 149 deg
+HW1, HW2, HW_OFFSET = (7.0, 1.94, 6.86, 2.36), (1.25, 2.39, 1.87, 1.26), 149
+
+
+def _circles(a, out, coupler, sign):
+    """Angle of the output link: |B| = out, |a - B| = coupler, on the side `sign` of the line 0 -> a."""
+    d = abs(a)
+    along = (out**2 - coupler**2 + d**2) / (2 * d)
+    across = mp.sqrt(out**2 - along**2)
+    return mp.arg((along + sign * 1j * across) * a / d)
+
+
+def _hw_angles(theta, signs):
+    (f1, i1, c1, o1), (f2, i2, c2, o2) = HW1, HW2
+    phi = _circles(f1 + i1 * mp.expj(theta), o1, c1, signs[0])
+    beta = _circles(f2 + i2 * mp.expj(phi + mp.radians(HW_OFFSET)), o2, c2, signs[1])
+    return phi, beta
+
+
+def _hw_signs():
+    """The assembly of each loop nearest to the homework's starting guesses at theta = 0 (phi 45, beta 30 deg)."""
+    def gap(a, b):
+        return abs(mp.arg(mp.expj(a - b)))
+
+    s1 = min((1, -1), key=lambda s: gap(_hw_angles(0, (s, 1))[0], mp.radians(45)))
+    s2 = min((1, -1), key=lambda s: gap(_hw_angles(0, (s1, s))[1], mp.radians(30)))
+    return s1, s2
+
+
+def hw_beta(theta_deg, order=0):
+    """beta (rad) of the homework's branch, or its derivative d^n beta / d theta^n, at theta_deg, by mpmath."""
+    with mp.workdps(30):
+        signs = _hw_signs()
+        return float(mp.diff(lambda t: _hw_angles(t, signs)[1], mp.radians(theta_deg), order))
+
+
+def test_homework_reference_itself():
+    # the branch the homework continues on: phi = 94.4375, beta = 214.7270 deg at theta = 100 deg
+    with mp.workdps(30):
+        phi, beta = _hw_angles(mp.radians(100), _hw_signs())
+    assert math.degrees(float(phi)) == pytest.approx(94.4375, abs=1e-4)
+    assert math.degrees(float(beta)) % 360 == pytest.approx(214.7270, abs=1e-4)
+    # the assignment's check: omega_beta near 10 rad/s, alpha_beta close to -25 rad/s^2
+    assert W_HW * hw_beta(100, 1) == pytest.approx(10, abs=1)
+    assert W_HW**2 * hw_beta(100, 2) == pytest.approx(-25, abs=4)
 
 
 def test_piston_reference_itself():
@@ -83,15 +135,27 @@ def test_observed_orders(hw_convergence, scheme, order):
     assert row["observed order [-]"] == pytest.approx(order, abs=0.15)
 
 
-def test_convergence_errors_at_check_angle_match_the_homework(hw_convergence):
+def hw_differences(theta_deg=100):
+    """Exact omega_beta, alpha_beta and the 1 deg grid's differences of exact positions, rad/s and rad/s^2."""
+    b = {k: hw_beta(theta_deg + k) for k in (-1, 0, 1, 2)}
+    h = math.radians(1.0)
+    return {
+        "omega": W_HW * hw_beta(theta_deg, 1),
+        "alpha": W_HW**2 * hw_beta(theta_deg, 2),
+        "forward": W_HW * (b[1] - b[0]) / h,
+        "centred": W_HW * (b[1] - b[-1]) / (2 * h),
+        "second_difference": W_HW**2 * (b[1] - 2 * b[0] + b[-1]) / h**2,
+        "forward_of_forward": W_HW**2 * (b[2] - 2 * b[1] + b[0]) / h**2,
+    }
+
+
+def test_convergence_errors_at_check_angle_match_the_closed_form(hw_convergence):
     col = "abs error at theta = 100 deg [unit of quantity]"
-    err = {s: _row(hw_convergence, scheme=s, **{"points per turn": 360})[col]
-           for s in ("forward", "centred", "second_difference", "forward_of_forward")}
-    # 10.5999 vs 10.6329; 10.6330 vs 10.6329; -28.3765 vs -28.3750; -28.1266 vs -28.3750 (4 decimals each)
-    assert err["forward"] == pytest.approx(10.6329 - 10.5999, abs=1.5e-4)
-    assert 0 < err["centred"] < 2e-4
-    assert err["second_difference"] == pytest.approx(28.3765 - 28.3750, abs=1.5e-4)
-    assert err["forward_of_forward"] == pytest.approx(28.3750 - 28.1266, abs=1.5e-4)
+    ref = hw_differences()
+    for scheme in ("forward", "centred", "second_difference", "forward_of_forward"):
+        exact = ref["omega"] if scheme in ("forward", "centred") else ref["alpha"]
+        err = _row(hw_convergence, scheme=scheme, **{"points per turn": 360})[col]
+        assert err == pytest.approx(abs(ref[scheme] - exact), rel=1e-6, abs=1e-9), scheme
 
 
 def test_convergence_table_layout(hw_convergence):
@@ -149,12 +213,23 @@ def hw_roundoff(homework):
     return report.roundoff_table(homework, quantity="beta", check_angle=CHECK)
 
 
-def test_roundoff_exact_values_are_the_homework(hw_roundoff):
+def test_roundoff_exact_values_are_the_closed_form(hw_roundoff):
     t = hw_roundoff.set_index("scheme")
-    assert t.loc["centred", "exact value [unit of quantity]"] == pytest.approx(10.6329 / W_HW, abs=1e-5 / W_HW)
-    assert t.loc["second_difference", "exact value [unit of quantity]"] == pytest.approx(
-        -28.3750 / W_HW**2, abs=1e-4 / W_HW**2
-    )
+    assert t.loc["centred", "exact value [unit of quantity]"] == pytest.approx(hw_beta(100, 1), rel=1e-13)
+    assert t.loc["second_difference", "exact value [unit of quantity]"] == pytest.approx(hw_beta(100, 2), rel=1e-12)
+
+
+def test_homework_scene_roundoff_is_on_the_homework_branch():
+    """The scene's guess is for theta = 0; the table at 100 deg must continue the sweep there, not restart."""
+    scene = load_scene("homework")
+    mech = scene.build_mechanism()
+    opts = scene.report_options(mech)
+    t = report.roundoff_table(mech, quantity="beta", check_angle=opts["check_angle"], guess=opts["guess"],
+                              start=opts["start"]).set_index("scheme")
+    exact1, exact2 = hw_beta(100, 1), hw_beta(100, 2)
+    assert round(exact1, 6) == 1.417720 and round(exact2, 6) == -0.504444
+    assert t.loc["forward", "exact value [unit of quantity]"] == pytest.approx(exact1, rel=1e-13)
+    assert t.loc["second_difference", "exact value [unit of quantity]"] == pytest.approx(exact2, rel=1e-12)
 
 
 def test_second_difference_at_1e_8_is_shown_wrong(hw_roundoff):
@@ -183,6 +258,10 @@ def test_complex_step_has_no_floor(hw_roundoff):
     row = hw_roundoff.set_index("scheme").loc["complex step"]
     for h in 10.0 ** -np.arange(7, 13):
         assert row[f"rel error at h = {h:.0e} rad [-]"] <= 1e-14
+    # above h = 1e-7 its own truncation, h^2 |d3beta / (6 dbeta)|, shows: ~3e-14 at 1e-6, ~3e-4 at 1e-1
+    trunc = abs(hw_beta(100, 3) / (6 * hw_beta(100, 1)))
+    assert row["rel error at h = 1e-06 rad [-]"] == pytest.approx(trunc * 1e-12, rel=0.2)
+    assert row["rel error at h = 1e-01 rad [-]"] == pytest.approx(trunc * 1e-2, rel=0.2)
 
 
 def test_roundoff_against_closed_form(slider):
@@ -230,22 +309,43 @@ def hw_tolerance(homework):
     return report.tolerance_table(homework, omega="450 rad/min", quantity="beta", check_angle=CHECK)
 
 
+def _rule(table, prefix):
+    rows = table[table["stopping rule"].str.startswith(prefix)]
+    assert len(rows) == 1, prefix
+    return rows.iloc[0]
+
+
+W_COL, A_COL = "omega_beta at theta = 100 deg [rad/s]", "alpha_beta at theta = 100 deg [rad/s^2]"
+
+
 def test_tolerance_reference_and_tight_rows(hw_tolerance):
     t = hw_tolerance
-    w, a = "omega_beta at theta = 100 deg [rad/s]", "alpha_beta at theta = 100 deg [rad/s^2]"
-    assert t[w].iloc[0] == pytest.approx(10.6329, abs=1e-4)
-    assert t[a].iloc[0] == pytest.approx(-28.3750, abs=1e-4)
-    tight = t.iloc[4]
-    assert tight["stopping rule"].startswith("numkin sweep, tol = 1e-12")
-    assert tight[w] == pytest.approx(10.6330, abs=1e-4)  # centred difference on the 1 deg grid
-    assert tight[a] == pytest.approx(-28.3765, abs=1e-4)  # second difference on the 1 deg grid
+    ref = hw_differences()
+    assert t[W_COL].iloc[0] == pytest.approx(ref["omega"], rel=1e-12)
+    assert t[A_COL].iloc[0] == pytest.approx(ref["alpha"], rel=1e-11)
+    tight = _rule(t, "numkin sweep, tol = 1e-12")
+    assert tight[W_COL] == pytest.approx(ref["centred"], rel=1e-10)
+    assert tight[A_COL] == pytest.approx(ref["second_difference"], rel=1e-7)
     assert tight["position error estimate max|J^-1 F| [rad]"] < 1e-11
+    assert [" ".join(r.split()[:2]) for r in t["stopping rule"]] == [
+        "analytic (reference,", "absolute step", "relative step", "residual rule", "numkin sweep,", "numkin sweep,"]
+
+
+def test_relative_rule_reproduces_the_homework_and_spoils_alpha_at_its_first_points(hw_tolerance):
+    rel = _rule(hw_tolerance, "relative step rule")
+    # the values homework 003 printed from its own loop (|dx|/|x| < 1e-4, loop by loop)
+    assert rel[W_COL] == pytest.approx(10.63198, abs=1e-5)
+    assert rel[A_COL] == pytest.approx(-28.36941, abs=2e-5)
+    # about one Newton step per loop and point: the first point, from the far guess, is left loose
+    assert rel["Newton iterations per point (mean)"] < 3.1
+    assert rel["alpha_beta max rel error [%]"] > 50
+    assert rel["alpha_beta largest error at theta [deg]"] == 0.0
+    assert rel["position error estimate max|J^-1 F| [rad]"] > 1e-4
 
 
 def test_loose_residual_rule_spoils_alpha_not_position(hw_tolerance):
     t = hw_tolerance
-    step, residual, tight = t.iloc[1], t.iloc[2], t.iloc[4]
-    assert step["stopping rule"].startswith("step rule") and residual["stopping rule"].startswith("residual rule")
+    step, residual, tight = (_rule(t, p) for p in ("absolute step rule", "residual rule", "numkin sweep, tol = 1e-12"))
     am, wm = "alpha_beta max rel error [%]", "omega_beta max rel error [%]"
     # the position is off by ~1e-4 rad at most: invisible in beta, ~1e-4 / h^2 in alpha
     assert residual["position error estimate max|J^-1 F| [rad]"] < 1e-3
@@ -467,3 +567,34 @@ def test_student_sweep_against_closed_form():
     assert r.jacobian == "student residual rule"
     with pytest.raises(ValueError, match="rule must be"):
         report.student_sweep(mech, th, rule="both")
+
+
+# ------------------------------------------------------- every table on the scene's branch
+@pytest.mark.parametrize("name", ["homework", "quick-return", "six-bar", "slider-crank"])
+def test_every_table_of_a_scene_is_on_its_sweeps_branch(name):
+    """Each position a table solved lies on the branch of the scene's own sweep (continued from its guess)."""
+    scene = load_scene(name)
+    mech = scene.build_mechanism()
+    opts = {**scene.report_options(mech), "grids": (36, 72), "points_per_turn": 72, "repeat": 1}
+    opts["omega"] = opts["omega"] or 1.0  # a positions-only scene: any speed gives the same positions
+    opts["check_angle"] = math.radians(round(math.degrees(opts["check_angle"]) / 5) * 5)  # on the 72-point grid
+    tables = report.full_report(mech, **opts)
+    angle = np.array([u in mech.angles for u in mech.unknowns])
+    seen = 0
+    for table_name, table in tables.items():
+        for pos in table.attrs.get("positions", []):
+            if "relative step rule" in pos["what"] or "residual rule" in pos["what"]:
+                continue  # the loose rules' own sweeps may leave the branch; their rows say so in "note"
+            a = pos["input [rad]"]
+            # the scene's sweep: 1 deg steps from its start, continued to a
+            start = math.radians(scene.start_deg)
+            n = max(2, int(round(abs(math.degrees(a - start)))) + 1)
+            inputs = np.linspace(start, a, n) if n > 2 or a != start else np.array([start])
+            ref = mech.sweep(inputs, opts["guess"]).values[:, -1]
+            got = np.array([pos[u] for u in mech.unknowns])
+            gap = got - ref
+            gap[angle] = np.remainder(gap[angle] + np.pi, 2 * np.pi) - np.pi
+            assert np.max(np.abs(gap) / mech.xscale) < 1e-9, (table_name, pos["what"], math.degrees(a))
+            seen += 1
+    assert {"roundoff", "newton", "jacobian", "tolerance"} <= {k for k, t in tables.items() if t.attrs.get("positions")}
+    assert seen >= 10

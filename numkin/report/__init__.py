@@ -1,0 +1,192 @@
+"""Error-analysis reports: error against step, error against run time, solver settings.
+
+Every table is a :class:`pandas.DataFrame` returned by one function, built
+from a mechanism and plain settings (input speed, the unknown to study, a
+check angle in rad, grids, schemes), so that a notebook can call each one
+and :func:`full_report` can call them all for a scene:
+
+============================  ===============================================================
+function                      what the table shows
+============================  ===============================================================
+:func:`convergence_table`     max / RMS error of every scheme on every grid against the
+                              analytic solution, the error at a check angle, observed order
+:func:`work_precision_table`  work (exact counts of evaluations, the same in every run) and
+                              run time (sweep, differencing, both) beside the error reached,
+                              with the analytic solution and the complex step as rows, and
+                              the Pareto fronts by work and by time
+:func:`cheapest_table`        from a work-precision table: the cheapest method for each
+                              wanted accuracy, by run time or by work
+:func:`count_evaluations`     context manager counting the point evaluations of a
+                              mechanism's compiled loop equations (the work measure)
+:func:`roundoff_table`        error against the step h (1e-1 ... 1e-12 rad) at one angle;
+                              the measured optimal h beside the textbook estimates
+:func:`newton_table`          residual, step and error norms per Newton iteration of one
+                              solve, with the estimated order of convergence
+:func:`jacobian_table`        symbolic against forward / central finite-difference
+                              Jacobians: iterations, time, final accuracy
+:func:`tolerance_table`       loose stopping rules (the absolute step rule of report 001,
+                              the relative step rule of homework 003, a residual rule)
+                              against numkin's, and what they do to differenced omega, alpha
+============================  ===============================================================
+
+Conventions
+-----------
+* Angles are in rad inside; tables show degrees only in labelled columns
+  (``"h [deg]"``) and in the text of column names such as
+  ``"abs error at theta = 100 deg [unit of quantity]"``.
+* A row's ``quantity`` names what was differentiated, with its unit:
+  ``"omega_beta [rad/s]"`` (first-derivative schemes) or
+  ``"alpha_beta [rad/s^2]"`` (second-derivative schemes); for a length
+  unknown ``"v_x [mm/s]"`` / ``"a_x [mm/s^2]"``. Absolute errors are in
+  that unit (column names say ``[unit of quantity]``); relative errors are
+  divided by the largest magnitude of the exact quantity over the sweep,
+  ``[-]``.
+* Grids are given in points per turn N; a full-turn grid is
+  ``np.linspace(start, start + 2 pi, N + 1)`` (the last sample repeats the
+  first), differenced as periodic by :mod:`numkin.kinematics`; errors
+  are taken over the N distinct points.
+* Row order is fixed by the arguments (scheme order, then grid order), so
+  two runs give the same table; **timings are the only entries that vary
+  between runs**, and every column holding them (or chosen by them) says
+  ``(varies)``. Work is measured by exact counts instead
+  (``work [evaluations]``, see :func:`work_precision_table`): the same in
+  every run, so figures drawn from it are reproducible byte for byte.
+* Warnings of the main sweeps (a near-singular point, data that had to be
+  differenced as an open grid) reach the caller; the repeated sweeps of
+  the timings and of the loose-tolerance solves are quiet.
+
+:func:`write_tables` writes the tables as Markdown (needs ``tabulate``),
+CSV and LaTeX (booktabs rules, written here without jinja2).
+
+Modules, one table family each, in the order :func:`full_report` runs them:
+:mod:`~numkin.report.convergence`, :mod:`~numkin.report.workprecision`
+(with :mod:`~numkin.report.counting`, the work measure),
+:mod:`~numkin.report.roundoff`, :mod:`~numkin.report.newton_tables`,
+:mod:`~numkin.report.tolerance`; what they share (settings, grids, labels,
+points on the sweep's branch, captions) is :mod:`~numkin.report.study`, and
+:mod:`~numkin.report.writers` writes the tables. Every name above is
+importable from :mod:`numkin.report` itself.
+
+Examples
+--------
+>>> import math
+>>> from numkin import linkages, report
+>>> mech = linkages.chained_four_bars()
+>>> conv = report.convergence_table(mech, omega="450 rad/min", quantity="beta",
+...                                 check_angle=math.radians(100), grids=(180, 360),
+...                                 schemes=("centred",))
+>>> print(round(float(conv["observed order [-]"].iloc[1]), 2))
+2.0
+"""
+
+from __future__ import annotations
+
+from typing import Iterable, Sequence
+
+from .convergence import convergence_table
+from .counting import COUNTED_FUNCTIONS, EvaluationCounter, count_evaluations
+from .newton_tables import jacobian_table, newton_table
+from .roundoff import ROUNDOFF_SCHEMES, ROUNDOFF_STEPS, roundoff_table
+from .study import DEFAULT_GRIDS, input_speed
+from .tolerance import STUDENT_RULES, student_sweep, tolerance_table
+from .workprecision import cheapest_table, work_precision_table
+from .writers import write_tables
+
+__all__ = [
+    "DEFAULT_GRIDS",
+    "ROUNDOFF_SCHEMES",
+    "ROUNDOFF_STEPS",
+    "COUNTED_FUNCTIONS",
+    "EvaluationCounter",
+    "count_evaluations",
+    "convergence_table",
+    "work_precision_table",
+    "cheapest_table",
+    "roundoff_table",
+    "newton_table",
+    "jacobian_table",
+    "tolerance_table",
+    "student_sweep",
+    "STUDENT_RULES",
+    "full_report",
+    "write_tables",
+]
+
+#: The input speed parser under its former name (``numkin.stability`` imports it).
+_omega = input_speed
+
+
+def full_report(
+    mechanism,
+    *,
+    omega,
+    quantity: str,
+    check_angle: float,
+    grids: Iterable[int] = DEFAULT_GRIDS,
+    schemes: Sequence[str] | None = None,
+    points_per_turn: int = 360,
+    repeat: int = 3,
+    start: float = 0.0,
+    guess=None,
+) -> dict:
+    """Every table of this module for one mechanism, in a fixed order.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    omega : float or str
+        Input speed of every table (rad/s or a string with units).
+    quantity : str
+        The unknown every table studies.
+    check_angle : float
+        Input angle (rad) of the point values, the round-off scan and the
+        Newton solve; it should lie on every grid.
+    grids : iterable of int
+        Points per turn for the convergence and work-precision tables.
+    schemes : sequence of str, optional
+        Finite-difference schemes (default all).
+    points_per_turn : int
+        Points per turn of the Jacobian and tolerance sweeps.
+    repeat : int
+        Timing repeats.
+    start : float
+        First input angle, rad.
+    guess : optional
+        Starting guess at `start` (default: the mechanism's); picks the branch of every table.
+
+    Returns
+    -------
+    dict
+        name -> DataFrame: ``convergence``, ``work_precision``,
+        ``cheapest``, ``roundoff``, ``newton``, ``jacobian``, ``tolerance``.
+
+    Examples
+    --------
+    >>> import math
+    >>> from numkin import linkages
+    >>> tables = full_report(linkages.slider_crank(80, 200), omega="6000 rpm", quantity="x",
+    ...                      check_angle=0.0, grids=(36, 72), schemes=("centred",), points_per_turn=36, repeat=1)
+    >>> list(tables)
+    ['convergence', 'work_precision', 'cheapest', 'roundoff', 'newton', 'jacobian', 'tolerance']
+    """
+    wp = work_precision_table(
+        mechanism, omega=omega, quantity=quantity, grids=grids, schemes=schemes, repeat=repeat, start=start,
+        guess=guess,
+    )
+    return {
+        "convergence": convergence_table(
+            mechanism, omega=omega, quantity=quantity, check_angle=check_angle, grids=grids, schemes=schemes,
+            start=start, guess=guess,
+        ),
+        "work_precision": wp,
+        "cheapest": cheapest_table(wp),
+        "roundoff": roundoff_table(mechanism, quantity=quantity, check_angle=check_angle, guess=guess, start=start),
+        "newton": newton_table(mechanism, check_angle=check_angle, guess=guess, start=start),
+        "jacobian": jacobian_table(
+            mechanism, check_angle=check_angle, points_per_turn=points_per_turn, repeat=repeat, start=start, guess=guess
+        ),
+        "tolerance": tolerance_table(
+            mechanism, omega=omega, quantity=quantity, check_angle=check_angle, points_per_turn=points_per_turn, start=start,
+            guess=guess,
+        ),
+    }

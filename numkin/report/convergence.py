@@ -1,0 +1,126 @@
+"""The convergence table: error of every scheme on every grid against the analytic solution."""
+
+from __future__ import annotations
+
+import math
+from typing import Iterable, Sequence
+
+import numpy as np
+
+from .study import (
+    DEFAULT_GRIDS, TURN, UNIT, check_index, deg_text, differenced, exact_derivatives, grid_inputs, grid_positions,
+    grid_study, order_text, set_caption, solve_sweep,
+)
+
+__all__ = [
+    "convergence_table",
+]
+
+
+def convergence_table(
+    mechanism,
+    *,
+    omega,
+    quantity: str,
+    check_angle: float | None = None,
+    grids: Iterable[int] = DEFAULT_GRIDS,
+    schemes: Sequence[str] | None = None,
+    start: float = 0.0,
+    span: float = TURN,
+    guess=None,
+):
+    """Error of each scheme on each grid against the analytic solution, with the observed order.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    omega : float or str
+        Constant input speed, rad/s or a string with units (``"450 rad/min"``).
+    quantity : str
+        The unknown whose velocity (first-derivative schemes) and
+        acceleration (second-derivative schemes) are compared.
+    check_angle : float, optional
+        Input angle (rad) where the error is also reported; NaN on a grid
+        that does not hold it.
+    grids : iterable of int
+        Points per turn of the input (h = 360/N deg).
+    schemes : sequence of str, optional
+        Names from :data:`numkin.derivatives.SCHEMES`; default all (the
+        spectral ones only on a full turn).
+    start : float
+        First input angle, rad.
+    span : float
+        Input range, rad: a full turn (periodic, default) or less (open grid).
+    guess : optional
+        Starting guess of the sweeps (default: the mechanism's).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per scheme and grid (scheme order, then grids as given):
+        ``scheme``, ``formal order``, ``quantity``, ``points per turn``,
+        ``h [deg]``, ``max abs error``, ``RMS abs error`` (both ``[unit of
+        quantity]``), ``max rel error [-]`` (over max |exact|), the abs error
+        at the check angle, and ``observed order [-]``
+        ``log(e_prev / e) / log(h_prev / h)`` from the max error of the row
+        above (same scheme).
+
+    Examples
+    --------
+    >>> import math
+    >>> from numkin import linkages
+    >>> t = convergence_table(linkages.slider_crank(80, 200), omega="6000 rpm", quantity="x",
+    ...                       grids=(90, 180), schemes=("forward",))
+    >>> print(t["quantity"].iloc[0], round(float(t["observed order [-]"].iloc[1]), 1))
+    v_x [mm/s] 1.0
+    """
+    w, j, lab, grid_list, periodic, scheme_list = grid_study(mechanism, omega, quantity, grids, span, schemes)
+    check_col = (
+        f"abs error at {lab['input']} = {deg_text(check_angle)} deg {UNIT}" if check_angle is not None else None
+    )
+    data = {}
+    for n in grid_list:
+        s = solve_sweep(mechanism, grid_inputs(n, start, span), guess, quiet=False)
+        dq, d2q = exact_derivatives(s, quiet=False)
+        data[n] = (s, dq[j], d2q[j])
+    rows = []
+    for scheme in scheme_list:
+        scale = w if scheme.derivative == 1 else w * w
+        prev = None
+        for n in grid_list:
+            s, dq, d2q = data[n]
+            exact = scale * (dq if scheme.derivative == 1 else d2q)
+            est = scale * differenced(s, scheme, quiet=False)[j]
+            err = np.abs(est - exact)
+            if periodic:  # the last sample repeats the first: statistics over one period
+                err, exact = err[:-1], exact[:-1]
+            e_max = float(np.max(err))
+            h = TURN / n
+            row = {
+                "scheme": scheme.name,
+                "formal order": order_text(scheme),
+                "quantity": lab[scheme.derivative],
+                "points per turn": n,
+                "h [deg]": 360.0 / n,
+                f"max abs error {UNIT}": e_max,
+                f"RMS abs error {UNIT}": float(np.sqrt(np.mean(err**2))),
+                "max rel error [-]": e_max / float(np.max(np.abs(exact))),
+            }
+            if check_col is not None:
+                k = check_index(s.inputs, check_angle)
+                row[check_col] = float(err[k]) if k is not None else math.nan
+            order = math.nan
+            if prev is not None and prev[0] > 0 and e_max > 0:
+                order = math.log(prev[0] / e_max) / math.log(prev[1] / h)
+            row["observed order [-]"] = order
+            prev = (e_max, h)
+            rows.append(row)
+    import pandas as pd
+
+    df = pd.DataFrame(rows)
+    return set_caption(
+        df,
+        f"Convergence: {mechanism.name}, {quantity}, input speed {w:g} rad/s; error of each scheme "
+        "against the analytic solution over the sweep; observed order from successive grids.",
+        grid_positions(mechanism, {n: data[n][0] for n in grid_list}, check_angle),
+    )

@@ -1,0 +1,293 @@
+"""Work and run time against precision, and the cheapest method for a wanted accuracy."""
+
+from __future__ import annotations
+
+import math
+from typing import Iterable, Sequence
+
+import numpy as np
+
+from .. import analytic
+from .counting import COUNTED_FUNCTIONS, count_evaluations, stencil_evaluations
+from .study import (
+    DEFAULT_GRIDS, TURN, UNIT, VARIES, differenced, exact_derivatives, grid_inputs, grid_positions, grid_study,
+    median_time, set_caption, silenced, solve_sweep,
+)
+
+__all__ = [
+    "work_precision_table",
+    "cheapest_table",
+]
+
+#: Work columns of :func:`work_precision_table` (exact counts; see its docstring).
+_WORK_SWEEP = "sweep work [evaluations]"
+_WORK_DERIVATIVE = "derivative work [evaluations]"
+_WORK = "work [evaluations]"
+_PARETO_WORK = "Pareto front by work"
+
+
+def work_precision_table(
+    mechanism,
+    *,
+    omega,
+    quantity: str,
+    grids: Iterable[int] = DEFAULT_GRIDS,
+    schemes: Sequence[str] | None = None,
+    repeat: int = 3,
+    start: float = 0.0,
+    span: float = TURN,
+    guess=None,
+):
+    """Work and run time against error for every scheme and grid, the analytic solution and the complex step.
+
+    Two measures of cost stand beside the error reached:
+
+    * **work** -- exact counts, the same in every run: they depend on the
+      algorithms and the data, not on the machine's speed or load.
+      ``sweep work`` is the number of *point evaluations* of the
+      mechanism's compiled loop equations spent by ``Mechanism.sweep``:
+      calls of the compiled residuals, Jacobian, dF/dtheta (and the
+      functions combining them) times the input angles of each call,
+      counted by instrumenting them (:func:`count_evaluations`).
+      ``derivative work`` is what the derivative adds: for the analytic
+      solution and the complex step, point evaluations again, counted the
+      same way (the velocity equations ``J q' = -dF/dtheta`` take J and
+      dF/dtheta at every point, the acceleration equations another J and
+      their right-hand side; the complex step runs Newton in complex
+      arithmetic at every point); for a finite-difference scheme, which
+      evaluates no compiled function, the *stencil evaluations*: one per
+      grid point at which its formula is applied (to all unknowns at once,
+      as a compiled function is). ``work`` is their sum. It tracks the run
+      time because what a row costs is set by how often the loop equations
+      are evaluated: the number of points, Newton iterations and linear
+      solves. A stencil evaluation (a few multiply-adds) is cheaper than a
+      point evaluation (trigonometric functions), so counting each as one
+      overstates, if anything, the cost of the finite differences;
+    * **run time** -- medians over `repeat` repeats of
+      :func:`time.perf_counter` (after an untimed warm-up): the sweep, the
+      derivative alone (:func:`numkin.kinematics.sweep_derivative`, or
+      :func:`numkin.analytic.tangent` / :func:`~numkin.analytic.derivatives`,
+      or :func:`numkin.analytic.complex_step`), and both in one timed block.
+      These vary between runs and say so in their column names.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    omega : float or str
+        Input speed (rad/s or a string with units).
+    quantity : str
+        The unknown studied.
+    grids : iterable of int
+        Points per turn.
+    schemes : sequence of str, optional
+        Finite-difference schemes (default all applicable).
+    repeat : int
+        Timing repeats.
+    start, span, guess
+        As in :func:`convergence_table`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Rows: for the first derivative, then the second: ``analytic``,
+        ``complex step``, then each scheme of that derivative order; each on
+        every grid. Columns ``method``, ``quantity``, ``points per turn``,
+        ``h [deg]``, ``sweep work [evaluations]``, ``derivative work
+        [evaluations]``, ``work [evaluations]`` (their sum; integers),
+        ``sweep time [ms] (varies)``, ``derivative time [ms] (varies)``,
+        ``sweep + derivative time [ms] (varies)``, ``max abs error [unit of
+        quantity]``, ``max rel error [-]``, ``Pareto front (varies)`` (no
+        other row of the same quantity is both faster, by total time, and at
+        least as accurate) and ``Pareto front by work`` (the same by
+        ``work``: the same in every run). The error of the analytic rows is
+        measured against the complex step, all others against the analytic
+        solution.
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> t = work_precision_table(linkages.slider_crank(80, 200), omega="6000 rpm", quantity="x",
+    ...                          grids=(36,), schemes=("centred",), repeat=1)
+    >>> list(t["method"])
+    ['analytic', 'complex step', 'centred', 'analytic', 'complex step']
+    >>> wd = t["derivative work [evaluations]"]
+    >>> int(wd[0]), int(wd[2])   # analytic: J and dF/dtheta at the 37 inputs; centred: 36 distinct points
+    (74, 36)
+    """
+    import pandas as pd
+
+    w, j, lab, grid_list, periodic, scheme_list = grid_study(mechanism, omega, quantity, grids, span, schemes)
+    rows = []
+    per_grid = {}
+    for n in grid_list:
+        inputs = grid_inputs(n, start, span)
+
+        def run_sweep(inputs=inputs):
+            return solve_sweep(mechanism, inputs, guess)
+
+        with count_evaluations(mechanism) as count:
+            s = run_sweep()
+        if count.total <= 0:  # pragma: no cover - numkin.compiled no longer goes through the counted functions
+            raise RuntimeError(
+                f"{mechanism.name}: no evaluation of the compiled loop equations was counted during the sweep; "
+                f"report.COUNTED_FUNCTIONS {sorted(COUNTED_FUNCTIONS)} no longer match numkin.compiled"
+            )
+        dq, d2q = exact_derivatives(s)
+        cs1 = silenced(analytic.complex_step, s, order=1)[j]
+        cs2 = silenced(analytic.complex_step, s, order=2)[j]
+        per_grid[n] = (run_sweep, s, dq[j], d2q[j], cs1, cs2, median_time(run_sweep, repeat), count.total,
+                       stencil_evaluations(s))
+
+    def method_fns(order):
+        fns = [
+            ("analytic", (lambda s: silenced(analytic.tangent, s)) if order == 1 else exact_derivatives, False),
+            ("complex step", lambda s, o=order: silenced(analytic.complex_step, s, order=o), False),
+        ]
+        for scheme in scheme_list:
+            if scheme.derivative == order:
+                fns.append((scheme.name, lambda s, sc=scheme: differenced(s, sc), True))
+        return fns
+
+    for order in (1, 2):
+        scale = w if order == 1 else w * w
+        for name, fn, differences in method_fns(order):
+            for n in grid_list:
+                run_sweep, s, dq, d2q, cs1, cs2, t_sweep, sweep_work, stencils = per_grid[n]
+                exact = dq if order == 1 else d2q
+                with count_evaluations(mechanism) as count:
+                    out = fn(s)
+                derivative_work = count.total + (stencils if differences else 0)
+                if name == "analytic":
+                    est, ref = exact, (cs1 if order == 1 else cs2)
+                else:
+                    est = (out[1] if order == 2 and isinstance(out, tuple) else out)
+                    est = est[j] if np.ndim(est) == 2 else est
+                    ref = exact
+                err = scale * np.abs(est - ref)
+                ref_peak = float(np.max(np.abs(scale * ref)))
+                if periodic:  # the last sample repeats the first
+                    err = err[:-1]
+                t_diff = median_time(lambda fn=fn, s=s: fn(s), repeat)
+                t_both = median_time(lambda fn=fn, run_sweep=run_sweep: fn(run_sweep()), repeat, warmup=False)
+                e_max = float(np.max(err))
+                rows.append(
+                    {
+                        "method": name,
+                        "quantity": lab[order],
+                        "points per turn": n,
+                        "h [deg]": 360.0 / n,
+                        _WORK_SWEEP: int(sweep_work),
+                        _WORK_DERIVATIVE: int(derivative_work),
+                        _WORK: int(sweep_work + derivative_work),
+                        f"sweep time [ms] {VARIES}": 1e3 * t_sweep,
+                        f"derivative time [ms] {VARIES}": 1e3 * t_diff,
+                        f"sweep + derivative time [ms] {VARIES}": 1e3 * t_both,
+                        f"max abs error {UNIT}": e_max,
+                        "max rel error [-]": e_max / ref_peak,
+                    }
+                )
+    df = pd.DataFrame(rows)
+    df[f"Pareto front {VARIES}"] = _pareto(df, f"sweep + derivative time [ms] {VARIES}")
+    df[_PARETO_WORK] = _pareto(df, _WORK)
+    return set_caption(
+        df,
+        f"Work and precision: {mechanism.name}, {quantity}, input speed {w:g} rad/s; work = point evaluations of "
+        "the compiled loop equations (sweep, analytic and complex-step derivatives) plus stencil evaluations "
+        f"(finite differences), exact and the same in every run; median times of {int(repeat)} repeats (vary "
+        "between runs); beside the max error over the sweep.",
+        grid_positions(mechanism, {n: per_grid[n][1] for n in grid_list}, None),
+    )
+
+
+def _pareto(df, cost: str) -> list:
+    """Rows on the Pareto front (`cost` column, max rel error) within their quantity.
+
+    A row is on the front if no other row of its quantity costs no more and
+    is no less accurate, and is strictly better in one of the two; rows
+    without a finite cost and error are not on it.
+    """
+    t = df[cost].to_numpy(dtype=float)
+    e = df["max rel error [-]"].to_numpy(dtype=float)
+    q = df["quantity"].to_numpy()
+    ok = np.isfinite(t) & np.isfinite(e)
+    out = []
+    for k in range(len(df)):
+        if not ok[k]:
+            out.append(False)
+            continue
+        same = (q == q[k]) & ok
+        dominated = same & (t <= t[k]) & (e <= e[k]) & ((t < t[k]) | (e < e[k]))
+        out.append(not bool(dominated.any()))
+    return out
+
+
+def cheapest_table(work_precision, targets: Sequence[float] = (1e-2, 1e-4, 1e-6, 1e-8, 1e-10), *, by: str = "time"):
+    """The cheapest method reaching each wanted max relative error: by total run time or by work.
+
+    Parameters
+    ----------
+    work_precision : pandas.DataFrame
+        A table from :func:`work_precision_table`.
+    targets : sequence of float
+        Wanted max relative errors.
+    by : {"time", "work"}
+        ``"time"``: the fastest by ``sweep + derivative time`` (measured, so
+        the choice varies between runs). ``"work"``: the least ``work
+        [evaluations]`` (exact: the same in every run); among equal work
+        the more accurate.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per quantity and target: ``quantity``, ``wanted max rel
+        error [-]``, and the choice: with ``by="time"`` ``cheapest method
+        (varies)``, ``points per turn (varies)``, ``time [ms] (varies)``,
+        ``max rel error [-] (varies)``; with ``by="work"`` ``cheapest
+        method``, ``points per turn``, ``work [evaluations]``, ``max rel
+        error [-]``. The method is ``"none"`` (and the rest blank) if no
+        row reaches the target.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> wp = pd.DataFrame({"method": ["centred", "analytic"], "quantity": ["omega_b [rad/s]"] * 2,
+    ...                    "points per turn": [36, 36], "sweep + derivative time [ms] (varies)": [1.0, 2.0],
+    ...                    "work [evaluations]": [180, 218], "max rel error [-]": [1e-3, 1e-15]})
+    >>> list(cheapest_table(wp, targets=(1e-2, 1e-6))["cheapest method (varies)"])
+    ['centred', 'analytic']
+    >>> list(cheapest_table(wp, targets=(1e-2, 1e-6), by="work")["work [evaluations]"])
+    [180.0, 218.0]
+    """
+    import pandas as pd
+
+    if by == "time":
+        cost, tag = f"sweep + derivative time [ms] {VARIES}", f" {VARIES}"
+        names = (f"cheapest method{tag}", f"points per turn{tag}", f"time [ms]{tag}", f"max rel error [-]{tag}")
+        caption = "Cheapest method for a wanted accuracy (chosen by timings: varies between runs)."
+    elif by == "work":
+        cost = _WORK
+        names = ("cheapest method", "points per turn", _WORK, "max rel error [-]")
+        caption = ("Cheapest method for a wanted accuracy, by work (point evaluations of the compiled loop "
+                   "equations plus stencil evaluations: the same in every run).")
+    else:
+        raise ValueError(f"by must be 'time' or 'work', got {by!r}")
+    if cost not in work_precision.columns:
+        raise ValueError(f"work_precision table has no column {cost!r}; columns are {list(work_precision.columns)}")
+    err = "max rel error [-]"
+    rows = []
+    for quantity in dict.fromkeys(work_precision["quantity"]):
+        sub = work_precision[work_precision["quantity"] == quantity]
+        for target in targets:
+            ok = sub[(sub[err] <= target) & np.isfinite(sub[cost].to_numpy(dtype=float))]
+            if len(ok):
+                best = ok.sort_values([cost, err], kind="mergesort").iloc[0]
+                method, n = best["method"], float(best["points per turn"])
+                c, e = float(best[cost]), float(best[err])
+            else:
+                method, n, c, e = "none", math.nan, math.nan, math.nan
+            rows.append(
+                {"quantity": quantity, "wanted max rel error [-]": float(target),
+                 names[0]: method, names[1]: n, names[2]: c, names[3]: e}
+            )
+    df = pd.DataFrame(rows)
+    return set_caption(df, caption)
