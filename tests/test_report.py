@@ -237,10 +237,11 @@ def test_second_difference_at_1e_8_is_shown_wrong(hw_roundoff):
     sd = t.loc["second_difference"]
     assert sd["rel error at h = 1e-08 rad [-]"] > 1e-2
     assert sd["rel error at h = 1e-08 rad [-]"] > 1e4 * sd["rel error at measured optimal h [-]"]
-    # below the optimum the error grows like eps / h^2: ~100x per decade
-    errs = [sd[f"rel error at h = {h:.0e} rad [-]"] for h in 10.0 ** -np.arange(6, 13)]
+    # below the optimum the error grows like eps / h^2: ~100x per decade (down to 1e-11 rad, where the
+    # three samples differ by a few ulps and the estimate is noise of size 1e7)
+    errs = [sd[f"rel error at h = {h:.0e} rad [-]"] for h in 10.0 ** -np.arange(6, 12)]
     assert all(b > 10 * a for a, b in zip(errs, errs[1:]))
-    assert errs[-1] > 1e7 * errs[0] / 10
+    assert errs[-1] > 1e6 * errs[0] / 10
 
 
 @pytest.mark.parametrize(
@@ -522,11 +523,9 @@ def test_write_tables(tmp_path):
     assert tex.count("\\\\") == 3  # header + 2 rows
 
 
-def test_write_tables_needs_tabulate_for_markdown(tmp_path, monkeypatch):
-    monkeypatch.setitem(sys.modules, "tabulate", None)
-    with pytest.raises(ImportError, match="tabulate"):
-        report.write_tables({"t": pd.DataFrame({"a": [1]})}, tmp_path / "md")
-    assert not (tmp_path / "md").exists()
+def test_write_tables_formats(tmp_path, monkeypatch):
+    monkeypatch.setitem(sys.modules, "tabulate", None)  # Markdown is written without tabulate
+    assert report.write_tables({"t": pd.DataFrame({"a": [1]})}, tmp_path / "md")[0].read_text().startswith("| a |")
     paths = report.write_tables({"t": pd.DataFrame({"a": [1]})}, tmp_path / "other", formats=("csv", "tex"))
     assert [p.suffix for p in paths] == [".csv", ".tex"]
     with pytest.raises(ValueError, match="unknown table format"):

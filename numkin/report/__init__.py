@@ -125,7 +125,7 @@ def full_report(
     grids: Iterable[int] = DEFAULT_GRIDS,
     schemes: Sequence[str] | None = None,
     points_per_turn: int = 360,
-    repeat: int = 3,
+    repeat: int | None = None,
     start: float = 0.0,
     guess=None,
 ) -> dict:
@@ -147,8 +147,10 @@ def full_report(
         Finite-difference schemes (default all).
     points_per_turn : int
         Points per turn of the Jacobian and tolerance sweeps.
-    repeat : int
-        Timing repeats.
+    repeat : int, optional
+        Timing repeats of the work-precision and Jacobian tables. Default
+        None: no timing; every table is then the same in every run, and
+        the cheapest method is chosen by work.
     start : float
         First input angle, rad.
     guess : optional
@@ -165,7 +167,7 @@ def full_report(
     >>> import math
     >>> from numkin import linkages
     >>> tables = full_report(linkages.slider_crank(80, 200), omega="6000 rpm", quantity="x",
-    ...                      check_angle=0.0, grids=(36, 72), schemes=("centred",), points_per_turn=36, repeat=1)
+    ...                      check_angle=0.0, grids=(36, 72), schemes=("centred",), points_per_turn=36)
     >>> list(tables)
     ['convergence', 'work_precision', 'cheapest', 'roundoff', 'newton', 'jacobian', 'tolerance']
     """
@@ -179,7 +181,7 @@ def full_report(
             start=start, guess=guess,
         ),
         "work_precision": wp,
-        "cheapest": cheapest_table(wp),
+        "cheapest": cheapest_table(wp, by="time" if repeat else "work"),
         "roundoff": roundoff_table(mechanism, quantity=quantity, check_angle=check_angle, guess=guess, start=start),
         "newton": newton_table(mechanism, check_angle=check_angle, guess=guess, start=start),
         "jacobian": jacobian_table(
