@@ -46,17 +46,20 @@ Conventions
   first), differenced as periodic by :mod:`numkin.kinematics`; errors
   are taken over the N distinct points.
 * Row order is fixed by the arguments (scheme order, then grid order), so
-  two runs give the same table; **timings are the only entries that vary
-  between runs**, and every column holding them (or chosen by them) says
-  ``(varies)``. Work is measured by exact counts instead
+  two runs give the same table. Timing is opt-in (``repeat``); **timings
+  are the only entries that vary between runs**, and every column holding
+  them (or chosen by them) says ``(varies)``. Work is measured by exact counts instead
   (``work [evaluations]``, see :func:`work_precision_table`): the same in
   every run, so figures drawn from it are reproducible byte for byte.
 * Warnings of the main sweeps (a near-singular point, data that had to be
   differenced as an open grid) reach the caller; the repeated sweeps of
   the timings and of the loose-tolerance solves are quiet.
 
-:func:`write_tables` writes the tables as Markdown (needs ``tabulate``),
-CSV and LaTeX (booktabs rules, written here without jinja2).
+:func:`write_tables` writes the tables as Markdown (GitHub-flavoured pipe
+tables; a wide table in parts, ``attrs["views"]``, one idea each; numbers
+with the significant figures of their column), CSV (every column, full
+precision) and LaTeX (booktabs rules, written here without jinja2);
+:func:`format_text` gives the same parts for the terminal.
 
 Modules, one table family each, in the order :func:`full_report` runs them:
 :mod:`~numkin.report.convergence`, :mod:`~numkin.report.workprecision`
@@ -86,14 +89,20 @@ from typing import Iterable, Sequence
 from .convergence import convergence_table
 from .counting import COUNTED_FUNCTIONS, EvaluationCounter, count_evaluations
 from .newton_tables import jacobian_table, newton_table
-from .roundoff import ROUNDOFF_SCHEMES, ROUNDOFF_STEPS, roundoff_table
+from .roundoff import ROUNDOFF_SCHEMES, ROUNDOFF_STEPS, fitted_optimum, roundoff_table, stencil
 from .study import DEFAULT_GRIDS, input_speed
 from .tolerance import STUDENT_RULES, student_sweep, tolerance_table
 from .workprecision import cheapest_table, work_precision_table
-from .writers import write_tables
+from .writers import format_cell, format_text, table_views, write_tables
 
 __all__ = [
     "DEFAULT_GRIDS",
+    "input_speed",
+    "format_text",
+    "format_cell",
+    "table_views",
+    "stencil",
+    "fitted_optimum",
     "ROUNDOFF_SCHEMES",
     "ROUNDOFF_STEPS",
     "COUNTED_FUNCTIONS",

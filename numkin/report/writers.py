@@ -117,16 +117,19 @@ def format_text(df, *, width: int = 100) -> str:
     """A table for the terminal: its caption wrapped to `width`, then each view as a plain text table.
 
     Numbers as in Markdown (:func:`format_cell`), NaN blank, one view per
-    block, so that a wide table is read in parts no wider than its view.
+    block, so that a wide table is read in parts no wider than its view;
+    headers wrap at 14 characters over numbers, 24 over text, and text
+    cells at 40.
 
     Examples
     --------
     >>> import pandas as pd
     >>> print(format_text(pd.DataFrame({"scheme": ["centred"], "max abs error [rad/s]": [2.5e-4],
     ...                                  "observed order [-]": [1.998]})))
-    scheme      max abs error [rad/s]    observed order [-]
-    --------  -----------------------  --------------------
-    centred                   0.00025                  2.00
+    scheme      max abs error    observed order
+                      [rad/s]               [-]
+    --------  ---------------  ----------------
+    centred           0.00025              2.00
     """
     import textwrap
 
@@ -139,7 +142,11 @@ def format_text(df, *, width: int = 100) -> str:
     for title, view in table_views(df):
         cells = [[format_cell(v, c) for v, c in zip(row, view.columns)] for row in view.itertuples(index=False)]
         align = ["right" if view[c].dtype.kind in "iuf" else "left" for c in view.columns]
-        text = tabulate(cells, headers=list(view.columns), disable_numparse=True, colalign=align)
+        text = tabulate(
+            cells, headers=list(view.columns), disable_numparse=True, colalign=align,
+            maxcolwidths=[None if a == "right" else 40 for a in align],
+            maxheadercolwidths=[14 if a == "right" else 24 for a in align],
+        )
         blocks.append((f"{title}\n" if title else "") + text)
     return "\n\n".join(blocks)
 
