@@ -37,18 +37,21 @@ def column_format(column: str) -> str:
     figures; orders: 2 decimals; counts (iterations, points, evaluations):
     integers, a mean of them 1 decimal; estimated optimal steps 2
     significant figures; exact values and other quantities 7 significant
-    figures; inputs (steps, angles, tolerances) as given (up to 6
+    figures, exact values 6 decimals (7 significant figures outside
+    1e-3 ... 1e4); inputs (steps, angles, tolerances) as given (up to 6
     significant figures).
 
     Examples
     --------
     >>> [column_format(c) for c in ("max abs error [rad/s]", "observed order [-]", "points per turn",
     ...                              "h [deg]", "exact value [unit of quantity]")]
-    ['.3g', '.2f', 'int', '.6g', '.7g']
+    ['.3g', '.2f', 'int', '.6g', 'exact']
     """
     c = column.lower()
-    if "optimal h" in c:
+    if c.endswith("optimal h [rad]"):
         return ".2g"
+    if c.startswith("exact value"):
+        return "exact"
     if "order" in c and "formal" not in c:
         return ".2f"
     if "(mean)" in c or "mean" in c.split():
@@ -83,7 +86,12 @@ def format_cell(value, column: str = "") -> str:
         if math.isinf(v):
             return "inf" if v > 0 else "-inf"
         fmt = column_format(column)
-        text = str(int(round(v))) if fmt == "int" else format(v, fmt)
+        if fmt == "int":
+            text = str(int(round(v)))
+        elif fmt == "exact":
+            text = f"{v:.6f}" if 1e-3 <= abs(v) < 1e4 else format(v, ".7g")
+        else:
+            text = format(v, fmt)
         if text.lstrip("-").strip("0.e+") == "":  # a negative zero, or a value that rounds to zero
             text = text.lstrip("-")
         return text
