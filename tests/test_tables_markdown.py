@@ -8,6 +8,7 @@ view of the table it shows; no cell says "nan".
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import pandas as pd
@@ -80,18 +81,13 @@ def _reported(name):
 
 
 def _scene_tables(name) -> dict:
-    """The tables of a scene's report, as numkin report computes them (the stability scene: its suite)."""
+    """The tables of a scene's report (the stability scene: its suite, a few cases of each kind here)."""
     scene = load_scene(name)
     if scene.kind == "stability":
-        from numkin import stability
-
-        return stability.report_tables(["near toggle (4, 2, 4.0001, 2)", "nearly aligned, delta = 1e-04",
-                                        "change point (5, 2, 5, 2), through 180 deg",
-                                        "non-Grashof (7, 4, 3, 5), full turn", "homework x 1e3"])
-    mech = scene.build_mechanism()
-    options = scene.report_options(mech)
-    options["omega"] = options["omega"] or 1.0  # a positions-only scene: per rad/s of input speed
-    return report.full_report(mech, **options)
+        scene = dataclasses.replace(scene, stability_cases=(
+            "near toggle (4, 2, 4.0001, 2)", "nearly aligned, delta = 1e-04", "change point (5, 2, 5, 2), through 180 deg",
+            "non-Grashof (7, 4, 3, 5), full turn", "homework x 1e3"))
+    return report.scene_report(scene)
 
 
 @pytest.mark.parametrize("name", list_scenes())
@@ -111,3 +107,9 @@ def test_every_markdown_table_of_numkin_report_parses(name, tmp_path, capsys):
         assert "nan" not in text.lower().split()
         if "what happened" not in t.columns and "error or warning raised" not in t.columns:
             assert max(len(line) for line in text.splitlines()) <= 200
+
+
+def test_a_scene_without_input_speed_is_reported_per_rad_per_s():
+    tables = report.scene_report(load_scene("quick-return"))
+    assert list(tables) == ["convergence", "work_precision", "cheapest", "roundoff", "newton", "jacobian", "tolerance"]
+    assert all("per rad/s of input speed" in t.attrs["caption"] for t in tables.values())

@@ -118,6 +118,7 @@ __all__ = [
     "student_sweep",
     "STUDENT_RULES",
     "full_report",
+    "scene_report",
     "write_tables",
 ]
 
@@ -201,3 +202,54 @@ def full_report(
             guess=guess,
         ),
     }
+
+
+def scene_report(scene, *, repeat: int | None = None) -> dict:
+    """The report of any scene, as ``numkin report`` writes it: name -> DataFrame.
+
+    * a mechanism scene: :func:`full_report` with the scene's ``[report]``
+      settings (:meth:`numkin.scene.Scene.report_options`); a scene without
+      an input speed (positions only) is reported per rad/s of input speed
+      (derivatives with respect to time equal those with respect to the
+      input angle, in /s), and every caption says so;
+    * the stability scene: its suite (:func:`numkin.stability.report_tables`,
+      the scene's ``cases``).
+
+    Parameters
+    ----------
+    scene : Scene
+        From :func:`numkin.scene.load_scene`.
+    repeat : int, optional
+        Timing repeats (default None: not timed; see :func:`full_report`).
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from numkin.scene import load_scene
+    >>> scene = dataclasses.replace(load_scene("stability"), stability_cases=("cannot assemble (10, 6, 1, 1)",))
+    >>> list(scene_report(scene))
+    ['stability']
+    """
+    if scene.kind == "stability":
+        from .. import stability
+
+        return stability.report_tables(scene.stability_cases)
+    mech = scene.build_mechanism()
+    options = scene.report_options(mech)
+    per_unit = not options.get("omega")
+    if per_unit:
+        options["omega"] = 1.0
+    if repeat:
+        options["repeat"] = repeat
+    tables = full_report(mech, **options)
+    if per_unit:
+        for table in tables.values():
+            table.attrs["caption"] = (
+                f"{table.attrs.get('caption', '')} The scene gives no input speed: velocities and accelerations "
+                "are per rad/s of input speed (d/dtheta and d2/dtheta2)."
+            ).strip()
+    return tables
