@@ -113,3 +113,18 @@ def test_a_scene_without_input_speed_is_reported_per_rad_per_s():
     tables = report.scene_report(load_scene("quick-return"))
     assert list(tables) == ["convergence", "work_precision", "cheapest", "roundoff", "newton", "jacobian", "tolerance"]
     assert all("per rad/s of input speed" in t.attrs["caption"] for t in tables.values())
+
+
+def test_untimed_report_files_are_the_same_in_two_runs(tmp_path):
+    """Without timing (the default) every table is exact: two runs write byte-identical files."""
+    from numkin import linkages
+
+    mech = linkages.slider_crank(80, 200)
+    runs = []
+    for k in range(2):
+        tables = report.full_report(mech, omega="6000 rpm", quantity="x", check_angle=math.radians(60),
+                                    grids=(36, 72), schemes=("centred", "second_difference"), points_per_turn=36)
+        paths = report.write_tables(tables, tmp_path / str(k))
+        runs.append({p.name: p.read_bytes() for p in paths})
+    assert runs[0] == runs[1]
+    assert not any("varies" in name for name in tables["work_precision"].columns)
