@@ -105,55 +105,77 @@ plt.show()
 # %% [markdown]
 # ## 2. The rounding floor: the V-curve and the optimal step
 #
-# `report.roundoff_table` solves the position at $\theta = 100^\circ$ and its neighbours
-# $\theta \pm h, \pm 2h$ to machine precision, for $h$ from $10^{-1}$ down to $10^{-12}$ rad,
-# and differences them. The complex step, $q'(\theta) = \operatorname{Im} q(\theta + ih)/h$,
-# subtracts nothing and so has no floor.
+# `report.roundoff_table` takes the position at $\theta = 100^\circ$ on the sweep's branch and
+# its neighbours $\theta + k h$ (the offsets $k$ of each scheme's stencil), each solved by
+# numkin's Newton, for $h$ from $10^{-1}$ down to $10^{-12}$ rad, and differences them. The
+# complex step, $q'(\theta) = \operatorname{Im} q(\theta + ih)/h$, subtracts nothing and so
+# has no floor. This is the table `numkin report homework` writes (`homework-roundoff.md`).
+#
+# Where is the best step? Taking the smallest error of the scan would pick a *lucky* step,
+# where rounding errors happen to cancel, one or two decades below its neighbours, and a
+# different one for every angle. The table fits the two lines of the error model instead —
+# the truncation line $C_t h^p$ and the rounding line $C_r \varepsilon / h^n$, each by a median
+# over the scan — and takes their intersection: the **measured optimal h**, with the fitted
+# curve's error there, and, beside it, the error measured at that very step.
 
 # %%
 rnd = report.roundoff_table(mech, quantity="beta", check_angle=CHECK)
 steps = [c for c in rnd.columns if c.startswith("rel error at h = ")]
 h_values = np.array([float(c.split("= ")[1].split(" rad")[0]) for c in steps])
-summary = rnd.set_index("scheme")[["formal order", "measured optimal h [rad]", "rel error at measured optimal h [-]",
-                                   "textbook rule", "textbook optimal h [rad]", "textbook error [-]"]]
-print(summary.to_string(float_format="{:.1e}".format))
+print(report.format_text(rnd))
 
 # %%
-fig, ax = plt.subplots(figsize=(7, 4.5))
-for _, row in rnd.iterrows():
-    err = np.maximum(row[steps].to_numpy(dtype=float), 1e-17)
-    ax.loglog(h_values, err, "o-", ms=4, label=row["scheme"])
+scan = rnd.attrs["scan"]  # every step of the scan (8 per decade) and each scheme's error there
+fig, ax = plt.subplots(figsize=(7.5, 4.8))
+for k, (_, row) in enumerate(rnd.iterrows()):
+    color = f"C{k}"
+    ax.loglog(scan["h [rad]"], np.maximum(scan[row["scheme"]], 1e-17), "-", lw=0.8, color=color, alpha=0.6)
+    ax.loglog(h_values, np.maximum(row[steps].to_numpy(dtype=float), 1e-17), "o", ms=4, color=color,
+              label=row["scheme"])
+    if np.isfinite(row["measured optimal h [rad]"]):
+        ax.loglog(row["measured optimal h [rad]"], row["rel error at measured optimal h [-]"], "*", ms=12,
+                  color=color, markeredgecolor="black", markeredgewidth=0.5)
+    if row["scheme"] != "complex step":
+        ax.loglog(row["textbook optimal h [rad]"], row["textbook error [-]"], "D", ms=6, mfc="white", color=color)
 ax.axhline(EPS, color="0.5", ls=":", lw=1)
 ax.annotate("machine epsilon", (1e-12, EPS), textcoords="offset points", xytext=(0, 4), fontsize=8)
-ax.set_xlabel("h [rad]")
-ax.set_ylabel(r"relative error at $\theta = 100^\circ$")
-ax.set_title(r"the V-curve: truncation (left, large $h$) against rounding (right, small $h$)")
-ax.invert_xaxis()
-ax.legend(fontsize=8)
+ax.set_xlabel("step h [rad]")
+ax.set_ylabel(r"relative error at $\theta = 100^\circ$ [-]")
+ax.set_title("the V-curve: rounding (left, small h) against truncation (right, large h)\n"
+             "star: measured optimum (fitted lines), diamond: textbook", fontsize=10)
+ax.legend(fontsize=8, loc="upper center")
 plt.show()
 
 # %%
-second = rnd.set_index("scheme").loc["second_difference"]
-print(f"second difference at h = 1e-4 rad: relative error {second['rel error at h = 1e-04 rad [-]']:.1e}")
-print(f"second difference at h = 1e-8 rad: relative error {second['rel error at h = 1e-08 rad [-]']:.1e}")
-assert second["rel error at h = 1e-08 rad [-]"] > 1.0  # wrong by more than 100 %
-for scheme in ("forward", "centred", "second_difference"):
-    row = rnd.set_index("scheme").loc[scheme]
+table = rnd.set_index("scheme")
+second = table.loc["second_difference"]
+e4, e8, e9 = (second[f"rel error at h = {h} rad [-]"] for h in ("1e-04", "1e-08", "1e-09"))
+print(f"second difference, h = 1e-4 rad: relative error {e4:.2g}")
+print(f"second difference, h = 1e-8 rad: relative error {e8:.2g}, that is {100 * e8:.0f} %")
+print(f"second difference, h = 1e-9 rad: relative error {e9:.2g}")
+assert e8 > 1.0  # wrong by more than 100 %
+for scheme in ("forward", "centred", "five_point", "second_difference"):
+    row = table.loc[scheme]
     ratio = row["measured optimal h [rad]"] / row["textbook optimal h [rad]"]
-    print(f"{scheme:18s} measured h* / textbook h* = {ratio:.2f}")
-    assert 0.01 < ratio < 100  # the same order of magnitude, give or take the constants
+    print(f"{scheme:18s} measured h* = {row['measured optimal h [rad]']:.2g} rad "
+          f"(error {row['rel error at measured optimal h [-]']:.2g}), textbook {row['textbook rule']} = "
+          f"{row['textbook optimal h [rad]']:.2g} rad: ratio {ratio:.2f}")
+    assert 0.1 < ratio < 10  # the same order of magnitude: the constants C_t and C_r are not 1
+cs = table.loc["complex step"]
+print(f"complex step: {cs['rel error at h = 1e-01 rad [-]']:.2g} at h = 0.1, {cs['rel error at h = 1e-06 rad [-]']:.2g} "
+      f"at 1e-6, at most {cs[steps[6:]].max():.2g} for h <= 1e-7 rad")
 
 # %% [markdown]
 # Reading the V-curves: a *smaller step is not always better*. The second difference divides
-# by $h^2$: at $h = 10^{-8}$ rad its relative error is 9.8 (it is wrong by 980 %, ten times the
-# value itself) and at $10^{-9}$ rad 3.5e3, even though every position it uses is correct to
-# about 16 digits. Its best step is near $\varepsilon^{1/4} \approx 10^{-4}$ rad (measured
-# 2.4e-4 rad, relative error 7e-9); the centred difference does best near
-# $\varepsilon^{1/3}$, the forward difference near $\sqrt\varepsilon$ (measured optima and their
-# errors in the table above). The complex step has no rounding floor but does have a
-# truncation error, $h^2 |\beta^{(3)}/(6\beta')|$: 3e-4 at $h = 0.1$, 3e-14 at $10^{-6}$; it reaches
-# ~1e-16 only for $h \le 10^{-7}$ rad and stays there down to the smallest $h$. (Numbers of
-# `numkin report homework`'s roundoff table, $\beta$ at $\theta = 100^\circ$.)
+# by $h^2$: at $h = 10^{-8}$ rad its relative error is several times the value itself (the
+# numbers are printed above), and at $10^{-9}$ rad a thousand times, even though every
+# position it uses is correct to about 16 digits. Its best step is near
+# $\varepsilon^{1/4} \approx 10^{-4}$ rad; the centred difference does best near
+# $\varepsilon^{1/3}$, the five-point formula near $\varepsilon^{1/5}$, the forward difference
+# near $\sqrt\varepsilon$. The measured optima lie within a factor of three of the textbook's:
+# the textbook takes $C_t = C_r = 1$. The complex step has no rounding floor but does have a
+# truncation error, $h^2 |\beta^{(3)}/(6\beta')|$; it reaches ~1e-16 only for $h \le 10^{-7}$
+# rad and stays there down to the smallest $h$.
 
 # %% [markdown]
 # ## 3. Work against precision

@@ -158,6 +158,28 @@ assert 50 < ratio < 200
 # accurate. The **derivatives** suffer first: the rocker's motion near 180° happens in an
 # input interval of width about $\sqrt\delta$, which a 1° grid cannot resolve, so the
 # finite-difference errors are large even though nothing is singular.
+#
+# The centred error is **not** monotone in $\delta$, though: it is largest at $\delta = 10^{-4}$
+# and smaller again at $10^{-6}$. Measure how wide the turn is: the jump of
+# $d\theta_4/d\theta_2$ across it divided by the largest $|d^2\theta_4/d\theta_2^2|$.
+
+# %%
+from numkin import stability
+
+turns = stability.run_suite([f"nearly aligned, delta = {d:.0e}" for d in (1e-2, 1e-4, 1e-6)],
+                            schemes=("centred", "second_difference")).set_index("case")
+print(turns[["sharpest turn [deg]", "centred max rel error [-]", "second_difference max rel error [-]"]]
+      .to_string(float_format="{:.3g}".format))
+width = turns["sharpest turn [deg]"].to_numpy()
+assert 0.5 < width[1] < 3 and width[2] < 0.5  # about one 1 deg step, then far less than one
+
+# %% [markdown]
+# At $\delta = 10^{-2}$ the turn spans several grid steps (blank: wider than 3 steps) and is
+# resolved. At $10^{-4}$ it is about one step wide: the centred difference at the neighbours
+# of 180° straddles the turn and is worst. At $10^{-6}$ the turn is a tenth of a step, a corner
+# between grid points: the neighbours see straight lines on either side and only the point at
+# the corner is wrong, so the first-derivative error falls again. The second difference
+# divides by $h^2$ and feels the corner's sharpness: its error keeps growing.
 
 # %% [markdown]
 # ## 3. A change point: the parallelogram 5, 2, 5, 2
@@ -296,8 +318,6 @@ for scheme in ("five_point_second", "spectral_second"):
 # whose checks fail would be marked `WRONG`.
 
 # %%
-from numkin import stability
-
 suite = stability.run_suite()
 columns = ["case", "expected", "outcome", "as expected", "max cond [-]", "Newton iterations (max)",
            "centred max rel error [-]", "second_difference max rel error [-]"]

@@ -143,3 +143,25 @@ def test_run_suite_selection_and_errors():
     assert t["as expected"].all()
     with pytest.raises(ValueError, match="unknown stability case"):
         stability.run_suite(["no such case"])
+
+
+def test_non_monotone_first_derivative_errors_are_explained(suite):
+    """Nearly aligned: the output turns within ~sqrt(delta); first-derivative errors peak at a turn one step wide."""
+    rows = {d: suite.loc[f"nearly aligned, delta = {d:.0e}"] for d in (1e-2, 1e-4, 1e-6)}
+    width = {d: r["sharpest turn [deg]"] for d, r in rows.items()}
+    assert np.isnan(width[1e-2])  # wider than 3 grid steps: resolved, not measured
+    assert width[1e-4] / width[1e-6] == pytest.approx(10, rel=0.2)  # 100x smaller delta, 10x narrower turn
+    assert 0.5 < width[1e-4] < 3 and width[1e-6] < 0.5  # about one 1 deg step, and a corner between steps
+    centred = {d: r["centred max rel error [-]"] for d, r in rows.items()}
+    assert centred[1e-2] < centred[1e-6] < centred[1e-4]  # not monotone in delta ...
+    for d in (1e-4, 1e-6):
+        assert "first-derivative errors peak when the turn is about one step wide" in rows[d]["what happened"]
+    assert "sharpest turn" in suite.attrs["caption"].lower() and "1e-4" in suite.attrs["caption"]
+    assert np.isnan(suite.loc["homework", "sharpest turn [deg]"])
+
+
+def test_report_tables_of_the_stability_scene():
+    tables = stability.report_tables(["cannot assemble (10, 6, 1, 1)", "homework, 12 points per turn"])
+    assert list(tables) == ["stability"]
+    views = [title for title, _ in tables["stability"].attrs["views"]]
+    assert views[0] == "outcome" and "what happened" in views

@@ -46,17 +46,20 @@ Conventions
   first), differenced as periodic by :mod:`numkin.kinematics`; errors
   are taken over the N distinct points.
 * Row order is fixed by the arguments (scheme order, then grid order), so
-  two runs give the same table; **timings are the only entries that vary
-  between runs**, and every column holding them (or chosen by them) says
-  ``(varies)``. Work is measured by exact counts instead
+  two runs give the same table. Timing is opt-in (``repeat``); **timings
+  are the only entries that vary between runs**, and every column holding
+  them (or chosen by them) says ``(varies)``. Work is measured by exact counts instead
   (``work [evaluations]``, see :func:`work_precision_table`): the same in
   every run, so figures drawn from it are reproducible byte for byte.
 * Warnings of the main sweeps (a near-singular point, data that had to be
   differenced as an open grid) reach the caller; the repeated sweeps of
   the timings and of the loose-tolerance solves are quiet.
 
-:func:`write_tables` writes the tables as Markdown (needs ``tabulate``),
-CSV and LaTeX (booktabs rules, written here without jinja2).
+:func:`write_tables` writes the tables as Markdown (GitHub-flavoured pipe
+tables; a wide table in parts, ``attrs["views"]``, one idea each; numbers
+with the significant figures of their column), CSV (every column, full
+precision) and LaTeX (booktabs rules, written here without jinja2);
+:func:`format_text` gives the same parts for the terminal.
 
 Modules, one table family each, in the order :func:`full_report` runs them:
 :mod:`~numkin.report.convergence`, :mod:`~numkin.report.workprecision`
@@ -86,14 +89,20 @@ from typing import Iterable, Sequence
 from .convergence import convergence_table
 from .counting import COUNTED_FUNCTIONS, EvaluationCounter, count_evaluations
 from .newton_tables import jacobian_table, newton_table
-from .roundoff import ROUNDOFF_SCHEMES, ROUNDOFF_STEPS, roundoff_table
+from .roundoff import ROUNDOFF_SCHEMES, ROUNDOFF_STEPS, fitted_optimum, roundoff_table, stencil
 from .study import DEFAULT_GRIDS, input_speed
 from .tolerance import STUDENT_RULES, student_sweep, tolerance_table
 from .workprecision import cheapest_table, work_precision_table
-from .writers import write_tables
+from .writers import format_cell, format_text, table_views, write_tables
 
 __all__ = [
     "DEFAULT_GRIDS",
+    "input_speed",
+    "format_text",
+    "format_cell",
+    "table_views",
+    "stencil",
+    "fitted_optimum",
     "ROUNDOFF_SCHEMES",
     "ROUNDOFF_STEPS",
     "COUNTED_FUNCTIONS",
@@ -109,6 +118,7 @@ __all__ = [
     "student_sweep",
     "STUDENT_RULES",
     "full_report",
+    "scene_report",
     "write_tables",
 ]
 
@@ -125,7 +135,7 @@ def full_report(
     grids: Iterable[int] = DEFAULT_GRIDS,
     schemes: Sequence[str] | None = None,
     points_per_turn: int = 360,
-    repeat: int = 3,
+    repeat: int | None = None,
     start: float = 0.0,
     guess=None,
 ) -> dict:
@@ -147,8 +157,10 @@ def full_report(
         Finite-difference schemes (default all).
     points_per_turn : int
         Points per turn of the Jacobian and tolerance sweeps.
-    repeat : int
-        Timing repeats.
+    repeat : int, optional
+        Timing repeats of the work-precision and Jacobian tables. Default
+        None: no timing; every table is then the same in every run, and
+        the cheapest method is chosen by work.
     start : float
         First input angle, rad.
     guess : optional
@@ -165,7 +177,7 @@ def full_report(
     >>> import math
     >>> from numkin import linkages
     >>> tables = full_report(linkages.slider_crank(80, 200), omega="6000 rpm", quantity="x",
-    ...                      check_angle=0.0, grids=(36, 72), schemes=("centred",), points_per_turn=36, repeat=1)
+    ...                      check_angle=0.0, grids=(36, 72), schemes=("centred",), points_per_turn=36)
     >>> list(tables)
     ['convergence', 'work_precision', 'cheapest', 'roundoff', 'newton', 'jacobian', 'tolerance']
     """
@@ -179,7 +191,7 @@ def full_report(
             start=start, guess=guess,
         ),
         "work_precision": wp,
-        "cheapest": cheapest_table(wp),
+        "cheapest": cheapest_table(wp, by="time" if repeat else "work"),
         "roundoff": roundoff_table(mechanism, quantity=quantity, check_angle=check_angle, guess=guess, start=start),
         "newton": newton_table(mechanism, check_angle=check_angle, guess=guess, start=start),
         "jacobian": jacobian_table(
@@ -190,3 +202,54 @@ def full_report(
             guess=guess,
         ),
     }
+
+
+def scene_report(scene, *, repeat: int | None = None) -> dict:
+    """The report of any scene, as ``numkin report`` writes it: name -> DataFrame.
+
+    * a mechanism scene: :func:`full_report` with the scene's ``[report]``
+      settings (:meth:`numkin.scene.Scene.report_options`); a scene without
+      an input speed (positions only) is reported per rad/s of input speed
+      (derivatives with respect to time equal those with respect to the
+      input angle, in /s), and every caption says so;
+    * the stability scene: its suite (:func:`numkin.stability.report_tables`,
+      the scene's ``cases``).
+
+    Parameters
+    ----------
+    scene : Scene
+        From :func:`numkin.scene.load_scene`.
+    repeat : int, optional
+        Timing repeats (default None: not timed; see :func:`full_report`).
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> from numkin.scene import load_scene
+    >>> scene = dataclasses.replace(load_scene("stability"), stability_cases=("cannot assemble (10, 6, 1, 1)",))
+    >>> list(scene_report(scene))
+    ['stability']
+    """
+    if scene.kind == "stability":
+        from .. import stability
+
+        return stability.report_tables(scene.stability_cases)
+    mech = scene.build_mechanism()
+    options = scene.report_options(mech)
+    per_unit = not options.get("omega")
+    if per_unit:
+        options["omega"] = 1.0
+    if repeat:
+        options["repeat"] = repeat
+    tables = full_report(mech, **options)
+    if per_unit:
+        for table in tables.values():
+            table.attrs["caption"] = (
+                f"{table.attrs.get('caption', '')} The scene gives no input speed: velocities and accelerations "
+                "are per rad/s of input speed (d/dtheta and d2/dtheta2)."
+            ).strip()
+    return tables

@@ -9,7 +9,7 @@ import numpy as np
 
 from .study import (
     DEFAULT_GRIDS, TURN, UNIT, check_index, deg_text, differenced, exact_derivatives, grid_inputs, grid_positions,
-    grid_study, order_text, set_caption, solve_sweep,
+    grid_study, order_text, set_caption, set_views, solve_sweep,
 )
 
 __all__ = [
@@ -118,6 +118,12 @@ def convergence_table(
     import pandas as pd
 
     df = pd.DataFrame(rows)
+    set_views(df, [
+        ("error over the sweep", ["scheme", "formal order", "quantity", "points per turn", "h [deg]",
+                                  f"max abs error {UNIT}", "max rel error [-]", "observed order [-]"]),
+        ("RMS error, and the error at the check angle", ["scheme", "quantity", "points per turn",
+                                                         f"RMS abs error {UNIT}", check_col]),
+    ])
     return set_caption(
         df,
         f"Convergence: {mechanism.name}, {quantity}, input speed {w:g} rad/s; error of each scheme "

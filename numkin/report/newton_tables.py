@@ -7,7 +7,8 @@ import math
 import numpy as np
 
 from .study import (
-    TURN, VARIES, branch_point, deg_text, grid_inputs, median_time, position_record, set_caption, solve_sweep,
+    TURN, VARIES, branch_point, deg_text, grid_inputs, median_time, position_record, set_caption, set_views,
+    solve_sweep, timing_repeats,
 )
 
 __all__ = [
@@ -20,7 +21,7 @@ def _solve_points(mechanism, check_angle, start_offset, guess, start) -> tuple:
     """``(x_start, x_star)``: the sweep's positions at ``check_angle - start_offset`` and at `check_angle`.
 
     Both on the branch of the sweep from `start` (where `guess` applies),
-    polished to machine precision: the starting point of one Newton solve
+    by numkin's Newton: the starting point of one Newton solve
     and the solution it should reach.
     """
     x_start = branch_point(mechanism, check_angle - start_offset, guess, start).values[:, 0]
@@ -79,7 +80,7 @@ def newton_table(
     The solve is :meth:`Mechanism.solve` at `check_angle`, started from the
     solution at ``check_angle - start_offset`` (as a continuation without
     predictor would). Both that solution and the reference the errors are
-    measured against (polished to machine precision) are the sweep's,
+    measured against (brought to the last digits by one more Newton solve) are the sweep's,
     continued from `start` where `guess` applies. All norms are scaled max-norms (lengths divided by
     the mechanism's length scale, angles in rad).
 
@@ -149,7 +150,7 @@ def jacobian_table(
     *,
     check_angle: float,
     points_per_turn: int = 360,
-    repeat: int = 3,
+    repeat: int | None = None,
     start_offset: float = math.radians(20.0),
     start: float = 0.0,
     span: float = TURN,
@@ -170,8 +171,9 @@ def jacobian_table(
         Input angle of the single solve, rad.
     points_per_turn : int
         Points per turn of the sweep.
-    repeat : int
-        Timing repeats.
+    repeat : int, optional
+        Timing repeats of the sweep time; default None: not timed (the
+        column is left out), so the table is the same in every run.
     start_offset, start, span, guess
         As in :func:`newton_table` and :func:`convergence_table`.
 
@@ -181,19 +183,20 @@ def jacobian_table(
         Rows ``symbolic``, ``forward``, ``central``; columns ``Jacobian``,
         ``iterations (one solve)``, ``order estimate, last (one solve) [-]``,
         ``final residual (one solve) [-]``, ``final error (one solve) [-]``,
-        ``sweep time [ms] (varies)``, ``Newton iterations (sweep total)``,
+        ``sweep time [ms] (varies)`` (only with `repeat`), ``Newton iterations (sweep total)``,
         ``max difference from symbolic sweep [-]`` (scaled max-norm).
 
     Examples
     --------
     >>> import math
     >>> from numkin import linkages
-    >>> t = jacobian_table(linkages.four_bar(4, 1, 3, 3), check_angle=math.radians(90), points_per_turn=36, repeat=1)
+    >>> t = jacobian_table(linkages.four_bar(4, 1, 3, 3), check_angle=math.radians(90), points_per_turn=36)
     >>> list(t["Jacobian"])
     ['symbolic', 'forward', 'central']
     """
     import pandas as pd
 
+    repeat = timing_repeats(repeat)
     x_start, x_star = _solve_points(mechanism, check_angle, start_offset, guess, start)
     inputs = grid_inputs(points_per_turn, start, span)
     ref = None
@@ -219,7 +222,7 @@ def jacobian_table(
                 "order estimate, last (one solve) [-]": float(finite[-1]) if finite.size else math.nan,
                 "final residual (one solve) [-]": float(res.residual_norms[-1]),
                 "final error (one solve) [-]": float(errors[-1]),
-                f"sweep time [ms] {VARIES}": 1e3 * median_time(run, repeat),
+                **({f"sweep time [ms] {VARIES}": 1e3 * median_time(run, repeat)} if repeat else {}),
                 "Newton iterations (sweep total)": int(np.sum(s.iterations)),
                 "max difference from symbolic sweep [-]": float(
                     np.max(np.abs(s.values - ref) / mechanism.xscale[:, None])
@@ -227,9 +230,15 @@ def jacobian_table(
             }
         )
     df = pd.DataFrame(rows)
+    set_views(df, [
+        ("one solve", ["Jacobian", "iterations (one solve)", "order estimate, last (one solve) [-]",
+                       "final residual (one solve) [-]", "final error (one solve) [-]"]),
+        ("a sweep", ["Jacobian", f"sweep time [ms] {VARIES}", "Newton iterations (sweep total)",
+                     "max difference from symbolic sweep [-]"]),
+    ])
     return set_caption(
         df,
         f"Jacobian choice: {mechanism.name}; one solve at {deg_text(check_angle)} deg and a sweep of "
-        f"{int(points_per_turn)} points per turn (times vary between runs).",
+        f"{int(points_per_turn)} points per turn" + (" (times vary between runs)." if repeat else "."),
         _solve_positions(mechanism, check_angle, start_offset, x_start, solved),
     )

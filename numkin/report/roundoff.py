@@ -10,14 +10,16 @@ import numpy as np
 from .. import analytic
 from ..derivatives import get_scheme
 from .study import (
-    EPS, UNIT, branch_point, deg_text, exact_derivatives, order_text, polish, position_record, quantity_labels,
-    set_caption, silenced, unknown_index,
+    EPS, UNIT, branch_point, deg_text, exact_derivatives, order_text, position_record, quantity_labels,
+    set_caption, set_views, silenced, solve_points, unknown_index,
 )
 
 __all__ = [
     "ROUNDOFF_SCHEMES",
     "ROUNDOFF_STEPS",
     "roundoff_table",
+    "stencil",
+    "fitted_optimum",
 ]
 
 #: Default schemes of :func:`roundoff_table` (``"complex_step"`` is not a finite difference).
@@ -33,6 +35,96 @@ _TEXTBOOK = {
     (2, 2): "eps^(1/4)",
     (2, 4): "eps^(1/6)",
 }
+#: Widest interior stencil :func:`stencil` looks for, in grid points either side.
+_REACH = 6
+
+
+def stencil(scheme) -> tuple:
+    """Offsets and weights of a scheme's interior formula: ``d^n q/dtheta^n ~ sum(w_k q(theta + k h)) / h**n``.
+
+    Read from the scheme itself: its declared ``offsets`` and
+    ``coefficients`` if it has them, else the weights its function applies
+    at an interior point of an open grid (every scheme of
+    :data:`numkin.derivatives.SCHEMES` is linear in the samples).
+
+    Parameters
+    ----------
+    scheme : Scheme
+        A finite-difference scheme (not a spectral one).
+
+    Returns
+    -------
+    (ndarray of int, ndarray of float)
+        Offsets k and weights w_k (for h = 1).
+
+    Examples
+    --------
+    >>> from numkin.derivatives import get_scheme
+    >>> k, w = stencil(get_scheme("second_difference"))
+    >>> k.tolist(), w.tolist()
+    ([-1, 0, 1], [1.0, -2.0, 1.0])
+    """
+    if getattr(scheme, "offsets", None) is not None and getattr(scheme, "coefficients", None) is not None:
+        return np.asarray(scheme.offsets, dtype=int), np.asarray(scheme.coefficients, dtype=float)
+    size = 2 * _REACH + 1
+    weights = np.array([scheme.function(np.eye(size)[k], 1.0, periodic=False)[_REACH] for k in range(size)])
+    keep = np.flatnonzero(np.abs(weights) > 1e-14)
+    return keep - _REACH, weights[keep]
+
+
+def fitted_optimum(h, err, order: int, derivative: int) -> tuple:
+    """The optimal step where the fitted truncation and rounding lines meet, and the error there.
+
+    The errors ``err`` against the steps ``h`` are split, at every place
+    along the scan, into a truncation side (larger steps) and a rounding
+    side; on each side the median of ``err / h**p`` and of
+    ``err * h**n / eps`` gives the lines ``C_t h**p`` and ``C_r eps / h**n``
+    (p the order, n the derivative; n = 0 for a floor at eps). The split
+    whose model ``C_t h**p + C_r eps / h**n`` lies closest to the
+    measurements (sum of absolute log differences) is kept. Medians ignore
+    the lucky cancellations that make single rounding errors far smaller
+    than their neighbours, so the estimate is the same for every scan that
+    samples the same curve.
+
+    Returns
+    -------
+    (float, float)
+        ``h* = (C_r eps / C_t)**(1/(p + n))`` and the model's error there,
+        ``2 C_t h***p``; NaN if the scan does not show both sides or they do
+        not meet inside it.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> h = 10.0 ** -np.linspace(1, 12, 45)
+    >>> err = 0.5 * h**2 + 2.2e-16 / h              # centred: C_t = 0.5, C_r = 1
+    >>> hs, es = fitted_optimum(h, err, 2, 1)
+    >>> bool(abs(hs / (2.2e-16 / 0.5) ** (1 / 3) - 1) < 0.05)
+    True
+    """
+    h = np.asarray(h, dtype=float)
+    err = np.asarray(err, dtype=float)
+    ok = np.isfinite(err) & (err > 0) & np.isfinite(h) & (h > 0)
+    h, err = h[ok], err[ok]
+    order_idx = np.argsort(-h, kind="stable")
+    h, err = h[order_idx], err[order_idx]
+    p, n = int(order), int(derivative)
+    if h.size < 4 or p <= 0:
+        return math.nan, math.nan
+    trunc = err / h**p
+    rnd = err * h**n / EPS
+    best = None
+    for m in range(2, h.size - 1):
+        ct, cr = float(np.median(trunc[:m])), float(np.median(rnd[m:]))
+        model = ct * h**p + cr * EPS / h**n
+        cost = float(np.sum(np.abs(np.log(err / model))))
+        if best is None or cost < best[0]:
+            best = (cost, ct, cr)
+    _, ct, cr = best
+    hstar = (cr * EPS / ct) ** (1.0 / (p + n))
+    if not (h.min() <= hstar <= h.max()):
+        return math.nan, math.nan
+    return float(hstar), float(ct * hstar**p + cr * EPS / hstar**n)
 
 
 def roundoff_table(
@@ -60,11 +152,21 @@ def roundoff_table(
     derivative) or h**2 (second): the second difference at h = 1e-8 rad is
     wrong by orders of magnitude, and the table shows it.
 
+    Any non-spectral scheme of the registry works: its stencil (offsets and
+    weights) is read by :func:`stencil`.
+
     The optimum is measured on a finer scan (`scan_per_decade` steps per
-    decade over the range of `steps`) and set beside the textbook estimate
-    ``h* ~ eps**(1/(p + n))`` with error ``~ eps**(p/(p + n))`` (p the
-    order, n the derivative: sqrt(eps) forward, cbrt(eps) centred,
-    eps^(1/4) second difference, eps^(1/5) five-point).
+    decade over the range of `steps`): the truncation line ``C_t h**p`` and
+    the rounding line ``C_r eps / h**n`` are fitted to the scan's errors
+    (:func:`fitted_optimum`, robust to the lucky cancellations of single
+    steps) and meet at the measured optimal h; the error given there is the
+    fitted curve's, and the error measured at that very step stands
+    beside it. The textbook estimate ``h* ~ eps**(1/(p + n))`` with error
+    ``~ eps**(p/(p + n))`` (p the order, n the derivative: sqrt(eps)
+    forward, cbrt(eps) centred, eps^(1/4) second difference, eps^(1/5)
+    five-point) stands beside them. The scan itself is kept in
+    ``attrs["scan"]`` (``"h [rad]"`` and the relative error of each scheme)
+    for plots.
 
     Parameters
     ----------
@@ -91,7 +193,8 @@ def roundoff_table(
         (``dq/dtheta [rad/rad]`` or ``d2q/dtheta2 [rad/rad^2]``), ``exact
         value [unit of quantity]``, ``rel error at h = 1e-01 rad [-]`` ...
         (one column per step), ``measured optimal h [rad]``, ``rel error at
-        measured optimal h [-]``, ``textbook rule``, ``textbook optimal h
+        measured optimal h [-]`` (on the fitted curve), ``rel error measured
+        at that h [-]``, ``textbook rule``, ``textbook optimal h
         [rad]``, ``textbook error [-]``. Errors are relative to the exact
         value (absolute if it is exactly 0). ``attrs["positions"]`` holds
         the position at the check angle.
@@ -116,6 +219,7 @@ def roundoff_table(
     sch = [None if n == "complex_step" else get_scheme(n) for n in names]
     if any(s is not None and s.periodic_only for s in sch):
         raise ValueError("spectral schemes need a full periodic sweep; they have no step h at one angle")
+    stencils = {s.name: stencil(s) for s in sch if s is not None}
     theta = float(check_angle)
     base = branch_point(mechanism, theta, guess, start)
     dq, d2q = exact_derivatives(base)
@@ -125,27 +229,30 @@ def roundoff_table(
     scan = sorted(set(steps) | set(10.0 ** np.linspace(hi, lo, m + 1)), reverse=True)
     # representable steps: theta + h is a float and h = (theta + h) - theta exactly
     eff = np.array([(theta + h) - theta for h in scan])
-    offsets = np.arange(-2, 3)
-    tt = theta + eff[:, None] * offsets[None, :]  # (S, 5)
-    dt = tt - theta
-    pred = x0[:, None, None] + q1[:, None, None] * dt + 0.5 * q2[:, None, None] * dt**2
     S = len(scan)
-    vals = polish(mechanism, pred.reshape(len(x0), -1), tt.reshape(-1)).reshape(len(x0), S, 5)[j]
-    vals[:, 2] = x0[j]
+    offsets = sorted({int(k) for k, _ in stencils.values() for k in k} - {0})
+    samples = {0: np.full(S, x0[j])}
+    if offsets:
+        kk = np.array(offsets, dtype=float)
+        tt = theta + eff[:, None] * kk[None, :]  # (S, K)
+        dt = tt - theta
+        pred = x0[:, None, None] + q1[:, None, None] * dt + 0.5 * q2[:, None, None] * dt**2
+        solved = solve_points(mechanism, pred.reshape(len(x0), -1), tt.reshape(-1), what="round-off sample")
+        vals = solved.reshape(len(x0), S, len(offsets))[j]
+        samples.update({k: vals[:, c] for c, k in enumerate(offsets)})
     rows = []
+    scan_errors = {}
     shown = {h: k for k, h in enumerate(scan)}
     for name, scheme in zip(names, sch):
-        err = np.empty(S)
         if scheme is None:
-            deriv, order, exact = 1, None, q1[j]
-            for k, h in enumerate(eff):
-                one = silenced(analytic.complex_step, base, h=float(h), order=1)
-                err[k] = abs(one[j, 0] - exact)
+            deriv, order, exact = 1, 2, q1[j]
+            est = np.array([silenced(analytic.complex_step, base, h=float(h), order=1)[j, 0] for h in eff])
         else:
             deriv, order = scheme.derivative, scheme.order
             exact = q1[j] if deriv == 1 else q2[j]
-            for k, h in enumerate(eff):
-                err[k] = abs(scheme.function(vals[k], float(h), periodic=False)[2] - exact)
+            ks, ws = stencils[scheme.name]
+            est = sum(w * samples[int(k)] for k, w in zip(ks, ws)) / eff**deriv
+        err = np.abs(est - exact)
         rel = err / abs(exact) if exact != 0 else err  # an exact zero: absolute errors
         row = {
             "scheme": "complex step" if scheme is None else scheme.name,
@@ -155,9 +262,14 @@ def roundoff_table(
         }
         for h in steps:
             row[f"rel error at h = {h:.0e} rad [-]"] = float(rel[shown[h]])
-        best = int(np.argmin(rel))
-        row["measured optimal h [rad]"] = float(eff[best])
-        row["rel error at measured optimal h [-]"] = float(rel[best])
+        # the floor of the complex step is eps itself (no cancellation): derivative 0 in the rounding line
+        hstar, estar = fitted_optimum(eff, rel, order, 0 if scheme is None else deriv)
+        row["measured optimal h [rad]"] = hstar
+        row["rel error at measured optimal h [-]"] = estar
+        row["rel error measured at that h [-]"] = (
+            _error_at(mechanism, base, j, scheme, stencils, theta, hstar, exact) if math.isfinite(hstar) else math.nan
+        )
+        scan_errors[row["scheme"]] = [float(v) for v in rel]
         if scheme is None:
             row["textbook rule"] = "any h <= sqrt(eps): no cancellation"
             row["textbook optimal h [rad]"] = math.sqrt(EPS)
@@ -170,8 +282,10 @@ def roundoff_table(
         rows.append(row)
     df = pd.DataFrame(rows)
     caption = (
-        f"Round-off floor: {mechanism.name}, {quantity} at {lab['input']} = {deg_text(theta)} deg; relative "
-        "error against the step h, positions solved to machine precision."
+        f"Round-off floor: {mechanism.name}, {quantity} at {lab['input']} = {deg_text(theta)} deg on the sweep's "
+        "branch; relative error against the step h, positions solved by Newton to the stopping rule's "
+        "tol^(4/3). Measured optimum: where the truncation line C_t h^p and the rounding line C_r eps/h^n, "
+        f"fitted to {S} steps, meet (the error there is on the fitted curve)."
     )
     zero = [lab["d1"] if abs(v) <= 1e-12 * (abs(x0[j]) + 1.0) else None for v in (q1[j],)] + [
         lab["d2"] if abs(q2[j]) <= 1e-12 * (abs(x0[j]) + 1.0) else None
@@ -182,4 +296,34 @@ def roundoff_table(
             f" The exact {' and '.join(zero)} is 0 at this angle: errors are absolute, and symmetric stencils "
             "may be exact by symmetry; choose another angle to see the round-off floor."
         )
+    key = ["scheme", "formal order", "quantity"]
+    cols = [c for c in df.columns if c.startswith("rel error at h =")]
+    half = (len(cols) + 1) // 2
+    set_views(df, [
+        ("relative error against the step h: the larger steps", key[:1] + cols[:half]),
+        ("relative error against the step h: the smaller steps", key[:1] + cols[half:]),
+        ("optimal step: measured (fitted lines) and textbook", key + [
+            f"exact value {UNIT}", "measured optimal h [rad]", "rel error at measured optimal h [-]",
+            "rel error measured at that h [-]", "textbook rule", "textbook optimal h [rad]", "textbook error [-]"]),
+    ])
+    df.attrs["scan"] = {"h [rad]": [float(h) for h in eff], **scan_errors}
     return set_caption(df, caption, [position_record("check angle", mechanism, theta, x0)])
+
+
+def _error_at(mechanism, base, j, scheme, stencils, theta, h, exact) -> float:
+    """The relative error of one scheme (None: the complex step) measured at the step `h`."""
+    h = (theta + h) - theta
+    if scheme is None:
+        est = float(silenced(analytic.complex_step, base, h=float(h), order=1)[j, 0])
+    else:
+        ks, ws = stencils[scheme.name]
+        x0 = base.values[:, 0]
+        dq, d2q = exact_derivatives(base)
+        tt = theta + h * ks.astype(float)
+        dt = tt - theta
+        pred = x0[:, None] + dq[:, :1] * dt + 0.5 * d2q[:, :1] * dt**2
+        vals = solve_points(mechanism, pred, tt, what="round-off sample")[j]
+        vals[ks == 0] = x0[j]
+        est = float(np.sum(ws * vals) / h**scheme.derivative)
+    err = abs(est - exact)
+    return err / abs(exact) if exact != 0 else err

@@ -6,7 +6,7 @@ The table modules of :mod:`numkin.report` (:mod:`~numkin.report.convergence`,
 these: the input speed and the unknown studied, checked once; the grids in
 points per turn; the names and units of the quantities; sweeps and one-point
 solves on the branch of the sweep from the starting guess (:func:`branch_point`),
-polished to machine precision; the caption and the solved positions a table
+by numkin's Newton (:func:`solve_points`); the caption and the solved positions a table
 carries in ``DataFrame.attrs``.
 
 Examples
@@ -55,7 +55,8 @@ __all__ = [
     "check_index",
     "silenced",
     "median_time",
-    "polish",
+    "timing_repeats",
+    "solve_points",
     "solve_sweep",
     "branch_point",
     "position_record",
@@ -63,6 +64,7 @@ __all__ = [
     "exact_derivatives",
     "order_text",
     "set_caption",
+    "set_views",
     "grid_positions",
 ]
 
@@ -199,6 +201,15 @@ def silenced(fn, *args, **kwargs):
         return fn(*args, **kwargs)
 
 
+def timing_repeats(repeat) -> int:
+    """Timing repeats asked for: None or 0 means no timing (the default of every table); else an integer >= 1."""
+    if repeat is None:
+        return 0
+    if isinstance(repeat, bool) or int(repeat) != repeat or repeat < 0:
+        raise ValueError(f"repeat must be None (no timing) or a non-negative integer, got {repeat!r}")
+    return int(repeat)
+
+
 def median_time(fn: Callable[[], object], repeat: int, warmup: bool = True) -> float:
     """Median wall time of ``fn()`` in seconds over `repeat` repeats.
 
@@ -221,31 +232,40 @@ def median_time(fn: Callable[[], object], repeat: int, warmup: bool = True) -> f
     return statistics.median(samples)
 
 
-def polish(mechanism, x, t, *, max_iterations: int = 30):
-    """Newton on a batch until the step stops shrinking: positions to machine precision.
+def solve_points(mechanism, x0, t, *, what: str = "position") -> np.ndarray:
+    """Positions at the inputs `t` (rad, shape (M,)) by numkin's Newton from the starting points `x0` (n, M).
 
-    ``x`` (n, M) real or complex starting points at inputs ``t`` (M,), real
-    or complex. Raises RuntimeError if the residual is not at round-off.
+    One batch of :func:`numkin.newton.iterate` with the mechanism's residual
+    and symbolic Jacobian: the stopping rule of :mod:`numkin.newton` (scaled
+    residual at ``tol = 1e-12``, superlinear steps down to ``tol**(2/3)``, so
+    the error left is ``<= tol**(4/3)``) and its conditioning check (a
+    Jacobian with scaled condition number above 1e12 is refused, never
+    divided through). Each point is solved on its own from its starting
+    point, so a starting point on a branch keeps that branch.
+
+    Raises
+    ------
+    RuntimeError
+        If a point does not converge or meets a singular Jacobian, naming
+        its input angle.
     """
-    comp, p = mechanism.compiled, mechanism.parameter_values
-    xs = mechanism.xscale[:, None]
-    x = np.array(x, dtype=np.result_type(x, t), copy=True)
-    prev = np.inf
-    extra = 0
-    for _ in range(max_iterations):
-        f = comp.F(x, t, p)
-        dx = np.linalg.solve(comp.J(x, t, p), -f.T[..., None])[..., 0].T
-        x = x + dx
-        step = float(np.max(np.abs(dx) / xs))
-        if step <= 1e-15 or step >= prev:
-            extra += 1
-            if extra >= 2:
-                break
-        prev = min(prev, step)
-    res = np.max(np.abs(comp.F(x, t, p))) / mechanism.length_scale
-    if not res <= 1e-12:
-        raise RuntimeError(f"{mechanism.name}: position not solved to round-off (scaled residual {res:.3g})")
-    return x
+    from ..newton import iterate
+
+    t = np.asarray(t, dtype=float).reshape(-1)
+    x0 = np.asarray(x0, dtype=float).reshape(len(mechanism.unknowns), t.size)
+    out = iterate(
+        mechanism.residual_function(t), mechanism.jacobian_function(t), x0,
+        fscale=mechanism.length_scale, xscale=mechanism.xscale,
+    )
+    bad = np.flatnonzero(~out.converged)
+    if bad.size:
+        k = int(bad[0])
+        why = "singular Jacobian" if out.singular[k] else f"scaled residual {float(out.residual[k]):.3g}"
+        raise RuntimeError(
+            f"{mechanism.name}: {what} at input {math.degrees(float(t[k])):.6g} deg not solved by Newton ({why}; "
+            f"{bad.size} of {t.size} points)"
+        )
+    return out.x
 
 
 def solve_sweep(mechanism, inputs, guess=None, *, quiet: bool = True, **kwargs) -> Sweep:
@@ -256,18 +276,21 @@ def solve_sweep(mechanism, inputs, guess=None, *, quiet: bool = True, **kwargs) 
 
 
 def branch_point(mechanism, angle: float, guess=None, start: float = 0.0) -> Sweep:
-    """A one-point sweep at `angle` on the branch of the sweep from `start`, polished to machine precision.
+    """A one-point sweep at `angle` on the branch of the sweep from `start`.
 
     `guess` is the starting guess at `start` (as for every sweep of this
-    module: default the mechanism's own); the point is reached by
-    continuation from `start` to `angle`, never by applying the guess at
-    `angle`, so that it lies on the branch the tables' sweeps follow.
+    module: default the mechanism's own). The point is reached by
+    continuation from `start` to `angle` in steps of at most 1 deg, as the
+    scenes' sweeps go, never by applying the guess at `angle`; one more
+    Newton solve (:func:`solve_points`) from the sweep's value then brings
+    it to the last digits, the first point of a sweep included.
     """
     a, s0 = float(angle), float(start)
-    inputs = np.array([s0]) if a == s0 else np.array([s0, a])
+    count = max(2, int(math.ceil(abs(a - s0) / math.radians(1.0))) + 1)
+    inputs = np.array([s0]) if a == s0 else np.linspace(s0, a, count)
     s = solve_sweep(mechanism, inputs, guess)
     last = slice(inputs.size - 1, inputs.size)
-    x = polish(mechanism, s.values[:, last], s.inputs[last])
+    x = solve_points(mechanism, s.values[:, last], s.inputs[last], what="branch point")
     return Sweep(mechanism, s.inputs[last], x, s.iterations[last], s.residual[last], s.cond[last], list(s.events),
                  s.jacobian, s.tol)
 
@@ -299,6 +322,24 @@ def set_caption(df, text: str, positions: Sequence[dict] | None = None):
     df.attrs["caption"] = text
     if positions is not None:
         df.attrs["positions"] = list(positions)
+    return df
+
+
+def set_views(df, views: Sequence) -> object:
+    """Say how a wide table is read: ``attrs["views"]``, a list of ``[title, [columns]]``.
+
+    Each view is one idea of the table, a few columns wide, and becomes a
+    table of its own in Markdown and on the terminal
+    (:mod:`~numkin.report.writers`); CSV and LaTeX keep every column in one
+    table. Columns not in `df` are dropped from a view; empty views are left
+    out.
+    """
+    out = []
+    for title, cols in views:
+        cols = [c for c in cols if c in df.columns]
+        if cols:
+            out.append([str(title), list(cols)])
+    df.attrs["views"] = out
     return df
 
 

@@ -12,7 +12,7 @@ from ..errors import NumkinError
 from ..sweep import Sweep
 from .study import (
     TURN, check_index, deg_text, differenced, exact_derivatives, grid_inputs, input_speed, position_record,
-    quantity_labels, set_caption, solve_sweep, unknown_index,
+    quantity_labels, set_caption, set_views, solve_sweep, unknown_index,
 )
 
 __all__ = [
@@ -145,6 +145,9 @@ def _percent(value, exact, exact_all) -> float:
     return 100.0 * float(abs(value - exact) / abs(exact))
 
 
+#: Short names of the rules (the ``rule`` column of :func:`tolerance_table`).
+_SHORT = {"step": "absolute step (report 001)", "relative": "relative step (homework 003)", "residual": "residual"}
+
 #: Row labels of :func:`tolerance_table` for the rules of :func:`student_sweep`.
 _RULE_LABELS = {
     "step": "absolute step rule ||dx||_2 < tol, Newton from the previous solution (as in report 001)",
@@ -201,7 +204,7 @@ def tolerance_table(
     -------
     pandas.DataFrame
         Rows: the analytic reference, then the five solves. Columns
-        ``stopping rule``, ``tol`` (in the rule's own terms), ``Newton iterations per point
+        ``rule`` (a short name), ``stopping rule`` (in full), ``tol`` (in the rule's own terms), ``Newton iterations per point
         (mean)``, ``max |F| [length unit]``, ``position error estimate
         max|J^-1 F| [unit]`` (of the quantity, the size of the Newton step
         still missing), the velocity and acceleration at the check angle
@@ -251,6 +254,7 @@ def tolerance_table(
     lu = mechanism.length_unit
     rows = [
         {
+            "rule": "analytic",
             "stopping rule": "analytic (reference, on the tol = 1e-12 sweep)",
             "tol": math.nan,
             "Newton iterations per point (mean)": math.nan,
@@ -267,23 +271,23 @@ def tolerance_table(
         }
     ]
     solves = [
-        (_RULE_LABELS[rule], loose_tol,
+        (_SHORT[rule], _RULE_LABELS[rule], loose_tol,
          lambda rule=rule: student_sweep(mechanism, inputs, rule=rule, tol=loose_tol, guess=guess))
         for rule in STUDENT_RULES
     ] + [
-        (f"numkin sweep, tol = {loose_tol:g}: scaled residual <= tol, step <= tol^(2/3) = {loose_tol ** (2 / 3):.3g} "
+        (f"numkin, tol = {loose_tol:g}", f"numkin sweep, tol = {loose_tol:g}: scaled residual <= tol, step <= tol^(2/3) = {loose_tol ** (2 / 3):.3g} "
          "(passes at once: in effect a residual rule)", loose_tol,
          lambda: solve_sweep(mechanism, inputs, guess, tol=loose_tol)),
-        ("numkin sweep, tol = 1e-12 (default)", 1e-12, lambda: ref),
+        ("numkin, tol = 1e-12", "numkin sweep, tol = 1e-12 (default)", 1e-12, lambda: ref),
     ]
     comp, p = mechanism.compiled, mechanism.parameter_values
     angle_rows = np.array([u in mechanism.angles for u in mechanism.unknowns])
     positions = []
-    for label, tol, solve in solves:
+    for short, label, tol, solve in solves:
         try:
             s = solve()
         except (RuntimeError, ValueError, NumkinError) as exc:  # a loose solver that fails is a result too
-            rows.append({**{c: math.nan for c in rows[0]}, "stopping rule": label, "tol": float(tol),
+            rows.append({**{c: math.nan for c in rows[0]}, "rule": short, "stopping rule": label, "tol": float(tol),
                          "note": f"failed: {exc}"})
             continue
         positions.append(position_record(label, mechanism, inputs[k], s.values[:, k]))
@@ -309,6 +313,7 @@ def tolerance_table(
                 note = (note + "; " if note else "") + f"not differenced: {exc}"
         rows.append(
             {
+                "rule": short,
                 "stopping rule": label,
                 "tol": float(tol),
                 "Newton iterations per point (mean)": float(np.mean(s.iterations)),
@@ -328,6 +333,13 @@ def tolerance_table(
             }
         )
     df = pd.DataFrame(rows)
+    set_views(df, [
+        ("the stopping rules", ["rule", "stopping rule", "tol"]),
+        ("what each leaves in the positions", ["rule", "Newton iterations per point (mean)", f"max |F| [{lu}]",
+                                               f"position error estimate max|J^-1 F| [{lab['unit']}]", "note"]),
+        (f"velocity and acceleration {at}", ["rule", cols["w"], cols["we"], cols["a"], cols["ae"]]),
+        ("largest errors over the sweep", ["rule", cols["wm"], cols["am"], cols["where"]]),
+    ])
     return set_caption(
         df,
         f"Solver tolerance: {mechanism.name}, {quantity}, {int(points_per_turn)} points per turn, input speed {w:g} rad/s; "

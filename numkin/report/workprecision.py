@@ -11,7 +11,7 @@ from .. import analytic
 from .counting import COUNTED_FUNCTIONS, count_evaluations, stencil_evaluations
 from .study import (
     DEFAULT_GRIDS, TURN, UNIT, VARIES, differenced, exact_derivatives, grid_inputs, grid_positions, grid_study,
-    median_time, set_caption, silenced, solve_sweep,
+    median_time, set_caption, set_views, silenced, solve_sweep, timing_repeats,
 )
 
 __all__ = [
@@ -33,7 +33,7 @@ def work_precision_table(
     quantity: str,
     grids: Iterable[int] = DEFAULT_GRIDS,
     schemes: Sequence[str] | None = None,
-    repeat: int = 3,
+    repeat: int | None = None,
     start: float = 0.0,
     span: float = TURN,
     guess=None,
@@ -63,7 +63,7 @@ def work_precision_table(
       solves. A stencil evaluation (a few multiply-adds) is cheaper than a
       point evaluation (trigonometric functions), so counting each as one
       overstates, if anything, the cost of the finite differences;
-    * **run time** -- medians over `repeat` repeats of
+    * **run time** (only when asked for, with `repeat`) -- medians over `repeat` repeats of
       :func:`time.perf_counter` (after an untimed warm-up): the sweep, the
       derivative alone (:func:`numkin.kinematics.sweep_derivative`, or
       :func:`numkin.analytic.tangent` / :func:`~numkin.analytic.derivatives`,
@@ -81,8 +81,10 @@ def work_precision_table(
         Points per turn.
     schemes : sequence of str, optional
         Finite-difference schemes (default all applicable).
-    repeat : int
-        Timing repeats.
+    repeat : int, optional
+        Timing repeats. Default None: no timing; the table holds the exact
+        work only, is the same in every run and takes a fraction of the
+        time (timing calls every method many times over).
     start, span, guess
         As in :func:`convergence_table`.
 
@@ -99,7 +101,8 @@ def work_precision_table(
         quantity]``, ``max rel error [-]``, ``Pareto front (varies)`` (no
         other row of the same quantity is both faster, by total time, and at
         least as accurate) and ``Pareto front by work`` (the same by
-        ``work``: the same in every run). The error of the analytic rows is
+        ``work``: the same in every run). The time and ``Pareto front
+        (varies)`` columns are there only with `repeat`. The error of the analytic rows is
         measured against the complex step, all others against the analytic
         solution.
 
@@ -107,7 +110,7 @@ def work_precision_table(
     --------
     >>> from numkin import linkages
     >>> t = work_precision_table(linkages.slider_crank(80, 200), omega="6000 rpm", quantity="x",
-    ...                          grids=(36,), schemes=("centred",), repeat=1)
+    ...                          grids=(36,), schemes=("centred",))
     >>> list(t["method"])
     ['analytic', 'complex step', 'centred', 'analytic', 'complex step']
     >>> wd = t["derivative work [evaluations]"]
@@ -117,6 +120,7 @@ def work_precision_table(
     import pandas as pd
 
     w, j, lab, grid_list, periodic, scheme_list = grid_study(mechanism, omega, quantity, grids, span, schemes)
+    repeat = timing_repeats(repeat)
     rows = []
     per_grid = {}
     for n in grid_list:
@@ -133,10 +137,14 @@ def work_precision_table(
                 f"report.COUNTED_FUNCTIONS {sorted(COUNTED_FUNCTIONS)} no longer match numkin.compiled"
             )
         dq, d2q = exact_derivatives(s)
-        cs1 = silenced(analytic.complex_step, s, order=1)[j]
-        cs2 = silenced(analytic.complex_step, s, order=2)[j]
-        per_grid[n] = (run_sweep, s, dq[j], d2q[j], cs1, cs2, median_time(run_sweep, repeat), count.total,
-                       stencil_evaluations(s))
+        done = {}  # the complex step, counted once: the reference of the analytic rows and a row of its own
+        for o in (1, 2):
+            with count_evaluations(mechanism) as cs_count:
+                done[o] = (silenced(analytic.complex_step, s, order=o), cs_count.total)
+        cs1, cs2 = done[1][0][j], done[2][0][j]
+        t_sweep = median_time(run_sweep, repeat) if repeat else math.nan
+        per_grid[n] = (run_sweep, s, dq[j], d2q[j], cs1, cs2, t_sweep, count.total,
+                       stencil_evaluations(s), done)
 
     def method_fns(order):
         fns = [
@@ -152,11 +160,15 @@ def work_precision_table(
         scale = w if order == 1 else w * w
         for name, fn, differences in method_fns(order):
             for n in grid_list:
-                run_sweep, s, dq, d2q, cs1, cs2, t_sweep, sweep_work, stencils = per_grid[n]
+                run_sweep, s, dq, d2q, cs1, cs2, t_sweep, sweep_work, stencils, done = per_grid[n]
                 exact = dq if order == 1 else d2q
-                with count_evaluations(mechanism) as count:
-                    out = fn(s)
-                derivative_work = count.total + (stencils if differences else 0)
+                if name == "complex step":
+                    out, counted = done[order]
+                else:
+                    with count_evaluations(mechanism) as count:
+                        out = fn(s)
+                    counted = count.total
+                derivative_work = counted + (stencils if differences else 0)
                 if name == "analytic":
                     est, ref = exact, (cs1 if order == 1 else cs2)
                 else:
@@ -167,34 +179,44 @@ def work_precision_table(
                 ref_peak = float(np.max(np.abs(scale * ref)))
                 if periodic:  # the last sample repeats the first
                     err = err[:-1]
-                t_diff = median_time(lambda fn=fn, s=s: fn(s), repeat)
-                t_both = median_time(lambda fn=fn, run_sweep=run_sweep: fn(run_sweep()), repeat, warmup=False)
                 e_max = float(np.max(err))
-                rows.append(
-                    {
-                        "method": name,
-                        "quantity": lab[order],
-                        "points per turn": n,
-                        "h [deg]": 360.0 / n,
-                        _WORK_SWEEP: int(sweep_work),
-                        _WORK_DERIVATIVE: int(derivative_work),
-                        _WORK: int(sweep_work + derivative_work),
-                        f"sweep time [ms] {VARIES}": 1e3 * t_sweep,
-                        f"derivative time [ms] {VARIES}": 1e3 * t_diff,
-                        f"sweep + derivative time [ms] {VARIES}": 1e3 * t_both,
-                        f"max abs error {UNIT}": e_max,
-                        "max rel error [-]": e_max / ref_peak,
-                    }
-                )
+                row = {
+                    "method": name,
+                    "quantity": lab[order],
+                    "points per turn": n,
+                    "h [deg]": 360.0 / n,
+                    _WORK_SWEEP: int(sweep_work),
+                    _WORK_DERIVATIVE: int(derivative_work),
+                    _WORK: int(sweep_work + derivative_work),
+                }
+                if repeat:
+                    t_diff = median_time(lambda fn=fn, s=s: fn(s), repeat)
+                    t_both = median_time(lambda fn=fn, run_sweep=run_sweep: fn(run_sweep()), repeat, warmup=False)
+                    row[f"sweep time [ms] {VARIES}"] = 1e3 * t_sweep
+                    row[f"derivative time [ms] {VARIES}"] = 1e3 * t_diff
+                    row[f"sweep + derivative time [ms] {VARIES}"] = 1e3 * t_both
+                row[f"max abs error {UNIT}"] = e_max
+                row["max rel error [-]"] = e_max / ref_peak
+                rows.append(row)
     df = pd.DataFrame(rows)
-    df[f"Pareto front {VARIES}"] = _pareto(df, f"sweep + derivative time [ms] {VARIES}")
+    if repeat:
+        df[f"Pareto front {VARIES}"] = _pareto(df, f"sweep + derivative time [ms] {VARIES}")
     df[_PARETO_WORK] = _pareto(df, _WORK)
+    key = ["method", "quantity", "points per turn"]
+    set_views(df, [
+        ("error against work", key + [_WORK, f"max abs error {UNIT}", "max rel error [-]", _PARETO_WORK]),
+        ("where the work goes", key + ["h [deg]", _WORK_SWEEP, _WORK_DERIVATIVE]),
+        ("run time (varies between runs)", key + [
+            f"sweep time [ms] {VARIES}", f"derivative time [ms] {VARIES}", f"sweep + derivative time [ms] {VARIES}",
+            f"Pareto front {VARIES}"]),
+    ])
+    timing = (f"; median times of {int(repeat)} repeats (vary between runs)" if repeat
+              else "; not timed (pass repeat to time each row)")
     return set_caption(
         df,
         f"Work and precision: {mechanism.name}, {quantity}, input speed {w:g} rad/s; work = point evaluations of "
         "the compiled loop equations (sweep, analytic and complex-step derivatives) plus stencil evaluations "
-        f"(finite differences), exact and the same in every run; median times of {int(repeat)} repeats (vary "
-        "between runs); beside the max error over the sweep.",
+        f"(finite differences), exact and the same in every run{timing}; beside the max error over the sweep.",
         grid_positions(mechanism, {n: per_grid[n][1] for n in grid_list}, None),
     )
 

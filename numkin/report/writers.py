@@ -10,11 +10,15 @@ import numpy as np
 
 __all__ = [
     "write_tables",
+    "format_text",
+    "format_cell",
+    "column_format",
+    "table_views",
 ]
 
 
 def _cell(value) -> str:
-    """One table cell as text: 6 significant digits, blanks for NaN, yes/no for booleans."""
+    """One table cell as text for LaTeX: 6 significant digits, blanks for NaN, yes/no for booleans."""
     if isinstance(value, (bool, np.bool_)):
         return "yes" if value else "no"
     if isinstance(value, (int, np.integer)):
@@ -24,6 +28,135 @@ def _cell(value) -> str:
             return ""
         return f"{float(value):.6g}"
     return "" if value is None else str(value)
+
+
+def column_format(column: str) -> str:
+    """The number format of a column, chosen from its name (Python format spec, or ``"int"``).
+
+    Errors, residuals, norms, condition numbers and times: 3 significant
+    figures; orders: 2 decimals; counts (iterations, points, evaluations):
+    integers, a mean of them 1 decimal; estimated optimal steps 2
+    significant figures; exact values and other quantities 7 significant
+    figures, exact values 6 decimals (7 significant figures outside
+    1e-3 ... 1e4); inputs (steps, angles, tolerances) as given (up to 6
+    significant figures).
+
+    Examples
+    --------
+    >>> [column_format(c) for c in ("max abs error [rad/s]", "observed order [-]", "points per turn",
+    ...                              "h [deg]", "exact value [unit of quantity]")]
+    ['.3g', '.2f', 'int', '.6g', 'exact']
+    """
+    c = column.lower()
+    if c.endswith("optimal h [rad]"):
+        return ".2g"
+    if c.startswith("exact value"):
+        return "exact"
+    if "order" in c and "formal" not in c:
+        return ".2f"
+    if "(mean)" in c or "mean" in c.split():
+        return ".1f"
+    if any(w in c for w in ("iteration", "points", "evaluations", "count")):
+        return "int"
+    if any(w in c for w in ("error", "residual", "norm", "cond", "difference", "|f|", "j^-1", "time", "[%]")):
+        return ".3g"
+    if c.startswith("h ") or c.startswith("tol") or "wanted" in c or "[deg]" in c or c.startswith("delta"):
+        return ".6g"
+    return ".7g"
+
+
+def format_cell(value, column: str = "") -> str:
+    """One cell as text, by its column's format (:func:`column_format`); NaN and None are blank.
+
+    Examples
+    --------
+    >>> format_cell(2.85596, "Newton iterations per point (mean)"), format_cell(0.000942185, "rel error [%]")
+    ('2.9', '0.000942')
+    >>> format_cell(float("nan"), "max abs error"), format_cell(True, "Pareto front"), format_cell(-0.0, "x [mm]")
+    ('', 'yes', '0')
+    """
+    if value is None:
+        return ""
+    if isinstance(value, (bool, np.bool_)):
+        return "yes" if value else "no"
+    if isinstance(value, (int, np.integer, float, np.floating)):
+        v = float(value)
+        if math.isnan(v):
+            return ""
+        if math.isinf(v):
+            return "inf" if v > 0 else "-inf"
+        fmt = column_format(column)
+        if fmt == "int":
+            text = str(int(round(v)))
+        elif fmt == "exact":
+            text = f"{v:.6f}" if 1e-3 <= abs(v) < 1e4 else format(v, ".7g")
+        else:
+            text = format(v, fmt)
+        if text.lstrip("-").strip("0.e+") == "":  # a negative zero, or a value that rounds to zero
+            text = text.lstrip("-")
+        return text
+    return str(value)
+
+
+def table_views(df) -> list:
+    """The parts a table is read in: ``[(title, DataFrame)]`` from ``attrs["views"]``, else the whole table."""
+    views = df.attrs.get("views") or []
+    out = [(str(title), df[[c for c in cols if c in df.columns]]) for title, cols in views]
+    return [(t, v) for t, v in out if v.shape[1]] or [("", df)]
+
+
+def _md_escape(text: str) -> str:
+    """Text safe in a GitHub-flavoured Markdown table cell: ``|`` escaped, no line breaks."""
+    return str(text).replace("\\", "\\\\").replace("|", "\\|").replace("\n", " ")
+
+
+def _markdown_table(df) -> str:
+    """A GitHub-flavoured Markdown table (pipe table) with per-column number formats."""
+    numeric = [df[c].dtype.kind in "iuf" for c in df.columns]
+    header = "| " + " | ".join(_md_escape(c) for c in df.columns) + " |"
+    rule = "|" + "|".join("---:" if isnum else ":---" for isnum in numeric) + "|"
+    lines = [header, rule]
+    for row in df.itertuples(index=False):
+        lines.append("| " + " | ".join(_md_escape(format_cell(v, c)) for v, c in zip(row, df.columns)) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def format_text(df, *, width: int = 100) -> str:
+    """A table for the terminal: its caption wrapped to `width`, then each view as a plain text table.
+
+    Numbers as in Markdown (:func:`format_cell`), NaN blank, one view per
+    block, so that a wide table is read in parts no wider than its view;
+    headers wrap at 14 characters over numbers, 24 over text, and text
+    cells at 40.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> print(format_text(pd.DataFrame({"scheme": ["centred"], "max abs error [rad/s]": [2.5e-4],
+    ...                                  "observed order [-]": [1.998]})))
+    scheme      max abs error    observed order
+                      [rad/s]               [-]
+    --------  ---------------  ----------------
+    centred           0.00025              2.00
+    """
+    import textwrap
+
+    from tabulate import tabulate
+
+    blocks = []
+    caption = df.attrs.get("caption")
+    if caption:
+        blocks.append(textwrap.fill(str(caption), width=width))
+    for title, view in table_views(df):
+        cells = [[format_cell(v, c) for v, c in zip(row, view.columns)] for row in view.itertuples(index=False)]
+        align = ["right" if view[c].dtype.kind in "iuf" else "left" for c in view.columns]
+        text = tabulate(
+            cells, headers=list(view.columns), disable_numparse=True, colalign=align,
+            maxcolwidths=[None if a == "right" else 40 for a in align],
+            maxheadercolwidths=[14 if a == "right" else 24 for a in align],
+        )
+        blocks.append((f"{title}\n" if title else "") + text)
+    return "\n\n".join(blocks)
 
 
 _TEX_SPECIAL = {
@@ -74,22 +207,17 @@ def _booktabs(df, name: str) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _require_tabulate() -> None:
-    try:
-        import tabulate  # noqa: F401  (pandas.DataFrame.to_markdown needs it)
-    except ImportError:
-        raise ImportError(
-            "writing Markdown tables needs the 'tabulate' package (pip install tabulate); "
-            "or call write_tables(..., formats=('csv', 'tex'))"
-        ) from None
-
-
 def _markdown(df) -> str:
-    _require_tabulate()
-    align = ["right" if df[c].dtype.kind in "iuf" else "left" for c in df.columns]
-    text = df.map(_cell).to_markdown(index=False, disable_numparse=True, colalign=align)
+    """A table as Markdown: its caption, then each view (:func:`table_views`) under a bold title."""
+    parts = []
     caption = df.attrs.get("caption")
-    return (f"{caption}\n\n" if caption else "") + text + "\n"
+    if caption:
+        parts.append(_md_escape(caption))
+    for title, view in table_views(df):
+        if title:
+            parts.append(f"**{_md_escape(title)}**")
+        parts.append(_markdown_table(view))
+    return "\n\n".join(p.rstrip("\n") for p in parts) + "\n"
 
 
 def write_tables(tables: Mapping, out_dir, formats: Sequence[str] = ("md", "csv", "tex")) -> list:
@@ -102,10 +230,13 @@ def write_tables(tables: Mapping, out_dir, formats: Sequence[str] = ("md", "csv"
     out_dir : str or Path
         Directory, created if needed.
     formats : sequence of {"md", "csv", "tex"}
-        Markdown (``DataFrame.to_markdown``, needs ``tabulate``), CSV (full
-        precision, empty cells for NaN) and LaTeX with booktabs rules. A
-        table's ``attrs["caption"]`` heads the Markdown and becomes the
-        LaTeX caption.
+        Markdown (GitHub-flavoured pipe tables, ``|`` escaped, numbers with
+        the significant figures of their column, :func:`format_cell`; a
+        wide table in the parts named by ``attrs["views"]``, one idea
+        each), CSV (every column, full precision, empty cells for NaN) and
+        LaTeX with booktabs rules (every column). A table's
+        ``attrs["caption"]`` heads the Markdown and becomes the LaTeX
+        caption.
 
     Returns
     -------
@@ -126,8 +257,6 @@ def write_tables(tables: Mapping, out_dir, formats: Sequence[str] = ("md", "csv"
     bad = [f for f in formats if f not in allowed]
     if bad:
         raise ValueError(f"unknown table format(s) {bad}; choose from {list(allowed)}")
-    if "md" in formats:
-        _require_tabulate()  # fail before any file is written
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written = []
