@@ -200,6 +200,8 @@ def contenders(settings: Settings, linkage: str, n: int, *, packages: bool = Tru
     if packages and linkage == "four-bar":
         for found in (others.pylinkage_four_bar(*FOUR_BAR, n, OMEGA), others.mechanism_four_bar(*FOUR_BAR, n, OMEGA)):
             fns.update(found or {})
+    elif packages:
+        fns.update(others.pylinkage_chained(n, OMEGA) or {})
     times = interleaved({name: fn for name, (fn, _) in fns.items()}, settings.repeat, settings.min_time, scale)
     cf, cfr, ideal = times["closed form"], times["closed form + ω, α"], times["hand-written vectorised Newton"]
     table = Table(f"{linkage}, N = {n} input angles (one process)",
@@ -212,8 +214,10 @@ def contenders(settings: Settings, linkage: str, n: int, *, packages: bool = Tru
     table.notes.append(f"CPU time, median of {settings.repeat} interleaved rounds; numkin's positions differ from the closed "
                        f"form by at most {check[0]:.1e} rad and from the hand-written Newton by {check[1]:.1e} rad; "
                        f"input speed {OMEGA:g} rad/s")
-    if packages and linkage == "four-bar":
+    if packages:
         missing = [p for p in others.PACKAGES if others.status(p) is None]
+        if linkage != "four-bar":
+            table.notes.append("on this linkage only pylinkage of the other packages is measured")
         if missing:
             table.notes.append("not installed here, so not measured: " + ", ".join(missing))
     return table
