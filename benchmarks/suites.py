@@ -317,16 +317,23 @@ def rebuild(settings: Settings, n: int = 36) -> Table:
     full = {k: make(k) for k in settings.rebuild_loops}
     fns = {("build", k): f for k, f in build_only.items()} | {("full", k): f for k, f in full.items()}
     times = interleaved(fns, settings.rebuild_repeat, min_time=0.0)
-    table = Table("Rebuild of a same-shape chain of K four-bars (one process, after a first build of each)",
-                  ["K loops", "Mechanism(...) [ms]", f"build + sweep of {n} + first ω, α [ms]", "ratio to K = 1"])
+    code = ("import numpy as np; from benchmarks import chains, reference; from numkin import analytic; "
+            "analytic.derivatives(chains.build(reference.repeated_chain({k})).sweep(np.linspace(0, 2 * np.pi, {n})))")
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    fresh = interleaved_commands({k: [sys.executable, "-c", code.format(k=k, n=n)] for k in settings.rebuild_loops},
+                                 settings.rebuild_repeat, cwd=root)
+    table = Table("Rebuild of a same-shape chain of K four-bars",
+                  ["K loops", "Mechanism(...) [ms]", f"build + sweep of {n} + first ω, α [ms]", "ratio to K = 1",
+                   "the same in a new process, with imports [s CPU]"])
     base = times[("full", settings.rebuild_loops[0])]
     for k in settings.rebuild_loops:
         table.rows.append([k, f"{_ms(times[('build', k)]):.4g}", f"{_ms(times[('full', k)]):.4g}",
-                           f"{times[('full', k)] / base:.3g}"])
+                           f"{times[('full', k)] / base:.3g}", f"{fresh[k][1]:.3f}"])
     ks = np.array(settings.rebuild_loops, dtype=float)
     if ks.size > 1:
         slope = np.polyfit(np.log(ks), np.log([times[("full", int(k))] for k in ks]), 1)[0]
         table.notes.append(f"log-log slope of build + sweep + first ω, α against K: {slope:.2f}")
-    table.notes.append(f"CPU time, median of {settings.rebuild_repeat} interleaved rounds; every build has new lengths "
-                       "(same expressions, new values)")
+    table.notes.append(f"CPU time, median of {settings.rebuild_repeat} interleaved rounds; in process, after a first "
+                       "build of each K, every build has new lengths (same expressions, new values); the new-process "
+                       "column is the child's user + system time of a repeated run (one untimed run first)")
     return table
