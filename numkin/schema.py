@@ -480,22 +480,18 @@ def input_rate(value, order: int) -> float:
 
 
 def _read_input(r: SceneReader, scene: Scene, inp: dict) -> None:
-    if "speed" in inp:
-        scene.speed_text = str(inp["speed"])
+    for key, order in (("speed", 1), ("acceleration", 2)):
+        if key not in inp:
+            continue
+        setattr(scene, f"{key}_text", str(inp[key]))
         try:
-            scene.speed = input_rate(inp["speed"], 1)
+            setattr(scene, key, input_rate(inp[key], order))
         except (UnitError, TypeError) as error:
-            r.fail("[input] speed", str(error))
-        if scene.speed == 0:
-            r.fail("[input] speed", f"must not be zero, got {inp['speed']!r}")
-    elif scene.differentiates:
+            r.fail(f"[input] {key}", str(error))
+    if "speed" in inp and scene.speed == 0:
+        r.fail("[input] speed", f"must not be zero, got {inp['speed']!r}")
+    if "speed" not in inp and scene.differentiates:
         r.fail("[input]", "missing key 'speed' (e.g. \"450 rad/min\"), needed for velocity and acceleration")
-    if "acceleration" in inp:
-        scene.acceleration_text = str(inp["acceleration"])
-        try:
-            scene.acceleration = input_rate(inp["acceleration"], 2)
-        except (UnitError, TypeError) as error:
-            r.fail("[input] acceleration", str(error))
     scene.start_deg = r.number(inp.get("start_deg", 0.0), "[input] start_deg")
     scene.stop_deg = r.number(inp.get("stop_deg", 360.0), "[input] stop_deg")
     scene.step_deg = r.number(inp.get("step_deg", 1.0), "[input] step_deg")

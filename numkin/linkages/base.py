@@ -148,11 +148,8 @@ def length(name: str, value) -> float:
     >>> length("crank", "2")
     2.0
     """
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} = {value!r} is not a number") from None
-    if not math.isfinite(v) or v <= 0:
+    v = finite(name, value)
+    if v <= 0:
         raise ValueError(f"{name} = {value!r} must be a positive, finite length")
     return v
 
