@@ -206,7 +206,7 @@ def _about(scene):
 
 # ----------------------------------------------------------------------- commands
 def _cmd_scenes(args) -> int:
-    from .scene import list_scenes
+    from .schema import list_scenes
 
     scenes = list_scenes()
     width = max(map(len, scenes), default=0)
@@ -284,7 +284,7 @@ def _stability_report(scene) -> dict:
 
 
 def _scenes_for_figures(args) -> list[str]:
-    from .scene import list_scenes
+    from .schema import list_scenes
 
     if args.all and args.scenes:
         raise ValueError("give scene names or --all, not both")

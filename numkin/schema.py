@@ -4,7 +4,7 @@ The file format is described in :mod:`numkin.scene`. :func:`load_scene`
 reads a built-in scene or a path, validates it section by section and
 returns a :class:`Scene`; every mistake raises :class:`SceneError` with one
 line naming the file, the key and the value. Validation imports neither
-sympy, pandas nor matplotlib; the ``[mechanism]`` section is read by
+sympy, pandas nor matplotlib (and listing the scenes not even numpy); the ``[mechanism]`` section is read by
 :mod:`numkin.assemble`, which also builds the mechanism.
 
 Examples
@@ -26,10 +26,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Mapping
 
-import numpy as np
-
 from .errors import NumkinError
-from .units import UnitError, angular_acceleration, angular_speed, convert_length
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -145,6 +142,8 @@ class SceneReader:
             m = re.fullmatch(r"\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([A-Za-z]+)\s*", value)
             if m is None:
                 self.fail(where, f"cannot read {value!r} as a length; write a number (in {unit}) or e.g. '80 mm'")
+            from .units import UnitError, convert_length
+
             try:
                 v = float(convert_length(float(m[1]), m[2], unit))
             except UnitError as error:
@@ -242,8 +241,10 @@ class Scene:
     def n_points(self) -> int:
         return int(round((self.stop_deg - self.start_deg) / self.step_deg)) + 1
 
-    def inputs(self) -> np.ndarray:
-        """The input sweep, rad."""
+    def inputs(self):
+        """The input sweep, rad (a numpy array)."""
+        import numpy as np
+
         return np.radians(self.start_deg + self.step_deg * np.arange(self.n_points))
 
     def fail(self, where: str, message: str):
@@ -476,10 +477,14 @@ def input_rate(value, order: int) -> float:
     >>> input_rate("450 rad/min", 1), input_rate("2 rev/s^2", 2) / math.pi
     (7.5, 4.0)
     """
+    from .units import angular_acceleration, angular_speed
+
     return angular_speed(value) if order == 1 else angular_acceleration(value)
 
 
 def _read_input(r: SceneReader, scene: Scene, inp: dict) -> None:
+    from .units import UnitError
+
     for key, order in (("speed", 1), ("acceleration", 2)):
         if key not in inp:
             continue
