@@ -8,16 +8,43 @@ come from finite-difference schemes (:mod:`numkin.derivatives`) and from the
 differentiated loop equations (:mod:`numkin.analytic`).
 
 Radians inside; degrees only at the edges, always labelled.
+
+Importing numkin is light: the submodules and the names below are loaded on
+first use (sympy, pandas and matplotlib only by the stages that need them).
+
+Examples
+--------
+>>> import numkin
+>>> numkin.Mechanism.__name__
+'Mechanism'
 """
 
-from . import analytic, compare, derivatives, kinematics, linkages, units
+from __future__ import annotations
+
+import importlib
+import sys
+import types
+
 from .errors import AssemblyError, BranchError, ConvergenceError, NumkinError
-from .loops import Loop
-from .mechanism import Mechanism
-from .newton import NewtonResult, newton
-from .sweep import SingularityWarning, Sweep, SweepEvent
 
 __version__ = "0.1.0"
+
+#: Name -> module it is defined in (loaded on first use).
+_NAMES = {
+    "Loop": "loops",
+    "Mechanism": "mechanism",
+    "NewtonResult": "newton",
+    "newton": "newton",
+    "SingularityWarning": "sweep",
+    "Sweep": "sweep",
+    "SweepEvent": "sweep",
+}
+#: Submodules reachable as attributes of the package without importing them first.
+_SUBMODULES = (
+    "analytic", "animate", "bench", "cli", "compare", "compiled", "derivatives", "figures", "kinematics",
+    "linkages", "loops", "mechanism", "newton", "outputs", "pipeline", "quantities", "report", "scene",
+    "schema", "schemes", "stability", "sweep", "units",
+)
 
 __all__ = [
     "AssemblyError",
@@ -38,3 +65,32 @@ __all__ = [
     "newton",
     "units",
 ]
+
+
+def __getattr__(name: str):
+    """Load a submodule or a public name on first use (PEP 562)."""
+    if name in _NAMES:
+        value = getattr(importlib.import_module(f".{_NAMES[name]}", __name__), name)
+    elif name in _SUBMODULES:
+        value = importlib.import_module(f".{name}", __name__)
+    else:
+        raise AttributeError(f"module 'numkin' has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list:
+    return sorted(set(globals()) | set(_NAMES) | set(_SUBMODULES))
+
+
+class _Package(types.ModuleType):
+    """The package module: a public name (``numkin.newton``, the function) is not replaced by the
+    submodule of the same name when that submodule is imported."""
+
+    def __setattr__(self, name, value):
+        if name in _NAMES and isinstance(value, types.ModuleType):
+            return
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Package

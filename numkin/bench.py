@@ -39,15 +39,17 @@ import time
 
 import numpy as np
 
+from . import linkages
+
 __all__ = ["run", "format_report", "textbook_sweep", "closed_form_sweep", "main"]
 
-#: The homework's dimensions (in) and starting guesses (deg).
-LINKAGE_1 = dict(fixed=7.0, inp=1.94, coupler=6.86, out=2.36, guess=(45.0, 60.0))
-LINKAGE_2 = dict(fixed=1.25, inp=2.39, coupler=1.87, out=1.26, guess=(30.0, 270.0))
-OFFSET_DEG = 149.0
-#: Speed targets: at least 500x faster than the textbook way, within 20x of the closed form.
-TARGET_SPEEDUP = 500.0
-TARGET_CLOSED_FORM = 20.0
+_HOMEWORK = linkages.spec("chained_four_bars").defaults()
+#: The homework's dimensions (in, from the chained four-bars' spec) and starting guesses (deg).
+LINKAGE_1 = dict(fixed=_HOMEWORK["fixed1"], inp=_HOMEWORK["input1"], coupler=_HOMEWORK["coupler1"],
+                 out=_HOMEWORK["output1"], guess=(45.0, 60.0))
+LINKAGE_2 = dict(fixed=_HOMEWORK["fixed2"], inp=_HOMEWORK["input2"], coupler=_HOMEWORK["coupler2"],
+                 out=_HOMEWORK["output2"], guess=(30.0, 270.0))
+OFFSET_DEG = math.degrees(_HOMEWORK["offset"])
 
 
 # --------------------------------------------------------------------- (a)
@@ -163,7 +165,7 @@ def run(repeat: int = 5, *, textbook_points: int = 12, inner_seconds: float = 0.
         ``time [ms]`` (for all 361 angles), ``time / numkin`` and
         ``max |diff| [rad]`` (largest difference from numkin's angles, mod
         2 pi). ``attrs`` hold ``speedup_vs_textbook`` (a / b),
-        ``slowdown_vs_closed_form`` (b / c), the targets and ``repeat``.
+        ``slowdown_vs_closed_form`` (b / c) and ``repeat``.
     """
     import pandas as pd
 
@@ -225,8 +227,6 @@ def run(repeat: int = 5, *, textbook_points: int = 12, inner_seconds: float = 0.
         {
             "speedup_vs_textbook": med["textbook"] / med["numkin"],
             "slowdown_vs_closed_form": med["numkin"] / med["closed form"],
-            "target_speedup": TARGET_SPEEDUP,
-            "target_closed_form": TARGET_CLOSED_FORM,
             "repeat": repeat,
             "textbook_points": textbook_points,
             "version": __version__,
@@ -236,7 +236,7 @@ def run(repeat: int = 5, *, textbook_points: int = 12, inner_seconds: float = 0.
 
 
 def format_report(df) -> str:
-    """A plain-text report of :func:`run`'s table: times, ratios and the targets."""
+    """A plain-text report of :func:`run`'s table: times and ratios (measurements only)."""
     a = df.attrs
     lines = [
         f"chained four-bars, 361 input angles (median of {a.get('repeat', '?')} repeats; "
@@ -250,12 +250,10 @@ def format_report(df) -> str:
             f"{row['max |diff| [rad]']:>18.2e}  {row['description']}"
         )
     speed, slow = a["speedup_vs_textbook"], a["slowdown_vs_closed_form"]
-    ok1 = "met" if speed >= a["target_speedup"] else "NOT met"
-    ok2 = "met" if slow <= a["target_closed_form"] else "NOT met"
     lines += [
         "",
-        f"numkin vs textbook:    {speed:,.0f}x faster (target >= {a['target_speedup']:g}x: {ok1})",
-        f"numkin vs closed form: {slow:.1f}x slower (target <= {a['target_closed_form']:g}x: {ok2})",
+        f"textbook / numkin:    {speed:,.0f}",
+        f"numkin / closed form: {slow:.1f}",
     ]
     return "\n".join(lines)
 

@@ -183,9 +183,30 @@ def _progress(desc: str, total: int | None = None):
         bar.close()
 
 
+@contextmanager
+def _about(scene):
+    """Errors of the solver (and numerical failures) raised inside carry the scene's file name.
+
+    A :class:`~numkin.scene.SceneError` already names its file; any other
+    :class:`~numkin.NumkinError`, ``ValueError`` or ``ArithmeticError`` gets the
+    attribute ``scene_source``, which :func:`main` prints before the message.
+    """
+    try:
+        yield
+    except (NumkinError, ValueError, ArithmeticError) as error:
+        from .scene import SceneError
+
+        if not isinstance(error, SceneError) and getattr(error, "scene_source", None) is None:
+            try:
+                error.scene_source = scene.source
+            except AttributeError:  # pragma: no cover - exceptions without a __dict__
+                pass
+        raise
+
+
 # ----------------------------------------------------------------------- commands
 def _cmd_scenes(args) -> int:
-    from .scene import list_scenes
+    from .schema import list_scenes
 
     scenes = list_scenes()
     width = max(map(len, scenes), default=0)
@@ -198,7 +219,7 @@ def _cmd_run(args) -> int:
     from .scene import load_scene, run_scene
 
     scene = load_scene(args.scene)
-    with _progress(scene.name) as step:
+    with _progress(scene.name) as step, _about(scene):
         result = run_scene(scene, out=args.out, at=args.at, progress=step)
     if args.format == "json":
         print(json.dumps(result.to_dict(), indent=2, allow_nan=False))
@@ -222,24 +243,29 @@ def _cmd_run(args) -> int:
 
 
 def _cmd_report(args) -> int:
-    import pandas as pd
-
-    from . import report
     from .scene import load_scene
 
     scene = load_scene(args.scene)
-    if scene.kind != "mechanism" or not scene.speed:
-        raise ValueError(f"scene '{scene.name}' has no mechanism with an input speed: nothing to report")
-    with _progress(f"{scene.name} report") as step:
-        step("mechanism")
-        mech = scene.build_mechanism()
-        step("tables")
-        tables = report.full_report(mech, **scene.report_options(mech))
-        written = []
-        if args.out:
-            step("writing")
-            named = {f"{scene.name}-{k}": v for k, v in tables.items()}
-            written = list(report.write_tables(named, Path(args.out)))
+    if scene.kind == "stability":
+        tables = _stability_report(scene)
+    elif not scene.speed:
+        raise ValueError(f"{scene.source}: [input] has no speed: the error tables are of velocities and accelerations")
+    else:
+        from . import report
+
+        with _progress(f"{scene.name} report") as step, _about(scene):
+            step("mechanism")
+            mech = scene.build_mechanism()
+            step("tables")
+            tables = report.full_report(mech, **scene.report_options(mech))
+    written = []
+    if args.out:
+        from .report import write_tables
+
+        named = {f"{scene.name}-{k}": v for k, v in tables.items()}
+        written = list(write_tables(named, Path(args.out)))
+    import pandas as pd
+
     with pd.option_context("display.width", 200, "display.max_columns", 50):
         for name, table in tables.items():
             print(f"## {name}\n{table.to_string(index=not isinstance(table.index, pd.RangeIndex))}\n")
@@ -248,8 +274,17 @@ def _cmd_report(args) -> int:
     return 0
 
 
+def _stability_report(scene) -> dict:
+    """The stability scene's report: its suite's table (:func:`numkin.stability.run_suite`)."""
+    from .scene import run_scene
+
+    with _progress(f"{scene.name} report") as step, _about(scene):
+        result = run_scene(scene, progress=step)
+    return {"stability": result.suite}
+
+
 def _scenes_for_figures(args) -> list[str]:
-    from .scene import list_scenes
+    from .schema import list_scenes
 
     if args.all and args.scenes:
         raise ValueError("give scene names or --all, not both")
@@ -274,9 +309,10 @@ def _cmd_figures(args) -> int:
                 if not args.all:
                     print(f"{PROG}: scene '{scene.name}' asks for no figures", file=sys.stderr)
                 continue
-            result = run_scene(scene, figures=False)
-            written += render_figures(result, out / scene.name, formats=tuple(args.formats),
-                                      progress=lambda label: step(f"{scene.name}: {label}", advance=False))
+            with _about(scene):
+                result = run_scene(scene, figures=False)
+                written += render_figures(result, out / scene.name, formats=tuple(args.formats),
+                                          progress=lambda label: step(f"{scene.name}: {label}", advance=False))
         step()
     for path in written:
         print(path)
@@ -293,7 +329,7 @@ def _cmd_animate(args) -> int:
     if path.suffix.lower() != ".gif":
         raise ValueError(f"--out {args.out!r}: the animation is written as a GIF (Pillow); give a .gif file")
     frames = args.frames or scene.animation.get("frames", 72)
-    with _progress(f"{scene.name} animation") as step:
+    with _progress(f"{scene.name} animation") as step, _about(scene):
         result = run_scene(scene, progress=step)
         step("frames")
         from . import animate
@@ -485,7 +521,11 @@ def main(argv=None) -> int:
             warnings.showwarning = _show_warning
             return args.func(args)
     except (NumkinError, ValueError) as error:
-        print(f"{PROG}: error: {_one_line(error)}", file=sys.stderr)
+        print(f"{PROG}: error: {_where(error)}{_one_line(error)}", file=sys.stderr)
+        return 2
+    except ArithmeticError as error:  # overflow or division by zero deep in the numbers
+        print(f"{PROG}: error: {_where(error)}numerical failure ({type(error).__name__}: {_one_line(error)}); "
+              "check the scene's dimensions and their unit", file=sys.stderr)
         return 2
     except OSError as error:
         where = f" {error.filename!r}" if error.filename else ""
@@ -499,6 +539,12 @@ def main(argv=None) -> int:
 def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
     """Warnings (near-singular positions, skipped figures) as one line on stderr."""
     print(f"{PROG}: warning: {_one_line(message)}", file=sys.stderr)
+
+
+def _where(error: BaseException) -> str:
+    """``"<scene file>: "`` for an error raised while solving a scene, else nothing."""
+    source = getattr(error, "scene_source", None)
+    return f"{source}: " if source else ""
 
 
 def _one_line(error: BaseException) -> str:

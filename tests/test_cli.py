@@ -312,6 +312,7 @@ def test_bench_prints_the_report(capsys, monkeypatch):
     import types
 
     import numkin
+    import numkin.bench  # noqa: F401  (the real module is what the patches below restore)
 
     calls = {}
     fake = types.SimpleNamespace(
@@ -335,3 +336,69 @@ def test_stability_scene_with_chosen_cases(capsys, tmp_path):
     path = write(tmp_path, scene.format(second="cannot asemble (10, 6, 1, 1)"))
     code, _, err = run(capsys, "run", path)
     assert code == 2 and "did you mean 'cannot assemble (10, 6, 1, 1)'" in one_line_error(err)
+
+
+# ------------------------------------------------- solver errors, start-up
+def test_solver_error_is_one_line_naming_the_scene_file(capsys, tmp_path):
+    text = FOUR_BAR.format(ground=10, crank=6, coupler=1, rocker=1, speed="1 rad/s")
+    path = write(tmp_path, text, name="cannot-assemble.toml")
+    code, out, err = run(capsys, "run", path)
+    line = one_line_error(err)
+    assert code == 2 and out == ""
+    assert line.startswith("numkin: error: cannot-assemble.toml: ") and "cannot be assembled at all" in line
+
+
+def test_overflowing_dimensions_are_one_line_naming_the_scene_file(capsys, tmp_path):
+    text = FOUR_BAR.format(ground=4e160, crank=1e160, coupler=3e160, rocker=3e160, speed="1 rad/s")
+    path = write(tmp_path, text, name="huge.toml")
+    code, _, err = run(capsys, "run", path)
+    line = one_line_error(err)
+    assert code == 2 and line.startswith("numkin: error: huge.toml: ")
+
+
+def test_report_of_a_stability_scene_is_its_suite(capsys, tmp_path):
+    cases = ["cannot assemble (10, 6, 1, 1)", "non-Grashof (7, 4, 3, 5), full turn"]
+    path = write(tmp_path, f'[scene]\ndescription = "two cases"\n[stability]\ncases = {json.dumps(cases)}\n')
+    out_dir = tmp_path / "report"
+    code, out, err = run(capsys, "report", path, "--out", str(out_dir))
+    assert code == 0, err
+    assert out.startswith("## stability") and all(c in out for c in cases)
+    with open(out_dir / "scene-stability.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert [r["case"] for r in rows] == cases and {r["outcome"] for r in rows} == {"AssemblyError"}
+    assert (out_dir / "scene-stability.md").is_file() and (out_dir / "scene-stability.tex").is_file()
+
+
+def test_report_without_a_speed_is_one_line(capsys):
+    code, _, err = run(capsys, "report", "quick-return")
+    assert code == 2 and "has no speed" in one_line_error(err)
+
+
+@pytest.mark.parametrize("argv", [[], ["--help"], ["scenes"]])
+def test_start_up_loads_no_sympy_pandas_or_matplotlib(argv):
+    """``import numkin``, ``numkin --help`` and ``numkin scenes`` stay light (a fresh interpreter each):
+    not even numpy is needed to list the scenes."""
+    code = (
+        "import sys, contextlib, io\n"
+        "import numkin\n"
+        "from numkin.cli import main\n"
+        f"argv = {argv!r}\n"
+        "if argv:\n"
+        "    with contextlib.redirect_stdout(io.StringIO()):\n"
+        "        assert main(argv) == 0\n"
+        "heavy = [m for m in ('sympy', 'pandas', 'matplotlib', 'numpy') if m in sys.modules]\n"
+        "assert not heavy, heavy\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+
+
+def test_lazy_names_of_the_package():
+    import numkin
+
+    assert numkin.Mechanism.__name__ == "Mechanism" and callable(numkin.newton)
+    import numkin.newton as _  # noqa: F401  (importing the submodule keeps numkin.newton the function)
+
+    assert callable(numkin.newton) and numkin.newton.__name__ == "newton"
+    with pytest.raises(AttributeError, match="no attribute 'nonexistent'"):
+        numkin.nonexistent  # noqa: B018

@@ -1,0 +1,429 @@
+"""From a scene to a mechanism: the ``[mechanism]`` section and the names a scene uses.
+
+:func:`read_mechanism` validates the ``[mechanism]`` section of a scene
+file: a ready-made linkage's dimensions are read from its
+:class:`~numkin.linkages.LinkageSpec` (names, kinds, units, defaults), a
+mechanism written as loops from its expressions. :func:`build_mechanism`
+then builds the :class:`~numkin.Mechanism` (sympy is imported here, on
+first use) and checks the unknowns, points, guesses and check quantities
+the scene names against it. Quantity names and units come from
+:mod:`numkin.quantities`.
+
+Examples
+--------
+>>> from numkin.schema import load_scene
+>>> mech = build_mechanism(load_scene("quick-return"))
+>>> list(mech.unknowns)
+['r3', 'theta3', 'r4', 'r5']
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import re
+from typing import Mapping
+
+from .errors import NumkinError
+from .schema import Scene, SceneError, SceneReader, nearest
+from .units import UnitError, convert_length
+
+__all__ = [
+    "read_mechanism",
+    "build_mechanism",
+    "guess_values",
+    "quantity_names",
+    "scene_quantity",
+    "scene_quantities",
+    "scene_key",
+    "scene_unit",
+    "parse_expression",
+    "parse_equation",
+    "FUNCTIONS",
+]
+#: Keys of a ``[[mechanism.loops]]`` table.
+_LOOP_KEYS = ("name", "unknowns", "vectors", "equations")
+
+
+def read_mechanism(r: SceneReader, scene: Scene, mech: dict) -> None:
+    """Validate a scene's ``[mechanism]`` table into ``scene`` (unit, linkage or loops, dimensions)."""
+    scene.unit = r.string(mech.get("unit", "mm"), "[mechanism] unit")
+    try:
+        convert_length(1.0, scene.unit, "mm")
+    except UnitError as error:
+        r.fail("[mechanism] unit", str(error))
+    dims = r.table(mech.get("dimensions", {}), "[mechanism.dimensions]")
+    if "linkage" in mech:
+        _read_linkage(r, scene, mech, dims)
+        return
+    if "loops" not in mech:
+        r.fail("[mechanism]", "needs either `linkage` (a ready-made one) or [[mechanism.loops]]")
+    if "branch" in mech:
+        r.fail("[mechanism] branch", "applies to the ready-made four_bar only; pick the branch of loops with [guess]")
+    if "input" not in mech:
+        r.fail("[mechanism]", "missing key 'input' (the input symbol, e.g. 'theta2')")
+    input_name = r.string(mech["input"], "[mechanism] input")
+    _identifier(r, input_name, "[mechanism] input")
+    params = {}
+    for key, value in dims.items():
+        where = f"[mechanism.dimensions] {key}"
+        if key.endswith("_deg"):
+            name = key[:-4]
+            _identifier(r, name, where)
+            params[name] = math.radians(r.number(value, where))
+        else:
+            _identifier(r, key, where)
+            params[key] = r.length(value, where, scene.unit, positive=False)
+        if (key[:-4] if key.endswith("_deg") else key) == input_name:
+            r.fail(where, f"'{input_name}' is the input symbol; a dimension needs another name")
+    loops_raw = mech["loops"]
+    if not isinstance(loops_raw, list) or not loops_raw:
+        r.fail("[[mechanism.loops]]", "must be a non-empty array of tables")
+    loops = []
+    for k, lp in enumerate(loops_raw):
+        where = f"[[mechanism.loops]] {k + 1}"
+        r.keys(r.table(lp, where), _LOOP_KEYS, where)
+        if not lp.get("unknowns"):
+            r.fail(where, "missing key 'unknowns' (the names this loop solves for)")
+        unknowns = r.strings(lp["unknowns"], f"{where} unknowns")
+        for u in unknowns:
+            _identifier(r, u, f"{where} unknowns")
+        if ("vectors" in lp) == ("equations" in lp):
+            r.fail(where, "give either `vectors` or `equations`")
+        vectors = lp.get("vectors")
+        if vectors is not None:
+            if not isinstance(vectors, list) or not all(isinstance(v, list) and len(v) == 2 for v in vectors):
+                r.fail(f"{where} vectors", f"must be a list of [length, angle] pairs, got {vectors!r}")
+        equations = lp.get("equations")
+        if equations is not None and (not isinstance(equations, list) or not equations):
+            r.fail(f"{where} equations", f"must be a list of expressions, got {equations!r}")
+        name = r.string(lp["name"], f"{where} name") if "name" in lp else f"loop {k + 1}"
+        loops.append({"name": name, "unknowns": unknowns, "vectors": vectors, "equations": equations})
+    points = r.table(mech.get("points", {}), "[mechanism.points]")
+    for p, xy in points.items():
+        if not isinstance(xy, list) or len(xy) != 2:
+            r.fail(f"[mechanism.points] {p}", f"must be a pair [x, y] of expressions, got {xy!r}")
+    links = mech.get("links", [])
+    if not isinstance(links, list) or not all(isinstance(link, list) and all(isinstance(q, str) for q in link) for link in links):
+        r.fail("[mechanism] links", f"must be a list of lists of point names, got {links!r}")
+    ground = r.strings(mech.get("ground", []), "[mechanism] ground")
+    for p in [q for link in links for q in link] + list(ground):
+        if p not in points:
+            r.fail("[mechanism] links/ground", f"point '{p}' is not in [mechanism.points]{nearest(p, points)}")
+    scene.dimensions = params
+    scene.custom = {
+        "input": input_name, "loops": loops, "points": points, "links": links, "ground": ground,
+        "name": r.string(mech["name"], "[mechanism] name") if "name" in mech else None,
+    }
+
+
+def _read_linkage(r: SceneReader, scene: Scene, mech: dict, dims: dict) -> None:
+    """A ready-made linkage's dimensions, read as its :class:`~numkin.linkages.LinkageSpec` declares them."""
+    from . import linkages
+
+    name = r.string(mech["linkage"], "[mechanism] linkage")
+    if name not in linkages.SPECS:
+        r.fail(
+            "[mechanism] linkage",
+            f"unknown linkage '{name}'{nearest(name, linkages.SPECS)}; ready-made linkages: {', '.join(linkages.SPECS)}",
+        )
+    for key in ("input", "loops", "points", "links", "ground", "name"):
+        if key in mech:
+            r.fail(f"[mechanism] {key}", f"applies to loops, not to a ready-made linkage ('{name}')")
+    spec = linkages.spec(name)
+    scene.linkage = name
+    valid = [d.scene_key for d in spec.dimensions]
+    r.keys(dims, valid, f"[mechanism.dimensions] of {name}")
+    out = {}
+    for d in spec.dimensions:
+        key, where = d.scene_key, f"[mechanism.dimensions] {d.scene_key}"
+        if key not in dims:
+            if d.required:
+                r.fail("[mechanism.dimensions]", f"missing dimension '{key}' of {name}; it needs {', '.join(valid)}")
+            out[d.name] = _default(d, spec.length_unit, scene.unit)
+            continue
+        value = dims[key]
+        if d.kind == "length":
+            out[d.name] = r.length(value, where, scene.unit)
+        elif d.kind == "signed":
+            out[d.name] = r.length(value, where, scene.unit, positive=False)
+        elif d.kind == "pair":
+            if not isinstance(value, list) or len(value) != 2:
+                r.fail(where, f"must be a pair [x, y], got {value!r}")
+            out[d.name] = tuple(r.length(v, f"{where}[{i}]", scene.unit, positive=False) for i, v in enumerate(value))
+        else:
+            out[d.name] = math.radians(r.number(value, where))
+    scene.dimensions = out
+    if "branch" in mech:
+        if not spec.branches:
+            with_branch = [s.name for s in linkages.SPECS.values() if s.branches]
+            r.fail(
+                "[mechanism] branch",
+                f"applies to {', '.join(with_branch)} only; pick the branch of {name} with [guess]",
+            )
+        branch = r.string(mech["branch"], "[mechanism] branch")
+        if branch not in spec.branches:
+            r.fail("[mechanism] branch", f"must be {' or '.join(repr(b) for b in spec.branches)}, got {branch!r}")
+        scene.branch = branch
+
+
+def _default(dimension, spec_unit: str, unit: str):
+    """A dimension's default, its lengths converted from the spec's unit to the scene's."""
+    value = dimension.default
+    if dimension.kind == "angle":
+        return value
+    if dimension.kind == "pair":
+        return tuple(float(convert_length(v, spec_unit, unit)) for v in value)
+    return float(convert_length(value, spec_unit, unit))
+
+
+def _identifier(r: SceneReader, name: str, where: str) -> None:
+    if not name.isidentifier() or name.startswith("_") or name in FUNCTIONS or name == "pi":
+        r.fail(where, f"'{name}' is not a usable symbol name (an identifier such as 'theta3', not a function name)")
+
+
+# ---------------------------------------------------------------------- build
+def build_mechanism(scene: Scene):
+    """The scene's :class:`~numkin.Mechanism`; names in the scene are checked against it."""
+    if scene.kind != "mechanism":
+        raise SceneError(f"{scene.source}: a {scene.kind} scene has no mechanism")
+    mech = _build_linkage(scene) if scene.linkage else _build_loops(scene)
+    _check_names(scene, mech)
+    return mech
+
+
+def _build_linkage(scene: Scene):
+    from . import linkages
+
+    kwargs = dict(scene.dimensions)
+    if scene.branch is not None:
+        kwargs["branch"] = scene.branch
+    try:
+        return linkages.spec(scene.linkage).build(**kwargs, length_unit=scene.unit)
+    except NumkinError:
+        raise
+    except ValueError as error:
+        scene.fail("[mechanism]", str(error))
+
+
+def _build_loops(scene: Scene):
+    import sympy as sp
+
+    from .loops import Loop
+    from .mechanism import Mechanism
+
+    spec = scene.custom
+    input_sym = sp.Symbol(spec["input"], real=True)
+    names = {spec["input"]: input_sym}
+    params = {}
+    for key, value in scene.dimensions.items():
+        sym = sp.Symbol(key, real=True)
+        names[key] = sym
+        params[sym] = value
+    loops = []
+    for k, lp in enumerate(spec["loops"]):
+        where = f"[[mechanism.loops]] {k + 1} ('{lp['name']}')"
+        unknowns = []
+        for u in lp["unknowns"]:
+            if u in names:
+                scene.fail(where, f"unknown '{u}' is already the input, a dimension or an earlier unknown")
+            unknowns.append(sp.Symbol(u, real=True))
+        local = dict(names)
+        local.update({str(u): u for u in unknowns})
+        try:
+            if lp["vectors"] is not None:
+                vectors = [
+                    (
+                        parse_expression(scene, length, local, f"{where} vector {j + 1} length"),
+                        parse_expression(scene, angle, local, f"{where} vector {j + 1} angle"),
+                    )
+                    for j, (length, angle) in enumerate(lp["vectors"])
+                ]
+                loop = Loop.from_vectors(vectors, unknowns, name=lp["name"])
+            else:
+                eqs = [parse_equation(scene, e, local, f"{where} equation {j + 1}") for j, e in enumerate(lp["equations"])]
+                loop = Loop(eqs, unknowns, name=lp["name"])
+        except SceneError:
+            raise
+        except ValueError as error:
+            scene.fail(where, str(error))
+        loops.append(loop)
+        names.update({str(u): u for u in unknowns})
+    points = {
+        p: tuple(parse_expression(scene, c, names, f"[mechanism.points] {p}") for c in xy) for p, xy in spec["points"].items()
+    }
+    try:
+        return Mechanism(
+            loops, input_sym, params, name=spec.get("name") or scene.title or scene.name, points=points,
+            links=spec["links"], ground=spec["ground"], length_unit=scene.unit,
+        )
+    except ValueError as error:
+        scene.fail("[mechanism]", str(error))
+
+
+def _check_names(scene: Scene, mech) -> None:
+    """Unknowns, points, guesses and check quantities named in the scene exist in ``mech``."""
+    unknowns = list(mech.unknowns)
+    for u in scene.unknowns or ():
+        if u not in unknowns:
+            scene.fail("[output] unknowns", f"'{u}' is not an unknown{nearest(u, unknowns)}; unknowns: {', '.join(unknowns)}")
+    for p in scene.points:
+        if p not in mech.points:
+            points = ", ".join(mech.points) or "none"
+            scene.fail("[output] points", f"'{p}' is not a point{nearest(p, mech.points)}; points: {points}")
+    if scene.guess is not None:
+        guess_values(scene, mech)
+    valid = quantity_names(scene, mech, all_unknowns=True)
+    for k, check in enumerate(scene.checks):
+        for key in check["expected"]:
+            if key not in valid:
+                q = scene_quantity(scene, mech, key)
+                if q is not None and q.is_point and q.of not in scene.points:
+                    scene.fail(f"[[check]] {k + 1}", f"'{key}' needs '{q.of}' in [output] points")
+                if q is not None and not scene.wants(q.kind):
+                    scene.fail(f"[[check]] {k + 1}", f"'{key}' needs \"{q.kind}\" in [output] quantities")
+                scene.fail(
+                    f"[[check]] {k + 1}",
+                    f"unknown key '{key}'{nearest(key, valid + ['at_deg', 'tolerance'])}; "
+                    f"quantities: {', '.join(valid)}",
+                )
+    quantity = scene.report.get("quantity")
+    if quantity is not None and quantity not in unknowns:
+        scene.fail("[report] quantity", f"'{quantity}' is not an unknown{nearest(quantity, unknowns)}; unknowns: {', '.join(unknowns)}")
+
+
+def guess_values(scene: Scene, mech) -> dict | None:
+    """The ``[guess]`` table as ``{unknown: value}`` (rad, working unit), or None."""
+    if scene.guess is None:
+        return None
+    out = {}
+    expect = {(f"{u}_deg" if u in mech.angles else u): u for u in mech.unknowns}
+    for key, value in scene.guess.items():
+        if key not in expect:
+            hint = ""
+            if key in mech.angles:
+                hint = f" ('{key}' is an angle: write {key}_deg)"
+            elif key.endswith("_deg") and key[:-4] in mech.unknowns:
+                hint = f" ('{key[:-4]}' is a length in {scene.unit}: write {key[:-4]})"
+            scene.fail(
+                "[guess]", f"unknown key '{key}'{hint or nearest(key, expect)}; valid keys: {', '.join(expect)}"
+            )
+        u = expect[key]
+        where = f"[guess] {key}"
+        if u in mech.angles:
+            out[u] = math.radians(SceneReader(scene.source).number(value, where))
+        else:
+            out[u] = SceneReader(scene.source).length(value, where, scene.unit, positive=False)
+    missing = [k for k, u in expect.items() if u not in out]
+    if missing:
+        scene.fail("[guess]", f"lacks {', '.join(missing)} (give every unknown, or leave out [guess] for the linkage's default)")
+    return out
+
+def scene_key(quantity) -> str:
+    """A :class:`~numkin.quantities.Quantity`'s name in a scene: an angle's position is ``<u>_deg``.
+
+    Examples
+    --------
+    >>> from numkin.quantities import Quantity
+    >>> scene_key(Quantity("theta3", 0, "angle")), scene_key(Quantity("theta3", 1, "angle"))
+    ('theta3_deg', 'omega_theta3')
+    """
+    if quantity.order == 0 and quantity.dimension == "angle" and not quantity.is_point:
+        return f"{quantity.name}_deg"
+    return quantity.name
+
+
+def scene_unit(quantity) -> str:
+    """The unit of a quantity's values in a scene's output: degrees for an angle's position, else its own."""
+    return "deg" if scene_key(quantity).endswith("_deg") else quantity.unit
+
+
+def scene_quantities(scene: Scene, mech, *, all_unknowns: bool = False, all_points: bool = False,
+                     orders=None) -> dict:
+    """Scene name -> :class:`~numkin.quantities.Quantity` of what the scene computes, in table order.
+
+    Per unknown its position, velocity and acceleration (those the scene
+    wants), then per point its x, y coordinates and their derivatives.
+    """
+    from .quantities import Quantity
+    from .schema import QUANTITIES
+
+    unknowns = mech.unknowns if all_unknowns or scene.unknowns is None else scene.unknowns
+    points = tuple(mech.points) if all_points else scene.points
+    if orders is None:
+        orders = [k for k, kind in enumerate(QUANTITIES) if scene.wants(kind)]
+    common = {"length_unit": mech.length_unit, "input_name": str(mech.input_symbol)}
+    out = {}
+    for u in unknowns:
+        dimension = "angle" if u in mech.angles else "length"
+        for order in orders:
+            q = Quantity(u, order, dimension, source="solved" if order == 0 else "analytic", **common)
+            out[scene_key(q)] = q
+    for p in points:
+        for order in orders:
+            for axis in "xy":
+                q = Quantity(p, order, "length", axis=axis, source="solved" if order == 0 else "analytic", **common)
+                out.setdefault(scene_key(q), q)
+    return out
+
+
+def quantity_names(scene: Scene, mech, *, all_unknowns: bool = False) -> list[str]:
+    """Names of the quantities the scene computes (see :mod:`numkin.scene`)."""
+    return list(scene_quantities(scene, mech, all_unknowns=all_unknowns))
+
+
+def scene_quantity(scene: Scene, mech, key: str):
+    """The :class:`~numkin.quantities.Quantity` a scene name denotes (any order, unknown or point), or None."""
+    return scene_quantities(scene, mech, all_unknowns=True, all_points=True, orders=(0, 1, 2)).get(key)
+
+
+# -------------------------------------------------------------- expressions
+_EXPR_CHARS = re.compile(r"[A-Za-z0-9_+\-*/^().,\s]*")
+FUNCTIONS = ("sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sqrt", "exp", "abs")
+
+
+def parse_expression(scene: Scene, text, names: Mapping, where: str):
+    import sympy as sp
+    from sympy.parsing.sympy_parser import convert_xor, parse_expr, standard_transformations
+
+    if isinstance(text, bool):
+        scene.fail(where, f"must be an expression string or a number, got {text!r}")
+    if isinstance(text, numbers.Real):
+        return sp.Float(text) if isinstance(text, float) else sp.Integer(text)
+    if not isinstance(text, str) or not text.strip():
+        scene.fail(where, f"must be an expression string or a number, got {text!r}")
+    if "__" in text or not _EXPR_CHARS.fullmatch(text):
+        scene.fail(
+            where,
+            f"{text!r}: an expression may contain names, numbers, + - * / ^ ( ) and the functions {', '.join(FUNCTIONS)}",
+        )
+    funcs = {
+        "sin": sp.sin, "cos": sp.cos, "tan": sp.tan, "asin": sp.asin, "acos": sp.acos, "atan": sp.atan,
+        "atan2": sp.atan2, "sqrt": sp.sqrt, "exp": sp.exp, "abs": sp.Abs, "pi": sp.pi,
+    }
+    local = {**funcs, **names}
+    glob = {"Integer": sp.Integer, "Float": sp.Float, "Rational": sp.Rational, "Symbol": sp.Symbol, "Function": sp.Function}
+    try:
+        expr = parse_expr(text, local_dict=local, global_dict=glob, transformations=standard_transformations + (convert_xor,))
+    except Exception as error:  # tokenizer and syntax errors of all kinds
+        scene.fail(where, f"cannot read {text!r} as an expression ({type(error).__name__})")
+    if not isinstance(expr, sp.Basic):
+        scene.fail(where, f"{text!r} is not an expression")
+    undefined = sorted({type(f).__name__ for f in expr.atoms(sp.core.function.AppliedUndef)})
+    if undefined:
+        scene.fail(where, f"{text!r} calls unknown function '{undefined[0]}'; functions: {', '.join(FUNCTIONS)}")
+    for sym in expr.free_symbols:
+        if sym.name not in names:
+            scene.fail(
+                where,
+                f"{text!r} uses '{sym.name}', which is not the input, a dimension or an unknown"
+                f"{nearest(sym.name, names)}; known names: {', '.join(names)}",
+            )
+    return expr
+
+
+def parse_equation(scene: Scene, text, names: Mapping, where: str):
+    if isinstance(text, str) and text.count("=") == 1:
+        lhs, rhs = text.split("=")
+        return parse_expression(scene, lhs, names, where) - parse_expression(scene, rhs, names, where)
+    return parse_expression(scene, text, names, where)

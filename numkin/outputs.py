@@ -1,0 +1,160 @@
+"""Scene outputs: the tables a scene asks for, written as CSV (and Markdown, LaTeX), and JSON.
+
+Column labels and units come from :class:`numkin.quantities.Quantity`
+(``omega_theta4 [rad/s]``, ``x_P [mm]``); an angle's position is written in
+degrees (``theta3 [deg]``), as everywhere at the edges.
+
+Examples
+--------
+>>> from numkin.pipeline import run_scene
+>>> result = run_scene("slider-crank")
+>>> sorted(result.tables)[:2]
+['checks', 'comparison-a_x']
+>>> list(result.tables["kinematics"].columns)[:3]
+['theta [deg]', 'v_x [m/s]', 'a_x [m/s^2]']
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["tables", "write_tables", "error_summary", "jsonable"]
+
+
+def jsonable(obj):
+    """``obj`` with numpy scalars as Python numbers and non-finite floats as None (for JSON)."""
+    if isinstance(obj, dict):
+        return {str(k): jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [jsonable(v) for v in obj]
+    if isinstance(obj, (np.floating, float)):
+        v = float(obj)
+        return v if math.isfinite(v) else None
+    if isinstance(obj, (np.integer,)):
+        return int(obj)
+    if isinstance(obj, np.bool_):
+        return bool(obj)
+    return obj
+
+
+def error_summary(comparisons: dict) -> dict:
+    """``{quantity: {"unit": unit, scheme: {column: value}}}`` from :class:`~numkin.compare.Comparison` objects.
+
+    The columns of a comparison's summary lose their unit (``max abs error
+    [rad/s]`` -> ``max_abs_error``; the unit is given once per quantity) and
+    ``max at <input> [deg]`` becomes ``max_at_deg``.
+    """
+    out = {}
+    for name, comparison in comparisons.items():
+        unit_suffix = f" [{comparison.unit}]"
+        rows = {"unit": comparison.unit}
+        for scheme, row in comparison.summary.iterrows():
+            record = {}
+            for column, value in row.items():
+                column = str(column)
+                if column.startswith("max at "):
+                    key = "max_at_deg"
+                else:
+                    key = column.removesuffix(unit_suffix).replace(" ", "_")
+                record[key] = value if isinstance(value, str) else float(value)
+            rows[str(scheme)] = record
+        out[name] = rows
+    return out
+
+
+def _columns(result, quantities, values_of) -> dict:
+    """Label -> array for each quantity, by :attr:`Quantity.label`; positions of angles in degrees."""
+    from .assemble import scene_key, scene_unit
+
+    cols = {}
+    for q in quantities:
+        key = scene_key(q)
+        values = values_of(q)
+        if values is None:
+            continue
+        label = f"{q.name} [{scene_unit(q)}]" if key != q.name else q.label
+        cols[label] = np.degrees(values) if key != q.name else values
+    return cols
+
+
+def tables(result) -> dict:
+    """The DataFrames a scene asks for (only those), from a :class:`~numkin.pipeline.SceneResult`."""
+    import pandas as pd
+
+    from .assemble import scene_quantities
+
+    scene, mech, sweep = result.scene, result.mechanism, result.sweep
+    wanted = set(scene.tables)
+    out = {}
+    input_col = f"{mech.input_symbol} [deg]"
+    quantities = scene_quantities(scene, mech).values()
+    xy = sweep.points() if scene.points and wanted & {"positions", "points"} else {}
+
+    def point_value(q):
+        if q.order == 0:
+            return xy[q.of][0 if q.axis == "x" else 1]
+        pk = result.point_kinematics
+        return pk[q.name].to_numpy() if pk is not None and q.name in pk else None
+
+    def unknown_rate(q):
+        return result.kinematics[q.name].to_numpy()
+
+    if "positions" in wanted:
+        frame = sweep.to_frame()
+        for label, values in _columns(result, [q for q in quantities if q.is_point and q.order == 0], point_value).items():
+            frame[label] = values
+        out["positions"] = frame
+    if "kinematics" in wanted and result.kinematics is not None:
+        rates = [q for q in quantities if not q.is_point and q.order > 0]
+        out["kinematics"] = pd.DataFrame({input_col: np.degrees(sweep.inputs), **_columns(result, rates, unknown_rate)})
+    if "points" in wanted and scene.points:
+        points = [q for q in quantities if q.is_point]
+        # per point: x, y, then its velocity and acceleration components
+        points.sort(key=lambda q: scene.points.index(q.of))
+        out["points"] = pd.DataFrame({input_col: np.degrees(sweep.inputs), **_columns(result, points, point_value)})
+    if "comparison" in wanted:
+        for name, comparison in result.comparisons.items():
+            out[f"comparison-{name}"] = comparison.table
+    if "summary" in wanted and result.comparisons:
+        frames = []
+        for name, comparison in result.comparisons.items():
+            s = comparison.summary.reset_index()
+            s.columns = [c.removesuffix(f" [{comparison.unit}]") for c in s.columns]
+            s.insert(0, "unit", comparison.unit)
+            s.insert(0, "quantity", name)
+            frames.append(s)
+        out["summary"] = pd.concat(frames, ignore_index=True)
+    if "checks" in wanted and result.checks:
+        rows = []
+        for c in result.checks:
+            for key, value in c.values.items():
+                row = {input_col: c.at_deg, "quantity": key, "unit": c.units[key], "value": value}
+                for scheme, vals in c.schemes.items():
+                    row[scheme] = vals.get(key, np.nan)
+                row["expected"] = c.expected.get(key, np.nan)
+                row["ok"] = c.ok.get(key, "")
+                rows.append(row)
+        out["checks"] = pd.DataFrame(rows)
+    return out
+
+
+def write_tables(scene, tables: dict, out: Path) -> list[Path]:
+    """Write ``tables`` as ``<out>/<scene>-<name>.<format>`` in the scene's formats; the paths written."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    if "csv" in scene.table_formats:
+        for name, frame in tables.items():
+            path = out / f"{scene.name}-{name}.csv"
+            frame.to_csv(path, index=False)
+            written.append(path)
+    others = tuple(f for f in scene.table_formats if f != "csv")
+    if others:
+        from .report import write_tables as write_report_tables
+
+        named = {f"{scene.name}-{k}": v for k, v in tables.items()}
+        written += list(write_report_tables(named, out, formats=others))
+    return written

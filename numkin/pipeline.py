@@ -1,0 +1,397 @@
+"""Running a scene: solve, differentiate, evaluate the check points, write what it asks for.
+
+:func:`run_scene` computes exactly what a :class:`~numkin.schema.Scene` asks
+for and nothing more: a position-only scene never differentiates (nothing of
+``numkin.analytic``, ``numkin.kinematics`` or ``numkin.compare`` is called),
+and a scene that asks for no figure never imports matplotlib. The tables are
+built and written by :mod:`numkin.outputs`, the figures by
+:mod:`numkin.figures`.
+
+Examples
+--------
+>>> result = run_scene("quick-return", at=30)
+>>> round(result.at.values["r4"], 3), result.at.units["theta3_deg"]
+(130.767, 'deg')
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable
+
+import numpy as np
+
+from . import outputs
+from .assemble import scene_quantities, scene_unit
+from .schema import Scene, SceneReader, in_range, load_scene, nearest
+
+__all__ = ["CheckResult", "SceneResult", "run_scene", "render_figures", "written_tolerance"]
+
+
+# --------------------------------------------------------------------- results
+@dataclass
+class CheckResult:
+    """Every quantity of a scene at one input angle.
+
+    Attributes
+    ----------
+    at_deg : float
+        Input angle (degrees).
+    values : dict
+        Quantity name -> value: the Newton solution for positions, the
+        analytic solution for velocities and accelerations (units in ``units``).
+    units : dict
+        Quantity name -> unit label.
+    schemes : dict
+        Scheme name -> {quantity name -> value} for the compared schemes (only
+        at grid points).
+    expected : dict
+        Expected values from the scene file.
+    ok : dict
+        Quantity name -> whether the value agrees with the expected one.
+    on_grid : bool
+        True if the angle is a point of the sweep.
+    """
+
+    at_deg: float
+    values: dict
+    units: dict
+    schemes: dict = field(default_factory=dict)
+    expected: dict = field(default_factory=dict)
+    tolerance: dict = field(default_factory=dict)
+    ok: dict = field(default_factory=dict)
+    on_grid: bool = True
+
+    @property
+    def passed(self) -> bool:
+        """True if every expected value agrees."""
+        return all(self.ok.values())
+
+    def to_dict(self) -> dict:
+        return {
+            "at_deg": self.at_deg, "on_grid": self.on_grid, "values": self.values, "units": self.units,
+            "schemes": self.schemes, "expected": self.expected, "tolerance": self.tolerance, "ok": self.ok,
+            "passed": self.passed,
+        }
+
+
+@dataclass
+class SceneResult:
+    """What :func:`run_scene` computed: only what the scene asked for.
+
+    Attributes
+    ----------
+    scene : Scene
+    mechanism : Mechanism or None
+    sweep : Sweep or None
+        Positions over the input sweep.
+    omega, alpha : float or None
+        Input speed [rad/s] and acceleration [rad/s^2].
+    kinematics : pandas.DataFrame or None
+        ``numkin.analytic.kinematics`` (velocity/acceleration scenes only).
+    point_kinematics : pandas.DataFrame or None
+        ``numkin.analytic.point_kinematics`` of the wanted points.
+    comparisons : dict
+        Quantity name (``omega_beta``, ``alpha_beta``, ``a_x``) -> ``numkin.compare.Comparison``.
+    checks : list of CheckResult
+        The scene's check points.
+    at : CheckResult or None
+        Every quantity at the angle asked for by ``run_scene(..., at=)``.
+    tables : dict
+        Table name -> DataFrame (the tables the scene asked for).
+    suite : pandas.DataFrame or None
+        The stability suite's table (stability scenes).
+    report : dict
+        Error-analysis tables of :mod:`numkin.report` computed for figures
+        that are drawn from them (``convergence``, ``work_precision``,
+        ``roundoff``, ``newton_<jacobian>``).
+    written : list of Path
+        Files written (tables, figures).
+    """
+
+    scene: Scene
+    mechanism: Any = None
+    sweep: Any = None
+    omega: float | None = None
+    alpha: float | None = None
+    kinematics: Any = None
+    point_kinematics: Any = None
+    comparisons: dict = field(default_factory=dict)
+    checks: list = field(default_factory=list)
+    at: CheckResult | None = None
+    tables: dict = field(default_factory=dict)
+    suite: Any = None
+    report: dict = field(default_factory=dict)
+    written: list = field(default_factory=list)
+
+    @property
+    def passed(self) -> bool:
+        """True if every check point agrees (and, for the stability suite, every case went as expected)."""
+        if self.suite is not None and "as expected" in self.suite:
+            return bool(self.suite["as expected"].all())
+        return all(c.passed for c in self.checks)
+
+    def value(self, name: str, at_deg: float) -> float:
+        """One quantity (see the module docstring for names) at an input angle (degrees)."""
+        return _evaluate(self, at_deg).values[name]
+
+    def to_dict(self) -> dict:
+        """A JSON-ready summary: input, check points, per-scheme errors, files written."""
+        s = self.scene
+        out = {"scene": s.name, "description": s.description, "kind": s.kind}
+        if s.kind == "stability":
+            out["stability"] = json.loads(self.suite.to_json(orient="records")) if self.suite is not None else None
+            out["passed"] = self.passed
+        else:
+            mech = self.mechanism
+            out["mechanism"] = mech.name
+            out["unit"] = s.unit
+            out["input"] = {
+                "name": str(mech.input_symbol), "start_deg": s.start_deg, "stop_deg": s.stop_deg,
+                "step_deg": s.step_deg, "points": s.n_points,
+                "speed_rad_s": self.omega, "acceleration_rad_s2": self.alpha if self.omega is not None else None,
+            }
+            sw = self.sweep
+            out["newton"] = {
+                "max_iterations": int(np.max(sw.iterations)), "max_residual": float(np.max(sw.residual)),
+                "max_cond": float(np.max(sw.cond)), "events": [e.message for e in sw.events],
+            }
+            out["checks"] = [c.to_dict() for c in self.checks]
+            if self.at is not None:
+                out["at"] = self.at.to_dict()
+            out["errors"] = outputs.error_summary(self.comparisons)
+            out["passed"] = self.passed
+        out["written"] = [str(p) for p in self.written]
+        return outputs.jsonable(out)
+
+
+# --------------------------------------------------------------------- running
+def run_scene(
+    scene,
+    out=None,
+    at: float | None = None,
+    *,
+    figures: bool = True,
+    progress: Callable[[str], None] | None = None,
+) -> SceneResult:
+    """Compute what a scene asks for, and write its tables and figures to ``out``.
+
+    Parameters
+    ----------
+    scene : Scene or str or path
+        A scene, a built-in name or a .toml path.
+    out : path, optional
+        Folder for the tables (``<scene>-<table>.<format>``) and the figures
+        the scene asks for; nothing is written without it.
+    at : float, optional
+        An input angle (degrees): ``result.at`` then holds every quantity there.
+    figures : bool
+        Render the scene's figures when ``out`` is given (default True).
+    progress : callable, optional
+        Called with the name of each stage as it starts (for progress bars).
+
+    Returns
+    -------
+    SceneResult
+
+    Examples
+    --------
+    >>> result = run_scene("quick-return", at=30)
+    >>> round(result.at.values["r4"], 3)
+    130.767
+    """
+    if not isinstance(scene, Scene):
+        scene = load_scene(scene)
+    step = progress or (lambda stage: None)
+    result = SceneResult(scene=scene)
+    if scene.kind == "stability":
+        if at is not None:
+            scene.fail("--at", "applies to a scene with a mechanism, not to the stability suite")
+        step("stability suite")
+        from . import stability
+
+        cases = list(scene.stability_cases) if scene.stability_cases is not None else None
+        if cases is not None:
+            valid = list(stability.CASES)
+            for c in cases:
+                if c not in valid:
+                    scene.fail("[stability] cases", f"unknown case '{c}'{nearest(c, valid)}; cases: {', '.join(valid)}")
+        result.suite = stability.run_suite(cases)
+        result.tables["stability"] = result.suite
+    else:
+        if at is not None:
+            in_range(SceneReader(scene.source), scene, float(at), "--at")
+        step("mechanism")
+        mech = scene.build_mechanism()
+        result.mechanism = mech
+        step("positions")
+        result.sweep = mech.sweep(scene.inputs(), guess=scene.guess_values(mech))
+        if scene.differentiates:
+            result.omega, result.alpha = scene.speed, scene.acceleration
+            step("velocity and acceleration")
+            _differentiate(result)
+        step("check points")
+        result.checks = [_evaluate(result, c["at_deg"], c) for c in scene.checks]
+        if at is not None:
+            result.at = _evaluate(result, float(at), None, every=True)
+        result.tables = outputs.tables(result)
+    if out is not None:
+        out = Path(out)
+        if result.tables and scene.tables:
+            step("tables")
+            result.written += outputs.write_tables(scene, result.tables, out)
+        if figures and scene.figures:
+            result.written += render_figures(result, out, progress=step)
+    return result
+
+
+#: Figures drawn from the error-analysis tables of numkin.report, and the table each needs.
+_REPORT_FIGURES = {
+    "convergence": "convergence", "work-precision": "work_precision", "roundoff": "roundoff", "newton": "newton",
+}
+
+
+def render_figures(result: SceneResult, out_dir, *, formats=("png", "svg"), progress=None) -> list:
+    """Draw and save the figures a scene asks for (:func:`numkin.figures.render`).
+
+    The error-analysis tables that some figures are drawn from (convergence,
+    work-precision, roundoff, Newton) are computed here, only those asked for,
+    with the scene's ``[report]`` settings, and kept in ``result.report``.
+    """
+    from . import figures as fig
+
+    step = progress or (lambda stage: None)
+    scene = result.scene
+    kinds = {fig.parse_spec(name)[0] for name in scene.figures}
+    wanted = [kind for kind in _REPORT_FIGURES if kind in kinds and _REPORT_FIGURES[kind] not in result.report]
+    if wanted and result.mechanism is not None and scene.speed:
+        from . import report
+
+        options = scene.report_options(result.mechanism)
+        span = math.radians(scene.stop_deg - scene.start_deg)
+        common = {k: options[k] for k in ("quantity", "guess")}
+        sweep_opts = {"start": options["start"], "span": span, **{k: options[k] for k in ("grids", "schemes") if k in options}}
+        for kind in wanted:
+            step(f"{kind} table")
+            if kind == "convergence":
+                table = report.convergence_table(
+                    result.mechanism, omega=scene.speed, check_angle=options["check_angle"], **common, **sweep_opts,
+                )
+            elif kind == "work-precision":
+                extra = {"repeat": options["repeat"]} if "repeat" in options else {}
+                table = report.work_precision_table(result.mechanism, omega=scene.speed, **common, **sweep_opts, **extra)
+            elif kind == "roundoff":
+                table = report.roundoff_table(result.mechanism, check_angle=options["check_angle"], **common)
+            else:
+                for jacobian in ("symbolic", "forward", "central"):
+                    result.report[f"newton_{jacobian}"] = report.newton_table(
+                        result.mechanism, check_angle=options["check_angle"], jacobian=jacobian, guess=options["guess"],
+                    )
+                continue
+            result.report[_REPORT_FIGURES[kind]] = table
+    step("figures")
+    view = copy.copy(result)
+    view.tables = {**result.tables, **result.report}
+    return list(fig.render(view, out_dir=Path(out_dir), formats=formats))
+
+
+def _differentiate(result: SceneResult) -> None:
+    """Analytic velocity/acceleration and the scheme comparisons (never for position-only scenes)."""
+    from . import analytic
+
+    scene, sweep = result.scene, result.sweep
+    result.kinematics = analytic.kinematics(sweep, result.omega, result.alpha)
+    if scene.points:
+        result.point_kinematics = analytic.point_kinematics(sweep, result.omega, result.alpha, points=list(scene.points))
+    if scene.schemes or scene.second_schemes:
+        from .compare import compare
+
+        schemes = {1: scene.schemes, 2: scene.second_schemes}
+        rates = scene_quantities(scene, result.mechanism, orders=(1, 2)).values()
+        for q in rates:
+            if not q.is_point and schemes[q.order]:
+                result.comparisons[q.name] = compare(
+                    sweep, result.omega, q.name, schemes=schemes[q.order], alpha=result.alpha,
+                )
+
+
+def _evaluate(result: SceneResult, at_deg: float, check: dict | None = None, *, every: bool = False) -> CheckResult:
+    """The quantities at one input angle; positions from Newton, the rest analytic."""
+    scene, mech, sweep = result.scene, result.mechanism, result.sweep
+    at = math.radians(at_deg)
+    i = sweep.index(at)
+    on_grid = bool(abs(sweep.inputs[i] - at) <= 1e-9 * max(1.0, abs(at)))
+    if on_grid:
+        sub, j, kin, pk = sweep, i, result.kinematics, result.point_kinematics
+    else:  # solve there by continuation from the nearest grid point
+        sub = mech.sweep(np.array([sweep.inputs[i], at]), guess=sweep.values[:, i])
+        j, kin, pk = 1, None, None
+        if result.kinematics is not None:
+            from . import analytic
+
+            kin = analytic.kinematics(sub, result.omega, result.alpha)
+            if scene.points:
+                pk = analytic.point_kinematics(sub, result.omega, result.alpha, points=list(scene.points))
+    xy = mech.point_coordinates(sub.values[:, j : j + 1], sub.inputs[j : j + 1]) if scene.points else {}
+    values, units = {}, {}
+    for key, q in scene_quantities(scene, mech, all_unknowns=every).items():
+        if q.is_point:
+            if q.order == 0:
+                value = xy[q.of][0 if q.axis == "x" else 1, 0]
+            elif pk is not None:
+                value = pk[q.name].iloc[j]
+            else:
+                continue
+        elif q.order == 0:
+            value = math.degrees(sub[q.of][j]) if q.dimension == "angle" else sub[q.of][j]
+        elif kin is not None:
+            value = kin[q.name].iloc[j]
+        else:
+            continue
+        values[key], units[key] = float(value), scene_unit(q)
+    if check is not None:  # also the checked quantities of unknowns not reported
+        missing = [key for key in check["expected"] if key not in values]
+        if missing:
+            every_value = _evaluate(result, at_deg, None, every=True)
+            for key in missing:
+                values[key], units[key] = every_value.values[key], every_value.units[key]
+    res = CheckResult(at_deg=at_deg, values=values, units=units, on_grid=on_grid)
+    if on_grid:
+        for name, comparison in result.comparisons.items():
+            if name not in values:
+                continue
+            for scheme, value in _scheme_values(comparison, i).items():
+                res.schemes.setdefault(scheme, {})[name] = value
+    if check is not None:
+        for key, expected in check["expected"].items():
+            tol = check["tolerance"] if check["tolerance"] is not None else written_tolerance(expected)
+            diff = values[key] - expected
+            if key.endswith("_deg"):
+                diff = math.remainder(diff, 360.0)
+            res.expected[key] = expected
+            res.tolerance[key] = tol
+            res.ok[key] = bool(abs(diff) <= tol)
+    return res
+
+
+def written_tolerance(value: float) -> float:
+    """Half a unit of the last decimal written: 10.633 -> 5e-4 (plus a rounding allowance)."""
+    text = repr(float(value))
+    if "e" in text or "E" in text:
+        mantissa, exponent = text.lower().split("e")
+        decimals = len(mantissa.split(".")[1]) if "." in mantissa else 0
+        if mantissa.endswith(".0"):
+            decimals = 0
+        return 0.5 * 10.0 ** (int(exponent) - decimals) * (1 + 1e-9)
+    decimals = len(text.split(".")[1]) if not text.endswith(".0") else 0
+    return 0.5 * 10.0 ** (-decimals) * (1 + 1e-9)
+
+
+def _scheme_values(comparison, i: int) -> dict:
+    """Each scheme's value at grid index ``i`` from a Comparison's table."""
+    table = comparison.table
+    return {str(s): float(table[f"{s} [{comparison.unit}]"].iloc[i]) for s in comparison.summary.index}
