@@ -26,18 +26,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .figures import (
-    _bounds,
-    _close,
-    _deg_text,
-    _draw_ground,
-    _input_name,
-    _length_unit,
-    _link_colors,
-    _slider_points,
-    _sym,
-    style,
-)
+from .figures.drawing import bounds, draw_ground, link_colors, slider_points
+from .figures.labels import deg_text, input_name, length_unit, sym
+from .figures.style import close, style
 
 __all__ = ["animate", "frame_indices"]
 
@@ -135,13 +126,13 @@ def animate(sweep, path, frames: int = 72, fps: float = 24, *, dpi: int = 80) ->
 
     pts = sweep.points()
     ground = list(mech.ground or ())
-    sliders = _slider_points(pts, ground)
-    (x0, x1), (y0, y1), span = _bounds(list(pts.values()), margin=0.1)
+    sliders = slider_points(pts, ground)
+    (x0, x1), (y0, y1), span = bounds(list(pts.values()), margin=0.1)
     width = 5.6
     height = float(np.clip(width * 0.86 * (y1 - y0) / (x1 - x0) + 0.9, 3.0, 7.5))
     joints = sorted({n for link in mech.links for n in link} | set(ground))
-    unit = _length_unit(sweep)
-    symbol = _sym(_input_name(sweep))
+    unit = length_unit(sweep)
+    symbol = sym(input_name(sweep))
 
     fig = None
     try:
@@ -163,10 +154,10 @@ def animate(sweep, path, frames: int = 72, fps: float = 24, *, dpi: int = 80) ->
                 (ax.axhline if kind == "h" else ax.axvline)(c, color="0.5", linestyle="--", linewidth=0.8, zorder=1)
             for name in ground:
                 gx, gy = pts[name][:, 0]
-                _draw_ground(ax, gx, gy, size=0.025 * span, zorder=2)
+                draw_ground(ax, gx, gy, size=0.025 * span, zorder=2)
             links = [
                 ax.plot([], [], color=color, linewidth=3.0, solid_capstyle="round", zorder=3)[0]
-                for color in _link_colors(len(mech.links))
+                for color in link_colors(len(mech.links))
             ]
             blocks = ax.plot([], [], "s", markersize=13, markerfacecolor="0.8", markeredgecolor="0.2", zorder=4)[0]
             dots = ax.plot([], [], "o", markersize=5.5, markerfacecolor="white", markeredgecolor="black",
@@ -180,9 +171,9 @@ def animate(sweep, path, frames: int = 72, fps: float = 24, *, dpi: int = 80) ->
                         line.set_data([pts[n][0, k] for n in link], [pts[n][1, k] for n in link])
                     blocks.set_data([pts[n][0, k] for n in sliders], [pts[n][1, k] for n in sliders])
                     dots.set_data([pts[n][0, k] for n in joints], [pts[n][1, k] for n in joints])
-                    stamp.set_text(f"{symbol} = {_deg_text(float(sweep.inputs[k]))}")
+                    stamp.set_text(f"{symbol} = {deg_text(float(sweep.inputs[k]))}")
                     writer.grab_frame()
     finally:
         if fig is not None:
-            _close(fig)
+            close(fig)
     return path
