@@ -6,8 +6,8 @@ in degrees, every number with a true minus sign and never as ``−0``.
 Examples
 --------
 >>> from numkin.figures.labels import sym, value_text, deg_text
->>> sym("theta2"), value_text(-0.00001), deg_text(-1e-12)
-('$\\theta_{2}$', '0.000', '0°')
+>>> print(sym("theta2"), value_text(-0.0), deg_text(-1e-12))
+$\\theta_{2}$ 0.000 0°
 """
 
 from __future__ import annotations
