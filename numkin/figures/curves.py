@@ -9,7 +9,7 @@ import numpy as np
 
 from .labels import (
     check_points, check_unknown, deg_text, degree_ticks, frame_column, frame_input, input_label, input_name,
-    is_angle, length_unit, quantity_labels, rate_columns, sig5, sym, tex, uniform_step, unit_of,
+    is_angle, length_unit, mechanism_title, quantity_labels, rate_columns, sig5, sym, tex, uniform_step, unit_of,
 )
 from .style import CYCLE, SOURCE_STYLE, new_figure, source_label, source_style, style
 
@@ -55,13 +55,15 @@ def position(sweep, names: Sequence[str] | None = None):
             for k, n in enumerate(group):
                 y = np.degrees(sweep[n]) if unit == "deg" else sweep[n]
                 ax.plot(x, y, color=CYCLE[k % len(CYCLE)], label=sym(n))
-            ax.set_ylabel(f"{sym(group[0])} [{unit}]" if len(group) == 1 else f"[{unit}]")
+            what = "angle" if unit == "deg" else "length"
+            ax.set_ylabel(f"{sym(group[0])} [{unit}]" if len(group) == 1
+                          else f"{what} {', '.join(sym(n) for n in group)} [{unit}]")
             if len(group) > 1:
                 ax.legend(loc="best")
         axes[-1, 0].set_xlabel(input_label(sweep))
         degree_ticks(axes[-1, 0], x)
         title = ", ".join(sym(n) for n in names)
-        axes[0, 0].set_title(f"{sweep.mechanism.name}: {title} against {sym(input_name(sweep))}")
+        axes[0, 0].set_title(f"{mechanism_title(sweep.mechanism)}: {title} against {sym(input_name(sweep))}")
     return fig
 
 
@@ -314,7 +316,7 @@ def kinematics(
                            fontsize=8, bbox=box, zorder=6)
         axes[-1, 0].set_xlabel(input_label(sweep))
         degree_ticks(axes[-1, 0], x)
-        ax0.set_title(title or f"{sweep.mechanism.name}: {sym(name)}, velocity and acceleration")
+        ax0.set_title(title or f"{mechanism_title(sweep.mechanism)}: {sym(name)}, velocity and acceleration")
     return fig
 
 
@@ -344,7 +346,7 @@ def slider(sweep, name: str | None = None, *, analytic=None, finite: Mapping | N
         name = "x" if "x" in lengths else lengths[0]
     return kinematics(
         sweep, name, analytic=analytic, finite=finite, check_angles=check_angles,
-        title=f"{sweep.mechanism.name}: slider {sym(name)}, $v$, $a$",
+        title=f"{mechanism_title(sweep.mechanism)}: slider {sym(name)}, $v$, $a$",
     )
 
 
@@ -411,5 +413,5 @@ def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
         axe.set_ylabel(f"|numerical − analytic| [{unit}]")
         axe.set_xlabel(input_label(sweep))
         degree_ticks(axe, x)
-        ax.set_title(f"{sweep.mechanism.name}: {alabel.split(' [')[0]}, numerical against analytic")
+        ax.set_title(f"{mechanism_title(sweep.mechanism)}: {alabel.split(' [')[0]}, numerical against analytic")
     return fig

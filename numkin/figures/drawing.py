@@ -11,15 +11,28 @@ from typing import Iterable, Mapping, Sequence
 
 import numpy as np
 
-from .labels import deg_text, input_name, is_angle, length_text, length_unit, sym, value_text
+from .labels import (
+    deg_text, input_name, is_angle, length_text, length_unit, mechanism_title, no_negative_zero, sig5, sym,
+    value_text,
+)
 from .registries import dimensions_of
 from .style import CYCLE, new_figure, style
 
-__all__ = ["bounds", "draw_ground", "link_colors", "mechanism", "slider_points"]
+__all__ = [
+    "arrow_scale", "arrow_vectors", "block_corners", "block_directions", "bounds", "draw_block", "draw_ground",
+    "guided_points", "link_colors", "mechanism", "scale_text", "slider_points",
+]
 
 
 def slider_points(points: Mapping, ground: Sequence[str]) -> dict:
-    """Points that move along a fixed line: name -> ("h", y) or ("v", x)."""
+    """Points that move along a fixed line: name -> ("h", y) or ("v", x).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> slider_points({"P": np.array([[1.0, 2.0, 3.0], [0.5, 0.5, 0.5]])}, ())
+    {'P': ('h', 0.5)}
+    """
     out = {}
     for name, xy in points.items():
         if name in ground or xy.shape[1] < 2:
@@ -33,7 +46,164 @@ def slider_points(points: Mapping, ground: Sequence[str]) -> dict:
     return out
 
 
+def guided_points(links: Sequence[Sequence[str]], points: Mapping, ground: Sequence[str]) -> dict:
+    """Joints that slide along a moving link: name -> (a, b), the segment a-b they slide on.
+
+    A point of one link that lies on the line of a segment of another link
+    (not one of that link's own points) at every input of the sweep, such as
+    the slider A of a slotted-rocker quick-return on the rocker O1-B.
+
+    Parameters
+    ----------
+    links : sequence of sequences of str
+    points : mapping of str to array (2, N)
+        Coordinates over the sweep (:meth:`Sweep.points`).
+    ground : sequence of str
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> mech = linkages.quick_return()
+    >>> sweep = mech.sweep(np.radians(np.arange(0, 361, 10)))
+    >>> guided_points(mech.links, sweep.points(), mech.ground)
+    {'A': ('O1', 'B')}
+    """
+    out = {}
+    for name, xy in points.items():
+        if name in ground or xy.shape[-1] < 2:
+            continue
+        for link in links:
+            if name in link:
+                continue
+            for a, b in zip(link[:-1], link[1:]):
+                d = points[b] - points[a]
+                e = xy - points[a]
+                length = np.hypot(*d)
+                scale = max(float(np.max(np.abs(np.concatenate([d, e])))), 1e-300)
+                cross = d[0] * e[1] - d[1] * e[0]
+                if np.all(length > 1e-9 * scale) and np.all(np.abs(cross) <= 1e-9 * scale * length):
+                    out[name] = (a, b)
+                    break
+            if name in out:
+                break
+    return out
+
+
+def block_corners(centre, direction, length: float, width: float) -> np.ndarray:
+    """Corners (4, 2) of a slider block centred on `centre`, its long side along `direction`.
+
+    Examples
+    --------
+    >>> block_corners((0.0, 0.0), (1.0, 0.0), 2.0, 1.0).tolist()
+    [[-1.0, -0.5], [1.0, -0.5], [1.0, 0.5], [-1.0, 0.5]]
+    """
+    c = np.asarray(centre, dtype=float)
+    u = np.asarray(direction, dtype=float)
+    n = float(np.hypot(*u))
+    u = u / n if n > 0 else np.array([1.0, 0.0])
+    v = np.array([-u[1], u[0]])
+    hl, hw = 0.5 * length * u, 0.5 * width * v
+    return np.array([c - hl - hw, c + hl - hw, c + hl + hw, c - hl + hw]) + 0.0
+
+
+def block_directions(blocks: Mapping, points: Mapping, k: int | None = None) -> dict:
+    """Direction (x, y) of each slider block: its fixed guide, or the segment it slides on.
+
+    `blocks` maps a name to ``("h", y)``, ``("v", x)`` (:func:`slider_points`)
+    or ``(a, b)`` (:func:`guided_points`); `points` holds coordinates (2,) or
+    (2, N), column `k` taken when given.
+    """
+    out = {}
+    for name, guide in blocks.items():
+        if guide[0] == "h":
+            out[name] = np.array([1.0, 0.0])
+        elif guide[0] == "v":
+            out[name] = np.array([0.0, 1.0])
+        else:
+            a, b = (points[n] if k is None else points[n][:, k] for n in guide)
+            out[name] = np.asarray(b, dtype=float) - np.asarray(a, dtype=float)
+    return out
+
+
+def draw_block(ax, centre, direction, span: float, zorder: float = 4.0):
+    """A slider block (a grey rectangle) on the drawing; returns its Polygon (``set_xy`` moves it)."""
+    from matplotlib.patches import Polygon
+
+    patch = Polygon(block_corners(centre, direction, 0.075 * span, 0.045 * span), closed=True, facecolor="0.8",
+                    edgecolor="0.2", linewidth=1.0, zorder=zorder)
+    ax.add_patch(patch)
+    return patch
+
+
+def arrow_vectors(sweep, kind: str, omega, alpha=0.0, points: Sequence[str] | None = None) -> tuple[dict, str]:
+    """Velocity or acceleration vectors of named points over the sweep, from the analytic point kinematics.
+
+    Parameters
+    ----------
+    sweep : Sweep
+    kind : {"velocity", "acceleration"}
+    omega, alpha
+        Input speed and acceleration (see :func:`numkin.analytic.point_kinematics`).
+    points : sequence of str, optional
+        Default: every named point that is not a ground pivot.
+
+    Returns
+    -------
+    (dict, str)
+        name -> array (2, N) in the length unit per s (or s²), and that unit.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([90.0]))
+    >>> vec, unit = arrow_vectors(sweep, "velocity", "10 rad/s", points=["A"])
+    >>> np.round(vec["A"][:, 0], 6).tolist(), unit
+    ([-800.0, 0.0], 'mm/s')
+    """
+    from .. import analytic
+
+    if kind not in ("velocity", "acceleration"):
+        raise ValueError(f"arrows: {kind!r} is neither 'velocity' nor 'acceleration'")
+    mech = sweep.mechanism
+    if points is None:
+        points = [n for n in mech.points if n not in (mech.ground or ())]
+    points = [points] if isinstance(points, str) else list(points)
+    for n in points:
+        if n not in mech.points:
+            raise ValueError(f"arrows: {n!r} is not a named point of {mech.name}; points are {list(mech.points)}")
+    frame = analytic.point_kinematics(sweep, omega, alpha, points=points)
+    head = "v" if kind == "velocity" else "a"
+    unit = f"{mech.length_unit}/s" if kind == "velocity" else f"{mech.length_unit}/s²"
+    vectors = {n: np.vstack([np.asarray(frame[f"{head}x_{n}"], dtype=float),
+                             np.asarray(frame[f"{head}y_{n}"], dtype=float)]) for n in points}
+    return vectors, unit
+
+
+def arrow_scale(vectors: Mapping, span: float, fraction: float = 0.25) -> float:
+    """Drawing length per unit of the vectors: the longest vector drawn `fraction` of `span` long.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> arrow_scale({"A": np.array([[3.0], [4.0]])}, 100.0)
+    5.0
+    """
+    longest = max((float(np.max(np.hypot(*v))) for v in vectors.values() if np.size(v)), default=0.0)
+    return fraction * span / longest if longest > 0 and math.isfinite(longest) else 0.0
+
+
+def scale_text(scale: float, unit: str, span: float, length_unit_: str) -> str:
+    """``"arrows: 20 mm ≙ 1.5 m/s"``-style legend of an arrow scale, with a round drawing length."""
+    if scale <= 0:
+        return ""
+    draw = 10.0 ** math.floor(math.log10(0.1 * span))
+    return f"{length_text(draw)} {length_unit_} of drawing = {sig5(draw / scale, zeros=False)} {unit}"
+
+
 def bounds(xy_list: Iterable[np.ndarray], margin: float = 0.12):
+    """x and y limits around all points (arrays (2, ...)) with a margin, and the larger span."""
     xs = np.concatenate([np.ravel(xy[0]) for xy in xy_list])
     ys = np.concatenate([np.ravel(xy[1]) for xy in xy_list])
     xs, ys = xs[np.isfinite(xs)], ys[np.isfinite(ys)]
@@ -58,6 +228,7 @@ def draw_ground(ax, x: float, y: float, size: float, zorder: float = 2.0) -> Non
 
 
 def link_colors(n: int) -> list[str]:
+    """Colours of `n` links (the colour cycle without black)."""
     return [CYCLE[k % (len(CYCLE) - 1)] for k in range(n)]
 
 
@@ -87,7 +258,45 @@ def _angle_arcs(sweep, pts: Mapping, values: Mapping, segments: Sequence[tuple[s
     return arcs
 
 
-def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = None):
+def _clear_labels(ax, labels, joints, span: float) -> None:
+    """Move each angle label outward along its arc's bisector (or below the reference line) until it
+    covers no joint and no other text; a label that finds no clear place stays where it was."""
+    fig = ax.figure
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    joints_px = [ax.transData.transform(p) for p in joints]
+
+    def clear(text) -> bool:
+        box = text.get_window_extent(renderer).expanded(1.04, 1.15)
+        if any(box.x0 - 7 <= x <= box.x1 + 7 and box.y0 - 7 <= y <= box.y1 + 7 for x, y in joints_px):
+            return False
+        others = [t for t in ax.texts if t is not text and t.get_text()]
+        return not any(box.overlaps(t.get_window_extent(renderer)) for t in others)
+
+    for text, (cx, cy), radius, mid in labels:
+        start = text.get_position()
+        for factor in (1.0, 1.35, 1.7, 2.0):
+            for turn in (0.0, -0.45, 0.45, -0.9, 0.9):
+                a = mid + turn
+                text.set_position((cx + factor * radius * math.cos(a) + 0.02 * span, cy + factor * radius * math.sin(a)))
+                if clear(text):
+                    break
+            else:
+                continue
+            break
+        else:
+            text.set_position(start)
+
+
+def _one_point(sweep, at: float, q):
+    """A sweep of one input `at`, solved at `q`, on the branch of `sweep` (for the point kinematics there)."""
+    mech = sweep.mechanism
+    return mech.sweep(np.array([at]), guess=np.asarray(q, dtype=float))
+
+
+def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = None,
+              traces: Sequence[str] | None = None, arrows: str | None = None, omega=None, alpha=0.0,
+              arrow_points: Sequence[str] | None = None):
     """The linkage drawn at one input angle, with its dimensions and the solved unknowns.
 
     Links are drawn as polylines of the mechanism's named points, joints as
@@ -110,6 +319,18 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
         Default: the ready-made linkage's own (quick-return: r1 ... r6);
         for other linkages the length of every link segment is written
         along it. ``[]`` draws no dimensions.
+    traces : sequence of str, optional
+        Named points (a coupler point, say) whose paths over the whole
+        sweep are drawn, thin and labelled.
+    arrows : {"velocity", "acceleration"}, optional
+        Draw the velocity or acceleration vector of each point of
+        `arrow_points` (default: every point that is not a ground pivot),
+        from :func:`numkin.analytic.point_kinematics`, scaled so that the
+        longest is a quarter of the drawing, the scale written below it.
+    omega, alpha
+        Input speed and acceleration for `arrows` (``"10 rad/s"``, see
+        :func:`numkin.analytic.kinematics`); `omega` is needed with arrows.
+    arrow_points : sequence of str, optional
 
     Returns
     -------
@@ -122,6 +343,9 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
     >>> sweep = linkages.quick_return().sweep(np.radians(np.arange(0, 361)))
     >>> fig = figures.mechanism(sweep, np.radians(30))
     >>> figures.save(fig, "/tmp/numkin-doc-qr", ["png"])[0].suffix
+    '.png'
+    >>> fig = figures.mechanism(sweep, np.radians(30), traces=["B"], arrows="velocity", omega="10 rad/s")
+    >>> figures.save(fig, "/tmp/numkin-doc-qr-v", ["png"])[0].suffix
     '.png'
     """
     mech = sweep.mechanism
@@ -139,7 +363,19 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
     all_pts = sweep.points()
     ground = list(mech.ground or ())
     sliders = slider_points(all_pts, ground)
+    blocks = {**sliders, **guided_points(mech.links, all_pts, ground)}
     unit = length_unit(sweep)
+    traces = [traces] if isinstance(traces, str) else list(traces or ())
+    for n in traces:
+        if n not in all_pts:
+            raise ValueError(f"traces: {n!r} is not a named point of {mech.name}; points are {list(all_pts)}")
+    vectors, vec_unit = {}, ""
+    if arrows is not None:
+        if omega is None:
+            raise ValueError("arrows: give the input speed omega (for example omega='10 rad/s')")
+        one = _one_point(sweep, at, q)
+        vectors, vec_unit = arrow_vectors(one, arrows, omega, alpha, arrow_points)
+        vectors = {n: v[:, 0] for n, v in vectors.items()}
     values = {input_name(sweep): at, **dict(zip(sweep.unknowns, q))}
 
     if dimensions is None:
@@ -162,7 +398,7 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
                     seen.add(frozenset((p, r)))
                     plain.append((p, r))
 
-    xlim, ylim, span = bounds([xy[:, None] for xy in pts.values()], margin=0.16)
+    xlim, ylim, span = bounds([xy[:, None] for xy in pts.values()] + [all_pts[n] for n in traces], margin=0.16)
     off = 0.045 * span
     segments = [(p, r) for link in mech.links for p, r in zip(link[:-1], link[1:])] + [(p, r) for p, r, _, _ in dims]
     arcs = _angle_arcs(sweep, pts, values, segments)
@@ -191,8 +427,29 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
         for link, color in zip(mech.links, link_colors(len(mech.links))):
             xy = np.array([pts[n] for n in link])
             ax.plot(xy[:, 0], xy[:, 1], color=color, linewidth=3.2, solid_capstyle="round", zorder=3)
-        for name in sliders:
-            ax.plot(*pts[name], marker="s", markersize=15, markerfacecolor="0.8", markeredgecolor="0.2", zorder=4)
+        for name, direction in block_directions(blocks, pts).items():
+            draw_block(ax, pts[name], direction, span)
+        for j, name in enumerate(traces):
+            path = all_pts[name]
+            ax.plot(path[0], path[1], color="0.35", linestyle=(0, (4, 2)), linewidth=0.9, zorder=2)
+            top = int(np.argmax(path[1]))
+            ax.annotate(f"path of {name}", (path[0, top], path[1, top]), xytext=(0, 4), textcoords="offset points",
+                        ha="center", va="bottom", fontsize=8, color="0.25", zorder=6)
+        if vectors:
+            scale = arrow_scale(vectors, span)
+            color = "#8E44AD" if arrows == "velocity" else "#C0392B"
+            head = "v" if arrows == "velocity" else "a"
+            for name, vec in vectors.items():
+                if not np.all(np.isfinite(vec)) or np.hypot(*vec) * scale < 1e-3 * span:
+                    continue
+                tip = pts[name] + scale * vec
+                ax.annotate("", xy=tip, xytext=pts[name], zorder=6,
+                            arrowprops={"arrowstyle": "-|>", "color": color, "linewidth": 1.6, "shrinkA": 0,
+                                        "shrinkB": 0, "mutation_scale": 11})
+                ax.annotate(f"${head}_{{{name}}}$", tip, xytext=(3, 3), textcoords="offset points", fontsize=8.5,
+                            color=color, zorder=7)
+            ax.text(0.0, -0.13, f"{arrows} arrows: {scale_text(scale, vec_unit, span, unit)}",
+                    transform=ax.transAxes, ha="left", va="top", fontsize=8, color=color)
         joints = sorted({n for link in mech.links for n in link} | set(ground))
         for name in joints:
             ax.plot(*pts[name], "o", markersize=6, markerfacecolor="white", markeredgecolor="black",
@@ -207,7 +464,7 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
             d = np.array([px, py]) - centre
             nrm = np.hypot(*d)
             d = d / nrm if nrm > 0 else np.array([0.0, 1.0])
-            dist = 19.0 if name in sliders else 12.0
+            dist = 21.0 if name in blocks else 12.0
             ax.annotate(name, (px, py), xytext=(dist * d[0] - 8 * d[1], dist * d[1] + 8 * d[0]),
                         textcoords="offset points", ha="center", va="center", fontsize=9, fontweight="bold",
                         zorder=6)
@@ -249,22 +506,24 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
         # angle arcs
         from matplotlib.patches import Arc
 
+        labels = []
         for centre_name, ang, name, radius in arc_geometry:
             cx, cy = pts[centre_name]
             lo, hi = (0.0, math.degrees(ang)) if ang >= 0 else (math.degrees(ang), 0.0)
             ax.add_patch(Arc((cx, cy), 2 * radius, 2 * radius, theta1=lo, theta2=hi, color="0.2",
                              linewidth=0.9, zorder=2))
             mid = math.radians(0.5 * (lo + hi))
-            ax.text(cx + radius * math.cos(mid) + 0.02 * span, cy + radius * math.sin(mid),
-                    f"{sym(name)} = {deg_text(values[name])}", fontsize=8.5, ha="left", va="center", zorder=6,
-                    bbox=label_box)
+            labels.append((ax.text(cx + radius * math.cos(mid) + 0.02 * span, cy + radius * math.sin(mid),
+                                   f"{sym(name)} = {deg_text(values[name])}", fontsize=8.5, ha="left",
+                                   va="center", zorder=6, bbox=label_box), (cx, cy), radius, mid))
         # the solved unknowns, beside the drawing
         lines = [f"{sym(input_name(sweep))} = {deg_text(at)}"]
         for name, v in zip(sweep.unknowns, q):
-            lines.append(f"{sym(name)} = {math.degrees(v):.3f}°".replace("-", "−") if is_angle(sweep, name)
+            lines.append(f"{sym(name)} = {no_negative_zero(f'{math.degrees(v):.3f}')}°" if is_angle(sweep, name)
                          else f"{sym(name)} = {value_text(v)} {unit}")
         ax.text(1.03, 1.0, "\n".join(lines), transform=ax.transAxes, ha="left", va="top", fontsize=9,
                 zorder=7, bbox={"boxstyle": "square,pad=0.4", "facecolor": "white", "edgecolor": "0.6"})
         _setup_mechanism_axes(ax, sweep, xlim, ylim)
-        ax.set_title(f"{mech.name} at {sym(input_name(sweep))} = {deg_text(at)}")
+        ax.set_title(f"{mechanism_title(mech)} at {sym(input_name(sweep))} = {deg_text(at)}")
+        _clear_labels(ax, labels, [pts[n] for n in joints], span)
     return fig

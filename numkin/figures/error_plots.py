@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import re
 
 import numpy as np
@@ -10,7 +11,7 @@ from .labels import sym, table_column, tex
 from .registries import SCHEME_FAMILY
 from .style import CYCLE, marker_style, new_figure, source_label, source_style, style
 
-__all__ = ["convergence", "jacobian_of", "newton_residuals", "roundoff", "table_caption", "work_precision"]
+__all__ = ["convergence", "jacobian_of", "newton_residuals", "on_curve", "roundoff", "table_caption", "work_precision"]
 
 
 def _quantity_text(q: str) -> tuple[str, str]:
@@ -127,7 +128,7 @@ def convergence(table, *, error: str = "max abs error"):
     h_unit = str(hcol)[3:-1]
     groups = _groups(table)
     with style():
-        fig, axes = new_figure(1, len(groups), size=(6.4 if len(groups) == 1 else 9.6, 4.4))
+        fig, axes = new_figure(1, len(groups), size=(6.4 if len(groups) == 1 else 9.6, 5.4))
         for ax, (quantity, sub) in zip(axes[0], groups):
             qtext, unit = _panel_text(quantity, error)
             h_all = np.asarray(sub[hcol], dtype=float)
@@ -139,7 +140,7 @@ def convergence(table, *, error: str = "max abs error"):
                 st = source_style(scheme, k)
                 st["linewidth"] = min(st.get("linewidth", 1.5), 1.6)
                 st.pop("alpha", None)
-                ax.plot(rows[hcol], _positive(rows[ecol]), marker="o", label=label, **st)
+                ax.plot(rows[hcol], _positive(rows[ecol]), label=label, **marker_style(scheme, st["color"]), **st)
             ylo, yhi = _log_limits(e_all)
             hmin, hmax = float(np.nanmin(h_all)), float(np.nanmax(h_all))
             # reference slopes, from the largest step, under the data
@@ -159,7 +160,7 @@ def convergence(table, *, error: str = "max abs error"):
             ax.set_xlabel(f"step $h$ [{h_unit}]")
             ax.set_ylabel(f"{error} [{unit}]")
             ax.set_title(f"{qtext}" if qtext else "error against step")
-            ax.legend(loc="lower right", fontsize=7.5)
+            ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.17), ncols=2, fontsize=7.5)
         caption = table_caption(table)
         if caption:
             fig.suptitle(_caption_title(caption), fontsize=9)
@@ -274,6 +275,27 @@ def work_precision(table, *, work: str = "work", time: str | None = None, error:
     return fig
 
 
+def on_curve(h, errors, at: float) -> float:
+    """The error of a curve drawn on log-log axes, at step `at` (straight between its points).
+
+    NaN outside the curve's steps or where a neighbour is missing.
+
+    Examples
+    --------
+    >>> f"{on_curve([1e-4, 1e-2], [1e-10, 1e-6], 1e-3):.3g}"
+    '1e-08'
+    """
+    h = np.asarray(h, dtype=float)
+    e = np.asarray(errors, dtype=float)
+    ok = np.isfinite(h) & np.isfinite(e) & (h > 0) & (e > 0)
+    h, e = h[ok], e[ok]
+    order = np.argsort(h)
+    h, e = h[order], e[order]
+    if h.size == 0 or not (h[0] * (1 - 1e-12) <= at <= h[-1] * (1 + 1e-12)):
+        return float("nan")
+    return float(10.0 ** np.interp(math.log10(at), np.log10(h), np.log10(e)))
+
+
 def roundoff(table):
     """Relative error against the step h at one angle: truncation error above, rounding below.
 
@@ -327,11 +349,14 @@ def roundoff(table):
             allv.extend(errs)
             order = row.get("formal order")
             label = _order_label(scheme, order)
-            ax.plot(hs, errs, marker="o", markersize=3.5, label=label, **st)
+            mk = marker_style(scheme, st["color"])
+            mk["markersize"] = 0.7 * mk["markersize"]
+            ax.plot(hs, errs, label=label, **mk, **st)
             if "measured optimal h [rad]" in row.index:
-                ax.plot(row["measured optimal h [rad]"], row.get("rel error at measured optimal h [-]", np.nan),
-                        marker="*", markersize=11, color=st["color"], markeredgecolor="black",
-                        markeredgewidth=0.5, linestyle="none", zorder=5)
+                # the optimum at the table's step, at the error of the drawn curve there
+                h_opt = float(row["measured optimal h [rad]"])
+                ax.plot(h_opt, on_curve(hs, errs, h_opt), marker="*", markersize=11, color=st["color"],
+                        markeredgecolor="black", markeredgewidth=0.5, linestyle="none", zorder=5)
             if "textbook optimal h [rad]" in row.index and scheme not in ("complex step", "complex_step"):
                 ax.plot(row["textbook optimal h [rad]"], row.get("textbook error [-]", np.nan), marker="D",
                         markersize=6, markerfacecolor="white", markeredgecolor=st["color"], markeredgewidth=1.3,

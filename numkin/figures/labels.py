@@ -19,7 +19,7 @@ import numpy as np
 
 __all__ = [
     "GREEK", "check_points", "check_unknown", "deg_text", "degree_ticks", "frame_column", "frame_input",
-    "input_label", "input_name", "is_angle", "length_text", "length_unit", "quantity_labels", "rate_columns",
+    "input_label", "input_name", "is_angle", "length_text", "length_unit", "mechanism_title", "no_negative_zero", "quantity_labels", "rate_columns",
     "sig5", "sym", "table_column", "tex", "uniform_step", "unit_of", "value_text",
 ]
 
@@ -54,6 +54,28 @@ def input_name(sweep) -> str:
     return str(sweep.mechanism.input_symbol)
 
 
+def mechanism_title(mechanism) -> str:
+    """The mechanism's name for a title, its dimensions with their unit.
+
+    ``"slider-crank (crank 0.08, rod 0.2, offset 0)"`` in metres becomes
+    ``"slider-crank (crank 0.08 m, rod 0.2 m, offset 0 m)"``; a number that
+    already has a unit, or a name without numbers, is left as it is.
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> mechanism_title(linkages.slider_crank(80, 200))
+    'slider-crank (crank 80 mm, rod 200 mm, offset 0 mm)'
+    """
+    name, unit = str(mechanism.name), mechanism.length_unit
+    head, paren, rest = name.partition(" (")
+    if not paren or not rest.endswith(")"):
+        return name
+    items = rest[:-1].split(", ")
+    fixed = [re.sub(r"^(\w+ [-+0-9.eE]+)$", rf"\1 {unit}", item) for item in items]
+    return f"{head} ({', '.join(fixed)})"
+
+
 def input_label(sweep) -> str:
     """Axis label of the input angle, in degrees."""
     return f"{sym(input_name(sweep))} [deg]"
@@ -83,7 +105,7 @@ def rate_columns(sweep, name: str) -> tuple[str, str]:
     return (f"omega_{name}", f"alpha_{name}") if is_angle(sweep, name) else (f"v_{name}", f"a_{name}")
 
 
-def _minus(text: str) -> str:
+def no_negative_zero(text: str) -> str:
     """A true minus sign, and no sign on a zero (``"-0.000"`` -> ``"0.000"``)."""
     if text.startswith("-") and not any(ch in "123456789" for ch in text.split("e")[0]):
         text = text[1:]
@@ -101,14 +123,14 @@ def sig5(value: float, zeros: bool = True) -> str:
     text = f"{value:#.5g}" if zeros else f"{value:.5g}"
     if "e" not in text:
         text = text.rstrip(".")
-    return _minus(text)
+    return no_negative_zero(text)
 
 
 def value_text(value: float) -> str:
     """At least three decimals and five significant digits (87.178, 130.767, 0.18330), true minus."""
     v = float(value)
     digits = 3 if v == 0 or not math.isfinite(v) else max(3, 4 - math.floor(math.log10(abs(v))))
-    return _minus(f"{v:.{digits}f}")
+    return no_negative_zero(f"{v:.{digits}f}")
 
 
 def length_text(value: float) -> str:
@@ -127,7 +149,7 @@ def deg_text(rad: float) -> str:
     """
     d = math.degrees(rad)
     text = f"{round(d):.0f}°" if abs(d - round(d)) < 1e-6 else f"{d:.2f}°"
-    return _minus(text)
+    return no_negative_zero(text)
 
 
 def degree_ticks(ax, degrees: np.ndarray) -> None:
