@@ -11,7 +11,8 @@ from .labels import sym, table_column, tex
 from .registries import SCHEME_FAMILY
 from .style import CYCLE, marker_style, new_figure, source_label, source_style, style
 
-__all__ = ["convergence", "jacobian_of", "newton_residuals", "on_curve", "roundoff", "table_caption", "work_precision"]
+__all__ = ["convergence", "jacobian_of", "newton_residuals", "on_curve", "quantity_of", "roundoff", "table_caption",
+           "work_precision"]
 
 
 def _quantity_text(q: str) -> tuple[str, str]:
@@ -30,9 +31,42 @@ def _quantity_text(q: str) -> tuple[str, str]:
     return name, unit
 
 
-def _panel_text(quantity, error: str) -> tuple[str, str]:
-    """Title text and error unit of one panel of a report figure (``"–"`` for a relative error)."""
-    qtext, unit = _quantity_text(quantity) if quantity is not None else ("", "")
+def quantity_of(table, value):
+    """The :class:`~numkin.quantities.Quantity` a table's ``quantity`` value stands for, or None.
+
+    The value itself if it is one, else ``table.attrs["quantities"][value]``
+    when the table carries that mapping.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> from numkin import linkages
+    >>> from numkin.quantities import resolve
+    >>> t = pd.DataFrame({"quantity": ["omega_beta [rad/s]"]})
+    >>> t.attrs["quantities"] = {"omega_beta [rad/s]": resolve(linkages.chained_four_bars(), "omega_beta")}
+    >>> print(quantity_of(t, "omega_beta [rad/s]").unit, quantity_of(t, "other"))
+    rad/s None
+    """
+    from ..quantities import Quantity
+
+    if isinstance(value, Quantity):
+        return value
+    known = getattr(table, "attrs", {}).get("quantities") or {}
+    q = known.get(value) if isinstance(known, dict) else None
+    return q if isinstance(q, Quantity) else None
+
+
+def _panel_text(quantity, error: str, table=None) -> tuple[str, str]:
+    """Title text and error unit of one panel of a report figure (``"–"`` for a relative error).
+
+    From the quantity's :class:`~numkin.quantities.Quantity` when the table
+    carries it; else read from the text ``"omega_beta [rad/s]"``.
+    """
+    q = quantity_of(table, quantity) if quantity is not None and table is not None else None
+    if q is not None:
+        qtext, unit = f"${q.symbol}$", q.unit.replace("^2", "²")
+    else:
+        qtext, unit = _quantity_text(quantity) if quantity is not None else ("", "")
     if "rel" in error:
         unit = "–"
     return qtext, unit
@@ -76,6 +110,15 @@ def _plain_log_ticks(axis, values) -> None:
         axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
         axis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
         axis.set_minor_formatter(NullFormatter())
+
+
+def _title(table, default: str) -> str:
+    """A table's ``attrs["title"]`` if it has one; else the first clause of its caption; else `default`."""
+    attrs = getattr(table, "attrs", {})
+    if attrs.get("title"):
+        return str(attrs["title"])
+    caption = table_caption(table)
+    return _caption_title(caption) if caption else default
 
 
 def _caption_title(caption: str) -> str:
@@ -130,7 +173,7 @@ def convergence(table, *, error: str = "max abs error"):
     with style():
         fig, axes = new_figure(1, len(groups), size=(6.4 if len(groups) == 1 else 9.6, 5.4))
         for ax, (quantity, sub) in zip(axes[0], groups):
-            qtext, unit = _panel_text(quantity, error)
+            qtext, unit = _panel_text(quantity, error, table)
             h_all = np.asarray(sub[hcol], dtype=float)
             e_all = _positive(sub[ecol])
             for k, scheme in enumerate(dict.fromkeys(sub[scol])):
@@ -161,9 +204,9 @@ def convergence(table, *, error: str = "max abs error"):
             ax.set_ylabel(f"{error} [{unit}]")
             ax.set_title(f"{qtext}" if qtext else "error against step")
             ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.17), ncols=2, fontsize=7.5)
-        caption = table_caption(table)
-        if caption:
-            fig.suptitle(_caption_title(caption), fontsize=9)
+        title = _title(table, "")
+        if title:
+            fig.suptitle(title, fontsize=9)
     return fig
 
 
@@ -249,7 +292,7 @@ def work_precision(table, *, work: str = "work", time: str | None = None, error:
     with style():
         fig, axes = new_figure(1, len(groups), size=(6.4 if len(groups) == 1 else 9.6, 5.0))
         for ax, (quantity, sub) in zip(axes[0], groups):
-            qtext, unit = _panel_text(quantity, error)
+            qtext, unit = _panel_text(quantity, error, table)
             order_col = "points per turn" if "points per turn" in sub.columns else xcol
             for k, method in enumerate(dict.fromkeys(sub[mcol])):
                 rows = sub[sub[mcol] == method].sort_values(order_col, kind="mergesort")
@@ -374,8 +417,7 @@ def roundoff(table):
         ax.set_ylim(lo, hi)
         ax.set_xlabel("step $h$ [rad]")
         ax.set_ylabel("relative error [–]")
-        caption = table_caption(table)
-        ax.set_title(_caption_title(caption) if caption else "round-off: error against step", fontsize=9)
+        ax.set_title(_title(table, "round-off: error against step"), fontsize=9)
         fig.legend(loc="outside lower center", fontsize=7.5, ncols=3)
     return fig
 

@@ -44,7 +44,7 @@ SOURCE_STYLE = {
     "analytic": {"color": "black", "linestyle": "-", "linewidth": 1.0, "zorder": 4},
     "forward": {"color": "#D55E00", "linestyle": (0, (5, 5)), "linewidth": 1.8},
     "backward": {"color": "#CC79A7", "linestyle": (5, (5, 5)), "linewidth": 1.8},
-    "centred": {"color": "#0072B2", "linestyle": "-", "linewidth": 2.6, "alpha": 0.55},
+    "centred": {"color": "#0072B2", "linestyle": "-", "linewidth": 2.6, "alpha": 0.55, "zorder": 1.9},
     "five_point": {"color": "#009E73", "linestyle": (0, (1.2, 1.8)), "linewidth": 2.4},
     "richardson": {"color": "#E69F00", "linestyle": (0, (6, 4)), "linewidth": 1.4},
     "spectral": {"color": "#56B4E9", "linestyle": "-.", "linewidth": 1.6},
