@@ -563,3 +563,22 @@ def test_velocity_arrows_of_the_crank_pin(crank):
         figures.mechanism(sweep, arrows="velocity")
     with pytest.raises(ValueError, match="traces: 'Q' is not a named point"):
         figures.mechanism(sweep, traces=["Q"])
+
+
+def test_error_figures_prefer_the_quantity_a_table_carries(tables):
+    """A Quantity in attrs names the panel and its unit; without one the text header is read."""
+    from numkin.quantities import Quantity
+
+    table = tables["convergence"].copy()
+    plain = figures.convergence(table)
+    titles = [ax.get_title() for ax in plain.axes]
+    plt.close(plain)
+    assert titles[0] == "$\\omega_{\\beta}$"
+    first = table["quantity"].iloc[0]
+    table.attrs = {**table.attrs, "quantities": {first: Quantity("x", 1, "length", length_unit="cm")},
+                   "title": "piston"}
+    fig = figures.convergence(table)
+    ax = fig.axes[0]
+    assert ax.get_title() == "$\\dot{x}$" and ax.get_ylabel().endswith("[cm/s]")
+    assert fig._suptitle.get_text() == "piston"
+    plt.close(fig)

@@ -125,6 +125,8 @@ def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
     >>> [p.name for p in figures.save(figures.position(sweep, ["x"]), "/tmp/numkin-doc-x", ["png"])]
     ['numkin-doc-x.png']
     """
+    import matplotlib
+
     if isinstance(formats, str):
         formats = (formats,)
     fmts = [str(f).lower().lstrip(".") for f in formats]
@@ -139,6 +141,13 @@ def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
         stem.parent.mkdir(parents=True, exist_ok=True)
         paths = []
         with style():
+            # one layout for every format: computed once at the saving resolution, then frozen
+            if fig.get_layout_engine() is not None and len(fmts) > 1:
+                dpi = fig.dpi
+                fig.set_dpi(matplotlib.rcParams["savefig.dpi"])
+                fig.draw_without_rendering()
+                fig.set_dpi(dpi)
+                fig.set_layout_engine("none")
             for fmt in fmts:
                 path = stem.with_name(f"{stem.name}.{fmt}")
                 fig.savefig(path, format=fmt, metadata=METADATA[fmt])
