@@ -178,7 +178,7 @@ def difference(sweep, name: str):
     k = np.flatnonzero(np.sign(s[:-1]) * np.sign(s[1:]) < 0) + 1
     zeros = x[k] - second[k] * (x[k + 1] - x[k]) / (second[k + 1] - second[k])
     with style():
-        fig, axes = new_figure(size=(6.8, 4.2))
+        fig, axes = new_figure(size=(6.8, 4.8))
         ax = axes[0, 0]
         ax2 = ax.twinx()
         ax2.grid(False)
@@ -200,7 +200,8 @@ def difference(sweep, name: str):
         ax.tick_params(axis="y", colors=c1)
         ax2.tick_params(axis="y", colors=c2)
         degree_ticks(ax, x)
-        ax.legend(lines, [ln.get_label() for ln in lines], loc="upper right")
+        ax.legend(lines, [ln.get_label() for ln in lines], loc="upper center", bbox_to_anchor=(0.5, -0.14), ncols=3,
+                  fontsize=8)
         ax.set_title(rf"$\Delta \to 0$ where $d^2{t}/d{ti}^2 = 0$ ($h$ = {deg_text(h)})")
     return fig
 
