@@ -91,18 +91,40 @@ def length_unit(sweep) -> str:
     return sweep.mechanism.length_unit
 
 
+def _quantities(sweep, name: str):
+    """The position, velocity and acceleration :class:`~numkin.quantities.Quantity` of an unknown."""
+    from ..quantities import Quantity
+
+    mech = sweep.mechanism
+    dim = "angle" if is_angle(sweep, name) else "length"
+    return [Quantity(name, order, dim, length_unit=mech.length_unit, input_name=input_name(sweep))
+            for order in (0, 1, 2)]
+
+
 def quantity_labels(sweep, name: str) -> tuple[str, str, str]:
-    """Axis labels of position, velocity and acceleration of an unknown, with units."""
+    """Axis labels of position, velocity and acceleration of an unknown, with units.
+
+    Units from :class:`~numkin.quantities.Quantity`; angles drawn in degrees.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([0.0, 1.0]))
+    >>> quantity_labels(sweep, "x")
+    ('$x$ [mm]', '$v_{x}$ [mm/s]', '$a_{x}$ [mm/s²]')
+    """
     t = tex(name)
+    _, vel, acc = (q.unit.replace("^2", "²") for q in _quantities(sweep, name))
     if is_angle(sweep, name):
-        return f"${t}$ [deg]", rf"$\omega_{{{t}}}$ [rad/s]", rf"$\alpha_{{{t}}}$ [rad/s²]"
-    u = length_unit(sweep)
-    return f"${t}$ [{u}]", f"$v_{{{t}}}$ [{u}/s]", f"$a_{{{t}}}$ [{u}/s²]"
+        return f"${t}$ [deg]", rf"$\omega_{{{t}}}$ [{vel}]", rf"$\alpha_{{{t}}}$ [{acc}]"
+    return f"${t}$ [{length_unit(sweep)}]", f"$v_{{{t}}}$ [{vel}]", f"$a_{{{t}}}$ [{acc}]"
 
 
 def rate_columns(sweep, name: str) -> tuple[str, str]:
-    """Velocity and acceleration column names of an unknown in the kinematics frames."""
-    return (f"omega_{name}", f"alpha_{name}") if is_angle(sweep, name) else (f"v_{name}", f"a_{name}")
+    """Velocity and acceleration column names of an unknown in the kinematics frames (Quantity names)."""
+    _, vel, acc = _quantities(sweep, name)
+    return vel.name, acc.name
 
 
 def no_negative_zero(text: str) -> str:
