@@ -582,3 +582,18 @@ def test_error_figures_prefer_the_quantity_a_table_carries(tables):
     assert ax.get_title() == "$\\dot{x}$" and ax.get_ylabel().endswith("[cm/s]")
     assert fig._suptitle.get_text() == "piston"
     plt.close(fig)
+
+
+@pytest.mark.slow
+def test_cli_figures_all_twice_gives_identical_bytes(tmp_path):
+    from numkin.cli import main
+
+    outs = [tmp_path / f"run{k}" for k in range(2)]
+    for out in outs:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            assert main(["figures", "--all", "--out", str(out)]) == 0
+    files = sorted(p.relative_to(outs[0]) for p in outs[0].rglob("*") if p.is_file())
+    assert files and files == sorted(p.relative_to(outs[1]) for p in outs[1].rglob("*") if p.is_file())
+    for rel in files:
+        assert (outs[0] / rel).read_bytes() == (outs[1] / rel).read_bytes(), rel
