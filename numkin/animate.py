@@ -35,7 +35,7 @@ import numpy as np
 
 from .figures.drawing import (
     arrow_scale, arrow_vectors, block_corners, block_directions, bounds, draw_ground, guided_points, link_colors,
-    scale_text, slider_points,
+    scale_text, slider_points, tip_offset,
 )
 from .figures.labels import deg_text, input_name, length_unit, mechanism_title, sym
 from .figures.style import close, style
@@ -276,8 +276,8 @@ def animate(sweep, path, frames: int = 72, fps: float = 24, *, dpi: int = 80, wi
                 arrow = ax.annotate("", xy=(0, 0), xytext=(0, 0), zorder=6,
                                     arrowprops={"arrowstyle": "-|>", "color": color, "linewidth": 1.5,
                                                 "shrinkA": 0, "shrinkB": 0, "mutation_scale": 10})
-                label = ax.annotate(f"${head}_{{{name}}}$", (0, 0), xytext=(3, 3), textcoords="offset points",
-                                    fontsize=8, color=color, zorder=7)
+                label = ax.annotate(f"${head}_{{{name}}}$", (0, 0), xytext=(0, 0), textcoords="offset points",
+                                    ha="center", va="center", fontsize=8, color=color, zorder=7)
                 arrow_artists[name] = (arrow, label)
             if vectors:
                 fig.text(0.13, 0.015, f"{arrows} arrows: {scale_text(scale, vec_unit, span, unit)}", ha="left",
@@ -300,6 +300,7 @@ def animate(sweep, path, frames: int = 72, fps: float = 24, *, dpi: int = 80, wi
                         arrow.xy, arrow.xyann = tuple(tip), tuple(base)
                         arrow.set_visible(shown)
                         label.xy = tuple(tip)
+                        label.xyann = tip_offset(vec)
                         label.set_visible(shown)
                     stamp.set_text(f"{symbol} = {deg_text(float(sweep.inputs[k]))}")
                     writer.grab_frame()

@@ -12,7 +12,7 @@ from typing import Iterable, Mapping, Sequence
 import numpy as np
 
 from .labels import (
-    deg_text, input_name, is_angle, length_text, length_unit, mechanism_title, no_negative_zero, sig5, sym,
+    deg_text, input_name, is_angle, length_text, length_unit, mechanism_title, no_negative_zero, sym,
     value_text,
 )
 from .registries import dimensions_of
@@ -20,7 +20,7 @@ from .style import CYCLE, new_figure, style
 
 __all__ = [
     "arrow_scale", "arrow_vectors", "block_corners", "block_directions", "bounds", "draw_block", "draw_ground",
-    "guided_points", "link_colors", "mechanism", "scale_text", "slider_points",
+    "guided_points", "link_colors", "mechanism", "scale_text", "slider_points", "tip_offset",
 ]
 
 
@@ -181,6 +181,21 @@ def arrow_vectors(sweep, kind: str, omega, alpha=0.0, points: Sequence[str] | No
     return vectors, unit
 
 
+def tip_offset(vector, distance: float = 9.0) -> tuple[float, float]:
+    """Offset (points) of an arrow's label from its tip: `distance` further along the arrow.
+
+    Examples
+    --------
+    >>> tip_offset((0.0, -2.0))
+    (0.0, -9.0)
+    """
+    v = np.asarray(vector, dtype=float)
+    n = float(np.hypot(*v))
+    if not n or not math.isfinite(n):
+        return (0.0, distance)
+    return (float(distance * v[0] / n) + 0.0, float(distance * v[1] / n) + 0.0)
+
+
 def arrow_scale(vectors: Mapping, span: float, fraction: float = 0.25) -> float:
     """Drawing length per unit of the vectors: the longest vector drawn `fraction` of `span` long.
 
@@ -195,11 +210,17 @@ def arrow_scale(vectors: Mapping, span: float, fraction: float = 0.25) -> float:
 
 
 def scale_text(scale: float, unit: str, span: float, length_unit_: str) -> str:
-    """``"arrows: 20 mm ≙ 1.5 m/s"``-style legend of an arrow scale, with a round drawing length."""
+    """Legend of an arrow scale: a round length of the drawing and the value it stands for.
+
+    Examples
+    --------
+    >>> scale_text(0.5, "mm/s", 120.0, "mm")
+    '10 mm of drawing = 20 mm/s'
+    """
     if scale <= 0:
         return ""
     draw = 10.0 ** math.floor(math.log10(0.1 * span))
-    return f"{length_text(draw)} {length_unit_} of drawing = {sig5(draw / scale, zeros=False)} {unit}"
+    return f"{length_text(draw)} {length_unit_} of drawing = {no_negative_zero(f'{draw / scale:.3g}')} {unit}"
 
 
 def bounds(xy_list: Iterable[np.ndarray], margin: float = 0.12):
@@ -446,8 +467,8 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
                 ax.annotate("", xy=tip, xytext=pts[name], zorder=6,
                             arrowprops={"arrowstyle": "-|>", "color": color, "linewidth": 1.6, "shrinkA": 0,
                                         "shrinkB": 0, "mutation_scale": 11})
-                ax.annotate(f"${head}_{{{name}}}$", tip, xytext=(3, 3), textcoords="offset points", fontsize=8.5,
-                            color=color, zorder=7)
+                ax.annotate(f"${head}_{{{name}}}$", tip, xytext=tip_offset(vec), textcoords="offset points",
+                            ha="center", va="center", fontsize=8.5, color=color, zorder=7)
             ax.text(0.0, -0.13, f"{arrows} arrows: {scale_text(scale, vec_unit, span, unit)}",
                     transform=ax.transAxes, ha="left", va="top", fontsize=8, color=color)
         joints = sorted({n for link in mech.links for n in link} | set(ground))
