@@ -160,7 +160,9 @@ print(cmp6.summary.to_string(float_format="{:.2e}".format))
 #
 # The exam computed the piston acceleration at 500 points from 0° to 180° by the second
 # difference and compared it with sympy's derivative. With $\omega = 6000$ rpm $= 200\pi$
-# rad/s the exact values at the dead centres follow from $x''(\theta)$ by hand:
+# rad/s the exact values at the top dead centre ($\theta = 0$) and at $\theta = 90^\circ$ (crank
+# perpendicular to the line of stroke; the dead centres are at 0° and 180°) follow from
+# $x''(\theta)$ by hand:
 #
 # $$
 # a(0) = -R\omega^2\Big(1 + \frac RL\Big), \qquad

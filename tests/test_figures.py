@@ -448,3 +448,152 @@ def test_gif_frame_count_and_identical_bytes(tmp_path):
     assert paths[0].read_bytes() == paths[1].read_bytes()
     with pytest.raises(ValueError, match="must end in .gif"):
         animate(sweep, tmp_path / "crank.mp4")
+
+
+# ----------------------------------------------------------------------------- readable figures
+def test_roundoff_optimum_lies_on_its_curve(tables):
+    """Each measured-optimum star sits at the table's optimal h, on the drawn polyline of its scheme."""
+    table = tables["roundoff"]
+    ax = figures.roundoff(table).axes[0]
+    stars = [ln for ln in ax.get_lines() if ln.get_marker() == "*" and len(ln.get_xdata()) == 1]
+    curves = [ln for ln in ax.get_lines() if len(ln.get_xdata()) > 2 and ln.get_linestyle() != "None"]
+    assert len(stars) == len(table)
+    for star, (_, row) in zip(stars, table.iterrows()):
+        h_star, e_star = float(star.get_xdata()[0]), float(star.get_ydata()[0])
+        assert h_star == row["measured optimal h [rad]"]
+        curve = next(c for c in curves if c.get_color() == star.get_color() and c.get_label().startswith(
+            str(row["scheme"]).replace("_", " ")))
+        h, e = np.asarray(curve.get_xdata(), float), np.asarray(curve.get_ydata(), float)
+        ok = np.isfinite(e)
+        # straight line between the two neighbouring points on log-log axes, computed here
+        j = np.searchsorted(h[ok], h_star)
+        h0, h1, e0, e1 = h[ok][j - 1], h[ok][j], e[ok][j - 1], e[ok][j]
+        expected = e0 * (e1 / e0) ** (math.log(h_star / h0) / math.log(h1 / h0))
+        assert e_star == pytest.approx(expected, rel=1e-9)
+
+
+def test_scheme_families_agree_with_the_partners():
+    from numkin.figures.registries import SCHEME_FAMILY
+    from numkin.kinematics import PARTNER
+
+    for second, first in PARTNER.items():
+        assert SCHEME_FAMILY[second] == first
+
+
+def test_coinciding_schemes_stay_visible():
+    """Forward and backward (and five-point and Richardson) differ in dash phase or marker, not only colour."""
+    from numkin.figures.style import SOURCE_MARKERS, source_style
+
+    for a, b in (("forward", "backward"), ("five_point", "richardson")):
+        sa, sb = source_style(a, 0), source_style(b, 1)
+        assert sa["linestyle"] != sb["linestyle"]
+        assert SOURCE_MARKERS[a][:2] != SOURCE_MARKERS[b][:2]
+
+
+def test_no_negative_zero_and_units_in_titles(crank):
+    from numkin.figures.labels import deg_text, sig5, value_text
+
+    assert sig5(-0.0) == "0.0000" and value_text(-0.0) == "0.000" and deg_text(-1e-13) == "0°"
+    assert sig5(-2.5) == "−2.5000"
+    sweep = crank.sweep
+    fig = figures.slider(sweep, analytic=crank.analytic, finite=crank.finite, check_angles=[0.0, 90 * DEG])
+    text = all_text(fig)
+    plt.close(fig)
+    assert "−0.0000" not in text and "-0.0000" not in text
+    # the closed form: v = 0 at the dead centre, printed as a plain zero
+    assert "analytic: 0.0000 mm/s" in text
+    assert "crank 80 mm, rod 200 mm, offset 0 mm" in fig.axes[0].get_title()
+
+
+def test_position_axis_names_quantity_and_unit():
+    sweep = linkages.quick_return().sweep(np.radians(np.arange(0, 361, 5)))
+    fig = figures.position(sweep)
+    labels = [ax.get_ylabel() for ax in fig.axes]
+    plt.close(fig)
+    assert labels[0] == "length $r_{3}$, $r_{4}$, $r_{5}$ [mm]"
+    assert "r1 60 mm" in fig.axes[0].get_title()
+
+
+def test_angle_labels_do_not_cover_joints():
+    """At theta2 = 0 the six-bar's crank lies along the reference line: its label keeps clear of joint A."""
+    sweep = linkages.six_bar().sweep(np.radians(np.arange(0, 361)))
+    fig = figures.mechanism(sweep, 0.0)
+    ax = fig.axes[0]
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    a = ax.transData.transform(sweep.points()["A"][:, 0])
+    for t in ax.texts:
+        if t.get_text().startswith("$\\theta"):
+            box = t.get_window_extent(renderer)
+            assert not (box.x0 - 5 <= a[0] <= box.x1 + 5 and box.y0 - 5 <= a[1] <= box.y1 + 5), t.get_text()
+    plt.close(fig)
+
+
+def test_quick_return_slider_a_is_a_block_along_the_rocker():
+    """A slides on O1-B: its block is a rectangle whose long side is parallel to O1B (theta3 from the closed form)."""
+    from matplotlib.patches import Polygon
+
+    sweep = linkages.quick_return().sweep(np.radians(np.arange(0, 361)))
+    fig = figures.mechanism(sweep, 30 * DEG)
+    blocks = [p for p in fig.axes[0].patches if isinstance(p, Polygon) and len(p.get_xy()) >= 4
+              and np.isclose(np.mean(p.get_xy()[:4], axis=0), [40 * math.cos(30 * DEG), 60 + 40 * math.sin(30 * DEG)]).all()]
+    plt.close(fig)
+    assert len(blocks) == 1
+    xy = blocks[0].get_xy()[:4]
+    side = xy[1] - xy[0]
+    # A = O2 + r2 e^{i theta2} with O2 = (0, 60), O1 = (0, 0): theta3 = atan2(A_y, A_x)
+    theta3 = math.atan2(60 + 40 * math.sin(30 * DEG), 40 * math.cos(30 * DEG))
+    assert math.atan2(side[1], side[0]) == pytest.approx(theta3, abs=1e-9)
+
+
+def test_velocity_arrows_of_the_crank_pin(crank):
+    """v_A = omega r2 perpendicular to O A (closed form), drawn to the stated scale."""
+    from numkin.figures.drawing import arrow_vectors
+
+    sweep = crank.sweep
+    vec, unit = arrow_vectors(sweep, "velocity", "10 rad/s", points=["A"])
+    t = sweep.inputs
+    assert unit == "mm/s"
+    np.testing.assert_allclose(vec["A"][0], -800 * np.sin(t), atol=1e-9)
+    np.testing.assert_allclose(vec["A"][1], 800 * np.cos(t), atol=1e-9)
+    fig = figures.mechanism(sweep, 90 * DEG, arrows="velocity", omega="10 rad/s", traces=["A"])
+    assert "velocity arrows:" in all_text(fig) and "$v_{A}$" in all_text(fig)
+    plt.close(fig)
+    with pytest.raises(ValueError, match="give the input speed omega"):
+        figures.mechanism(sweep, arrows="velocity")
+    with pytest.raises(ValueError, match="traces: 'Q' is not a named point"):
+        figures.mechanism(sweep, traces=["Q"])
+
+
+def test_error_figures_prefer_the_quantity_a_table_carries(tables):
+    """A Quantity in attrs names the panel and its unit; without one the text header is read."""
+    from numkin.quantities import Quantity
+
+    table = tables["convergence"].copy()
+    plain = figures.convergence(table)
+    titles = [ax.get_title() for ax in plain.axes]
+    plt.close(plain)
+    assert titles[0] == "$\\omega_{\\beta}$"
+    first = table["quantity"].iloc[0]
+    table.attrs = {**table.attrs, "quantities": {first: Quantity("x", 1, "length", length_unit="cm")},
+                   "title": "piston"}
+    fig = figures.convergence(table)
+    ax = fig.axes[0]
+    assert ax.get_title() == "$\\dot{x}$" and ax.get_ylabel().endswith("[cm/s]")
+    assert fig._suptitle.get_text() == "piston"
+    plt.close(fig)
+
+
+@pytest.mark.slow
+def test_cli_figures_all_twice_gives_identical_bytes(tmp_path):
+    from numkin.cli import main
+
+    outs = [tmp_path / f"run{k}" for k in range(2)]
+    for out in outs:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            assert main(["figures", "--all", "--out", str(out)]) == 0
+    files = sorted(p.relative_to(outs[0]) for p in outs[0].rglob("*") if p.is_file())
+    assert files and files == sorted(p.relative_to(outs[1]) for p in outs[1].rglob("*") if p.is_file())
+    for rel in files:
+        assert (outs[0] / rel).read_bytes() == (outs[1] / rel).read_bytes(), rel

@@ -1,0 +1,85 @@
+"""Figures of sweeps, velocities, accelerations and error tables.
+
+One function per figure. Each takes plain data (a :class:`~numkin.Sweep`,
+the DataFrames of :func:`numkin.analytic.kinematics` and
+:func:`numkin.kinematics.finite_difference`, the tables of
+:mod:`numkin.report`), draws only what it is given and returns a
+:class:`matplotlib.figure.Figure` that is not registered with pyplot.
+:func:`save` writes it (PNG and SVG by default) and closes it;
+:func:`render` draws and saves the figures a scene asks for.
+
+Figures use the package style (``numkin/numkin.mplstyle``: fixed size, dpi
+and fonts, matplotlib's defaults underneath, the user's matplotlibrc
+ignored), the Agg renderer and no dates or version strings in the files, so
+regenerating a figure gives the same bytes. Input angles are drawn in
+degrees, every axis is labelled with its unit.
+
+Importing this package does not import matplotlib (the figure functions do),
+so :data:`FIGURES` and :func:`parse_spec` can be used to check a scene's
+figure list cheaply.
+
+The package is split by job: :mod:`~numkin.figures.style` (style file,
+colours, saving), :mod:`~numkin.figures.labels` (symbols, units, number
+formats), :mod:`~numkin.figures.curves` (curves against the input),
+:mod:`~numkin.figures.error_plots` (error-analysis tables),
+:mod:`~numkin.figures.drawing` (the linkage itself, shared with
+:mod:`numkin.animate`), :mod:`~numkin.figures.dispatch` (figures by name)
+and :mod:`~numkin.figures.registries` (scheme families and dimension lines).
+
+=========================  ======================================================  ====================
+name                       figure                                                  needs
+=========================  ======================================================  ====================
+``position``               unknowns against the input                              sweep
+``derivative``             dq/dθ by forward and centred differences                sweep (uniform step)
+``difference``             Δ = |centred − forward| with d²q/dθ² on twin axes       sweep (uniform step)
+``kinematics``             q, q̇, q̈ against θ: schemes, analytic, check points      analytic and/or finite
+``slider``                 x, v, a of a slider                                     analytic and/or finite
+``acceleration``           numerical against analytic acceleration, and the error  analytic and finite
+``mechanism``              the linkage drawn at one input, dimensions labelled     sweep with points
+``convergence``            error against h (log-log), reference slopes 1, 2, 4     convergence table
+``work-precision``         error against work (exact evaluation counts)            work-precision table
+``roundoff``               error against h down to rounding: the V-curve           roundoff table
+``newton``                 Newton's residual per iteration, per Jacobian           newton table
+=========================  ======================================================  ====================
+
+A scene names a figure as ``"name"`` or ``"name:unknown"`` (``"kinematics:beta"``),
+see :func:`parse_spec`.
+
+Examples
+--------
+>>> import numpy as np
+>>> from numkin import linkages, figures
+>>> sweep = linkages.four_bar(4, 1, 3, 3).sweep(np.radians(np.arange(0, 361)))
+>>> fig = figures.position(sweep, ["theta4"])
+>>> [p.suffix for p in figures.save(fig, "/tmp/numkin-doc-theta4")]
+['.png', '.svg']
+"""
+
+from __future__ import annotations
+
+from .curves import acceleration_comparison, derivative, difference, kinematics, position, slider
+from .dispatch import FIGURES, FigureSkipped, parse_spec, render
+from .drawing import mechanism
+from .error_plots import convergence, newton_residuals, roundoff, work_precision
+from .style import STYLE, save, style
+
+__all__ = [
+    "FIGURES",
+    "FigureSkipped",
+    "STYLE",
+    "acceleration_comparison",
+    "convergence",
+    "derivative",
+    "difference",
+    "kinematics",
+    "mechanism",
+    "newton_residuals",
+    "parse_spec",
+    "position",
+    "render",
+    "roundoff",
+    "save",
+    "slider",
+    "style",
+    "work_precision",
+]

@@ -1,0 +1,418 @@
+"""Figures of curves against the input angle: positions, dq/dθ, velocities and accelerations."""
+
+from __future__ import annotations
+
+import math
+from typing import Iterable, Mapping, Sequence
+
+import numpy as np
+
+from .labels import (
+    check_points, check_unknown, deg_text, degree_ticks, frame_column, frame_input, input_label, input_name,
+    is_angle, length_unit, mechanism_title, quantity_labels, rate_columns, sig5, sym, tex, uniform_step, unit_of,
+)
+from .style import CYCLE, SOURCE_STYLE, new_figure, source_label, source_style, style
+
+__all__ = ["acceleration_comparison", "derivative", "difference", "kinematics", "position", "slider"]
+
+
+def position(sweep, names: Sequence[str] | None = None):
+    """Unknowns against the input angle (angles in degrees, lengths in the sweep's unit).
+
+    Parameters
+    ----------
+    sweep : Sweep
+    names : sequence of str, optional
+        Unknowns to draw; default all. Angles and lengths go to separate panels.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages, figures
+    >>> sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 361)))
+    >>> fig = figures.position(sweep, ["phi"])
+    >>> fig.axes[0].get_ylabel()
+    '$\\\\phi$ [deg]'
+    >>> figures.save(fig, "/tmp/numkin-doc-phi", ["png"])[0].name
+    'numkin-doc-phi.png'
+    """
+    if isinstance(names, str):
+        names = [names]
+    names = list(sweep.unknowns) if names is None else [check_unknown(sweep, n) for n in names]
+    if not names:
+        raise ValueError("names: no unknown to draw")
+    groups: dict[str, list[str]] = {}
+    for n in names:
+        groups.setdefault("deg" if is_angle(sweep, n) else length_unit(sweep), []).append(n)
+    x = np.degrees(sweep.inputs)
+    with style():
+        fig, axes = new_figure(len(groups), 1, sharex=True, size=(6.4, 2.2 + 2.0 * len(groups)))
+        for ax, (unit, group) in zip(axes[:, 0], groups.items()):
+            for k, n in enumerate(group):
+                y = np.degrees(sweep[n]) if unit == "deg" else sweep[n]
+                ax.plot(x, y, color=CYCLE[k % len(CYCLE)], label=sym(n))
+            what = "angle" if unit == "deg" else "length"
+            ax.set_ylabel(f"{sym(group[0])} [{unit}]" if len(group) == 1
+                          else f"{what} {', '.join(sym(n) for n in group)} [{unit}]")
+            if len(group) > 1:
+                ax.legend(loc="best")
+        axes[-1, 0].set_xlabel(input_label(sweep))
+        degree_ticks(axes[-1, 0], x)
+        title = ", ".join(sym(n) for n in names)
+        axes[0, 0].set_title(f"{mechanism_title(sweep.mechanism)}: {title} against {sym(input_name(sweep))}")
+    return fig
+
+
+def _derivative_units(sweep, name: str) -> tuple[str, str]:
+    if is_angle(sweep, name):
+        return "rad/rad", "rad/rad²"
+    u = length_unit(sweep)
+    return f"{u}/rad", f"{u}/rad²"
+
+
+def derivative(sweep, name: str, schemes: Sequence[str] = ("forward", "centred")):
+    """dq/dθ of one unknown by finite differences of the sweep, all schemes on one graph.
+
+    Derivatives are per radian of input (``h`` = the sweep's step in rad),
+    with the open-grid stencils of :mod:`numkin.derivatives` (one-sided,
+    same order, at the two ends); the input axis is in degrees.
+
+    Parameters
+    ----------
+    sweep : Sweep
+        On a uniform grid.
+    name : str
+        The unknown.
+    schemes : sequence of str
+        First-derivative schemes of :mod:`numkin.derivatives`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages, figures
+    >>> sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 361)))
+    >>> fig = figures.derivative(sweep, "phi")
+    >>> [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    ['forward', 'centred']
+    >>> figures.save(fig, "/tmp/numkin-doc-dphi", ["png"])[0].suffix
+    '.png'
+    """
+    from .. import derivatives as fd
+
+    check_unknown(sweep, name)
+    h = uniform_step(sweep)
+    if isinstance(schemes, str):
+        schemes = [schemes]
+    resolved = []
+    for s in schemes:
+        sch = fd.get_scheme(s)
+        if sch.derivative != 1:
+            raise ValueError(f"schemes: {s!r} estimates a second derivative; give first-derivative schemes")
+        resolved.append(sch.name)
+    x = np.degrees(sweep.inputs)
+    t, ti = tex(name), tex(input_name(sweep))
+    unit, _ = _derivative_units(sweep, name)
+    with style():
+        fig, axes = new_figure()
+        ax = axes[0, 0]
+        for k, s in enumerate(resolved):
+            ax.plot(x, fd.differentiate(sweep[name], h, method=s), label=source_label(s), **source_style(s, k))
+        ax.axhline(0.0, color="black", linewidth=0.5)
+        ax.set_xlabel(input_label(sweep))
+        ax.set_ylabel(f"$d{t}/d{ti}$ [{unit}]")
+        degree_ticks(ax, x)
+        ax.legend(loc="best")
+        ax.set_title(f"$d{t}/d{ti}$ by finite differences, $h$ = {deg_text(h)}")
+    return fig
+
+
+def difference(sweep, name: str):
+    """Δ = |centred − forward| dq/dθ over θ, on twin axes with d²q/dθ².
+
+    The leading error of the forward difference is ``(h/2) q''``, that of
+    the centred one is of order h²; so Δ ≈ (h/2)|q''| and Δ → 0 where
+    q'' = 0. The zeros of q'' are marked by dotted lines.
+
+    Parameters
+    ----------
+    sweep : Sweep
+        On a uniform grid.
+    name : str
+        The unknown.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages, figures
+    >>> sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 361)))
+    >>> fig = figures.difference(sweep, "phi")
+    >>> len(fig.axes)   # Δ and the twin axis of d2phi/dtheta2
+    2
+    >>> figures.save(fig, "/tmp/numkin-doc-delta", ["png"])[0].suffix
+    '.png'
+    """
+    from .. import derivatives as fd
+
+    check_unknown(sweep, name)
+    h = uniform_step(sweep)
+    y = sweep[name]
+    delta = np.abs(fd.centred(y, h) - fd.forward(y, h))
+    second = fd.second_difference(y, h)
+    x = np.degrees(sweep.inputs)
+    t, ti = tex(name), tex(input_name(sweep))
+    unit1, unit2 = _derivative_units(sweep, name)
+    # zeros of q'' between interior samples (linear interpolation of the sign change)
+    s = second[1:-1]
+    k = np.flatnonzero(np.sign(s[:-1]) * np.sign(s[1:]) < 0) + 1
+    zeros = x[k] - second[k] * (x[k + 1] - x[k]) / (second[k + 1] - second[k])
+    with style():
+        fig, axes = new_figure(size=(6.8, 4.8))
+        ax = axes[0, 0]
+        ax2 = ax.twinx()
+        ax2.grid(False)
+        ax2.spines["right"].set_visible(True)
+        c1, c2 = "#8E44AD", "#0072B2"
+        l1 = ax.plot(x, delta, color=c1, label=rf"$\Delta = |(d{t}/d{ti})_C - (d{t}/d{ti})_{{FW}}|$")
+        l2 = ax2.plot(x, second, color=c2, linestyle="--", label=f"$d^2{t}/d{ti}^2$ (second difference)")
+        ax2.axhline(0.0, color=c2, linewidth=0.5)
+        lines = l1 + l2
+        for j, z in enumerate(zeros):
+            v = ax.axvline(z, color="0.45", linestyle=":", linewidth=1.0,
+                           label=f"$d^2{t}/d{ti}^2 = 0$" if j == 0 else None)
+            if j == 0:
+                lines.append(v)
+        ax.set_ylim(bottom=0.0)
+        ax.set_xlabel(input_label(sweep))
+        ax.set_ylabel(rf"$\Delta$ [{unit1}]", color=c1)
+        ax2.set_ylabel(f"$d^2{t}/d{ti}^2$ [{unit2}]", color=c2)
+        ax.tick_params(axis="y", colors=c1)
+        ax2.tick_params(axis="y", colors=c2)
+        degree_ticks(ax, x)
+        ax.legend(lines, [ln.get_label() for ln in lines], loc="upper center", bbox_to_anchor=(0.5, -0.14), ncols=3,
+                  fontsize=8)
+        ax.set_title(rf"$\Delta \to 0$ where $d^2{t}/d{ti}^2 = 0$ ($h$ = {deg_text(h)})")
+    return fig
+
+
+def kinematics(
+    sweep,
+    name: str,
+    *,
+    analytic=None,
+    finite: Mapping | None = None,
+    check_angles: Iterable[float] = (),
+    title: str | None = None,
+):
+    """Position, velocity and acceleration of one unknown against the input angle.
+
+    Three panels: the unknown from the sweep; its velocity and acceleration
+    from each finite-difference scheme and from the analytic solution,
+    whichever are given; each check angle marked, with its values.
+
+    Parameters
+    ----------
+    sweep : Sweep
+    name : str
+        The unknown (``"beta"``, ``"x"``).
+    analytic : DataFrame, optional
+        From :func:`numkin.analytic.kinematics`: columns ``omega_<name>``,
+        ``alpha_<name>`` (angles) or ``v_<name>``, ``a_<name>`` (lengths).
+    finite : mapping of str to DataFrame, optional
+        Scheme name -> frame from :func:`numkin.kinematics.finite_difference`.
+    check_angles : iterable of float
+        Inputs (rad) to mark and annotate (those outside the sweep are ignored).
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages, figures
+    >>> from numkin.kinematics import finite_difference
+    >>> sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 361)))
+    >>> fd = {"centred": finite_difference(sweep, "450 rad/min")}
+    >>> fig = figures.kinematics(sweep, "beta", finite=fd, check_angles=[np.radians(100)])
+    >>> fig.axes[1].get_ylabel()
+    '$\\\\omega_{\\\\beta}$ [rad/s]'
+    >>> figures.save(fig, "/tmp/numkin-doc-beta", ["png"])[0].suffix
+    '.png'
+    """
+    check_unknown(sweep, name)
+    finite = dict(finite or {})
+    vcol, acol = rate_columns(sweep, name)
+    # the sources of each panel: every frame that holds its column, analytic last (drawn on top)
+    panels = []
+    for col in (vcol, acol):
+        src = [(key, frame) for key, frame in finite.items() if col in frame.columns]
+        if analytic is not None and col in analytic.columns:
+            src.append(("analytic", analytic))
+        panels.append(src)
+    if not panels[0] and not panels[1]:
+        raise ValueError(
+            f"kinematics of {name!r}: no analytic or finite-difference frame holds {vcol!r} or {acol!r}"
+        )
+    labels = quantity_labels(sweep, name)
+    units = [unit_of(lab) for lab in labels]
+    x = np.degrees(sweep.inputs)
+    checks = check_points(check_angles, sweep.inputs)
+    pos = np.degrees(sweep[name]) if is_angle(sweep, name) else sweep[name]
+    box = {"boxstyle": "square,pad=0.3", "facecolor": "white", "edgecolor": "0.7", "alpha": 0.9}
+    with style():
+        fig, axes = new_figure(3, 1, sharex=True, size=(8.4, 7.6))
+        ax0 = axes[0, 0]
+        ax0.plot(x, pos, color="black", linewidth=1.2)
+        ax0.set_ylabel(labels[0])
+        for j, (panel, col, src) in enumerate(zip(axes[1:, 0], (vcol, acol), panels), start=1):
+            panel.set_ylabel(labels[j])
+            panel.axhline(0.0, color="black", linewidth=0.4)
+            if not src:
+                panel.text(0.5, 0.5, "not computed", transform=panel.transAxes, ha="center", va="center",
+                           color="0.4")
+                continue
+            for k, (key, frame) in enumerate(src):
+                panel.plot(np.degrees(frame_input(frame, sweep)), np.asarray(frame[col], dtype=float),
+                           label=source_label(key), **source_style(key, k))
+        # check points: a marker on each curve, the values in one box per panel
+        texts = {0: [], 1: [], 2: []}
+        for a in checks:
+            for j, panel in enumerate(axes[:, 0]):
+                panel.axvline(math.degrees(a), color="0.4", linestyle=":", linewidth=0.9)
+            k = sweep.index(a)
+            ax0.plot(x[k], pos[k], "o", color="black", markersize=5, zorder=5)
+            texts[0].append(f"{sym(name)}({deg_text(sweep.inputs[k])}) = {sig5(pos[k])} {units[0]}")
+            for j, (panel, col, src) in enumerate(zip(axes[1:, 0], (vcol, acol), panels), start=1):
+                if not src:
+                    continue
+                lines = []
+                for n_key, (key, frame) in enumerate(src):
+                    xin = frame_input(frame, sweep)
+                    i = int(np.argmin(np.abs(xin - a)))
+                    v = float(frame[col].iloc[i])
+                    st = source_style(key, n_key)
+                    panel.plot(math.degrees(xin[i]), v, "o", color=st["color"], markersize=5, zorder=5)
+                    lines.insert(0, f"  {source_label(key)}: {sig5(v)} {units[j]}")
+                qsym = labels[j].split(" [")[0]
+                texts[j] += [f"{qsym} at {sym(input_name(sweep))} = {deg_text(a)}", *lines]
+        # legends and check values beside the panels: nothing hides the curves
+        for j, panel in enumerate(axes[:, 0]):
+            if panel.get_legend_handles_labels()[0]:
+                panel.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
+            if texts[j]:
+                panel.text(1.02, 0.0, "\n".join(texts[j]), transform=panel.transAxes, ha="left", va="bottom",
+                           fontsize=8, bbox=box, zorder=6)
+        axes[-1, 0].set_xlabel(input_label(sweep))
+        degree_ticks(axes[-1, 0], x)
+        ax0.set_title(title or f"{mechanism_title(sweep.mechanism)}: {sym(name)}, velocity and acceleration")
+    return fig
+
+
+def slider(sweep, name: str | None = None, *, analytic=None, finite: Mapping | None = None,
+           check_angles: Iterable[float] = ()):
+    """x, v and a of a slider (a length unknown) against the input angle.
+
+    :func:`kinematics` for a length unknown: the first one of the sweep
+    when `name` is not given.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages, figures
+    >>> from numkin.analytic import kinematics
+    >>> sweep = linkages.six_bar().sweep(np.radians(np.arange(0, 361)))
+    >>> fig = figures.slider(sweep, analytic=kinematics(sweep, "-10 rad/s"))
+    >>> fig.axes[2].get_ylabel()
+    '$a_{x}$ [cm/s²]'
+    >>> figures.save(fig, "/tmp/numkin-doc-slider", ["png"])[0].suffix
+    '.png'
+    """
+    if name is None:
+        lengths = [n for n in sweep.unknowns if not is_angle(sweep, n)]
+        if not lengths:
+            raise ValueError(f"{sweep.mechanism.name} has no length unknown (slider) to draw")
+        name = "x" if "x" in lengths else lengths[0]
+    return kinematics(
+        sweep, name, analytic=analytic, finite=finite, check_angles=check_angles,
+        title=f"{mechanism_title(sweep.mechanism)}: slider {sym(name)}, $v$, $a$",
+    )
+
+
+def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
+    """Numerical against analytic acceleration of one unknown, and the error of each scheme.
+
+    Top: the acceleration by each finite-difference scheme and the
+    analytic one; bottom: the absolute error of each scheme (log scale).
+
+    Parameters
+    ----------
+    sweep : Sweep
+    name : str
+        The unknown (``"x"`` for a piston).
+    analytic : DataFrame
+        From :func:`numkin.analytic.kinematics`.
+    finite : mapping of str to DataFrame
+        Scheme name -> frame from :func:`numkin.kinematics.finite_difference`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages, figures
+    >>> from numkin.analytic import kinematics
+    >>> from numkin.kinematics import finite_difference
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0, 181)))
+    >>> fig = figures.acceleration_comparison(
+    ...     sweep, "x", kinematics(sweep, "6000 rpm"), {"centred": finite_difference(sweep, "6000 rpm")})
+    >>> fig.axes[1].get_yscale()
+    'log'
+    >>> figures.save(fig, "/tmp/numkin-doc-piston", ["png"])[0].suffix
+    '.png'
+    """
+    check_unknown(sweep, name)
+    if analytic is None or not finite:
+        raise ValueError(f"acceleration of {name!r}: needs both the analytic frame and finite-difference frames")
+    _, acol = rate_columns(sweep, name)
+    _, _, alabel = quantity_labels(sweep, name)
+    unit = unit_of(alabel)
+    xa_in = frame_input(analytic, sweep)
+    ya = frame_column(analytic, acol, "analytic kinematics")
+    x = np.degrees(xa_in)
+    with style():
+        fig, axes = new_figure(2, 1, sharex=True, size=(6.4, 6.0), height_ratios=[3, 2])
+        ax, axe = axes[:, 0]
+        for k, (key, frame) in enumerate(finite.items()):
+            xin = frame_input(frame, sweep)
+            y = frame_column(frame, acol, f"{key} kinematics")
+            st = source_style(key, k)
+            ax.plot(np.degrees(xin), y, label=source_label(key), **st)
+            if xin.shape == xa_in.shape and np.allclose(xin, xa_in, rtol=0, atol=1e-12):
+                err = np.abs(y - ya)
+                shown = np.where(err > 0, err, np.nan)
+                axe.plot(x, shown, label=source_label(key), color=st["color"], linestyle="-", linewidth=1.2)
+        ax.plot(x, ya, label="analytic", **SOURCE_STYLE["analytic"])
+        ax.axhline(0.0, color="black", linewidth=0.4)
+        ax.set_ylabel(alabel)
+        ax.legend(loc="best")
+        axe.set_yscale("log")
+        axe.set_ylabel(f"|numerical − analytic| [{unit}]")
+        axe.set_xlabel(input_label(sweep))
+        degree_ticks(axe, x)
+        ax.set_title(f"{mechanism_title(sweep.mechanism)}: {alabel.split(' [')[0]}, numerical against analytic")
+    return fig

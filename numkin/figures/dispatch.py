@@ -1,0 +1,295 @@
+"""Figures by name: the names a scene may ask for, and drawing and saving them from a result."""
+
+from __future__ import annotations
+
+import math
+import re
+import warnings
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+
+from .curves import acceleration_comparison, derivative, difference, kinematics, position, slider
+from .drawing import mechanism
+from .error_plots import convergence, jacobian_of, newton_residuals, roundoff, work_precision
+from .labels import check_unknown, input_name, is_angle, rate_columns, table_column
+from .style import METADATA, save
+
+__all__ = ["FIGURES", "FigureSkipped", "parse_spec", "render"]
+
+#: Figure names a scene may ask for -> one-line description.
+FIGURES: dict[str, str] = {
+    "position": "unknowns against the input angle",
+    "derivative": "dq/dθ by forward and centred differences on one graph",
+    "difference": "Δ between the forward and centred dq/dθ, twin axes with d²q/dθ²",
+    "kinematics": "position, velocity and acceleration of one unknown: schemes, analytic, check points",
+    "slider": "x, v and a of a slider",
+    "acceleration": "numerical against analytic acceleration of one unknown, with the error",
+    "mechanism": "the linkage drawn at one input angle with its dimensions",
+    "convergence": "error against step h (log-log) with reference slopes 1, 2, 4",
+    "work-precision": "error against work (evaluations; or against run time)",
+    "roundoff": "error against h down to rounding: the V-curve",
+    "newton": "Newton's residual per iteration for each Jacobian",
+}
+
+#: Figures that take an unknown (``"name:unknown"``).
+_WITH_UNKNOWN = ("position", "derivative", "difference", "kinematics", "slider", "acceleration")
+
+class FigureSkipped(UserWarning):
+    """A figure a scene asked for could not be drawn from the data at hand."""
+
+
+class _Missing(Exception):
+    """Data a figure needs is absent (render skips the figure)."""
+
+
+
+# ============================================================================ render
+def parse_spec(spec: str) -> tuple[str, str | None]:
+    """Split a figure name of a scene: ``"kinematics:beta"`` -> ``("kinematics", "beta")``.
+
+    The name may be written with ``_`` for ``-`` (``work_precision``). The
+    part after ``:`` is an unknown (``position``, ``derivative``,
+    ``difference``, ``kinematics``, ``slider``, ``acceleration``) or the
+    input angle in degrees (``mechanism:30``); the table figures take none.
+    Does not import matplotlib.
+
+    Raises
+    ------
+    ValueError
+        For an unknown figure name or an argument a figure does not take.
+
+    Examples
+    --------
+    >>> parse_spec("kinematics:beta")
+    ('kinematics', 'beta')
+    >>> parse_spec("work_precision")
+    ('work-precision', None)
+    >>> parse_spec("mechanism:30")
+    ('mechanism', '30')
+    """
+    if not isinstance(spec, str) or not spec.strip():
+        raise ValueError(f"figure name must be a non-empty string, got {spec!r}")
+    name, _, arg = spec.strip().partition(":")
+    kind = name.strip().lower().replace("_", "-")
+    arg = arg.strip() or None
+    if kind not in FIGURES:
+        import difflib
+
+        near = difflib.get_close_matches(kind, list(FIGURES), n=1)
+        hint = f" (did you mean '{near[0]}'?)" if near else ""
+        raise ValueError(f"unknown figure {spec!r}{hint}; figures are: {', '.join(FIGURES)}")
+    if arg is not None and kind not in _WITH_UNKNOWN and kind != "mechanism":
+        raise ValueError(f"figure {spec!r}: '{kind}' takes no ':' argument")
+    if arg is not None and kind == "mechanism":
+        try:
+            float(arg)
+        except ValueError:
+            raise ValueError(f"figure {spec!r}: 'mechanism:<angle in degrees>', got {arg!r}") from None
+    return kind, arg
+
+
+class _Data:
+    """What a result holds for figures (duck-typed; see :func:`render`)."""
+
+    def __init__(self, result):
+        self.sweep = getattr(result, "sweep", None)
+        self.analytic = getattr(result, "analytic", None)
+        if self.analytic is None:
+            k = getattr(result, "kinematics", None)
+            self.analytic = k if hasattr(k, "columns") else None
+        finite = getattr(result, "finite", None)
+        self.finite = dict(finite) if finite else _frames_from_comparisons(getattr(result, "comparisons", None),
+                                                                            self.sweep)
+        self.tables = dict(getattr(result, "tables", None) or {})
+        checks = getattr(result, "check_angles", None)
+        if checks is None:
+            checks = [math.radians(float(c.at_deg)) for c in getattr(result, "checks", None) or ()
+                      if getattr(c, "at_deg", None) is not None]
+        self.check_angles = [float(a) for a in np.atleast_1d(checks)] if checks is not None else []
+        scene = getattr(result, "scene", None)
+        self.quantity = getattr(result, "quantity", None) or (getattr(scene, "report", None) or {}).get("quantity")
+        self.unknowns = tuple(getattr(scene, "unknowns", None) or ())
+
+    def need_sweep(self):
+        if self.sweep is None:
+            raise _Missing("no sweep in the result (a stability scene?)")
+        return self.sweep
+
+    def unknown(self, arg, kind="angle"):
+        sweep = self.need_sweep()
+        if arg is not None:
+            return check_unknown(sweep, arg)
+        wanted = (lambda n: is_angle(sweep, n)) if kind == "angle" else (lambda n: not is_angle(sweep, n))
+        for cand in (self.quantity, *self.unknowns):
+            if cand in sweep.unknowns and wanted(cand):
+                return cand
+        pool = [n for n in sweep.unknowns if wanted(n)]
+        if kind == "length" and "x" in pool:
+            return "x"
+        if not pool:
+            raise _Missing(f"{sweep.mechanism.name} has no {kind} unknown")
+        return pool[0]
+
+    def table(self, *keys):
+        for key in keys:
+            if key in self.tables:
+                return self.tables[key]
+        raise _Missing(f"no '{keys[0]}' table in the result (numkin.report makes it)")
+
+
+def _frames_from_comparisons(comparisons, sweep) -> dict:
+    """scheme -> frame (``<input>`` in rad and the compared quantities) from numkin.compare results."""
+    if not comparisons or sweep is None:
+        return {}
+    import pandas as pd
+
+    inp = input_name(sweep)
+    cols: dict = {}
+    for quantity, comp in comparisons.items():
+        table = getattr(comp, "table", None)
+        if table is None:
+            continue
+        xcol = table_column(table, f"{inp} [deg]", "comparison table", required=False)
+        if xcol is None:
+            continue
+        unit = getattr(comp, "unit", None)
+        for c in table.columns:
+            m = re.fullmatch(r"(.+?) \[(.*)\]", str(c))
+            if not m or m.group(1) in (inp, "analytic") or " " in m.group(1):
+                continue
+            scheme = m.group(1)
+            if unit is not None and m.group(2) != unit:
+                continue
+            frame = cols.setdefault(scheme, {inp: np.radians(np.asarray(table[xcol], dtype=float))})
+            frame[getattr(comp, "quantity", quantity)] = np.asarray(table[c], dtype=float)
+    return {k: pd.DataFrame(v) for k, v in cols.items()}
+
+
+def _build(kind: str, arg, d: _Data):
+    """(figure, file stem) for one figure, or raise _Missing."""
+    if kind == "position":
+        sweep = d.need_sweep()
+        names = [check_unknown(sweep, arg)] if arg else [n for n in d.unknowns if n in sweep.unknowns] or None
+        return position(sweep, names), "position" + (f"-{arg}" if arg else "")
+    if kind in ("derivative", "difference"):
+        sweep = d.need_sweep()
+        name = d.unknown(arg)
+        if sweep.step is None:
+            raise _Missing("finite differences need a sweep with a uniform step")
+        fn = derivative if kind == "derivative" else difference
+        return fn(sweep, name), f"{kind}-{name}"
+    if kind in ("kinematics", "slider"):
+        sweep = d.need_sweep()
+        name = d.unknown(arg, "angle" if kind == "kinematics" else "length")
+        vcol, acol = rate_columns(sweep, name)
+        frames = [f for f in [d.analytic, *d.finite.values()] if f is not None]
+        if not any(vcol in f.columns or acol in f.columns for f in frames):
+            raise _Missing(f"no velocity or acceleration of {name!r} in the result (ask for them in the scene)")
+        fn = kinematics if kind == "kinematics" else slider
+        return fn(sweep, name, analytic=d.analytic, finite=d.finite, check_angles=d.check_angles), f"{kind}-{name}"
+    if kind == "acceleration":
+        sweep = d.need_sweep()
+        name = d.unknown(arg, "length")
+        _, acol = rate_columns(sweep, name)
+        if d.analytic is None or acol not in d.analytic.columns:
+            raise _Missing(f"no analytic {acol} in the result (ask for accelerations in the scene)")
+        finite = {k: f for k, f in d.finite.items() if acol in f.columns}
+        if not finite:
+            raise _Missing(f"no finite-difference {acol} in the result (give second-derivative schemes)")
+        return acceleration_comparison(sweep, name, d.analytic, finite), f"acceleration-{name}"
+    if kind == "mechanism":
+        sweep = d.need_sweep()
+        if not sweep.mechanism.points or not sweep.mechanism.links:
+            raise _Missing(f"{sweep.mechanism.name} has no points and links to draw")
+        at = math.radians(float(arg)) if arg is not None else (d.check_angles[0] if d.check_angles else None)
+        return mechanism(sweep, at), "mechanism" + (f"-{arg}deg" if arg is not None else "")
+    if kind == "convergence":
+        return convergence(d.table("convergence")), "convergence"
+    if kind == "work-precision":
+        return work_precision(d.table("work_precision", "work-precision")), "work-precision"
+    if kind == "roundoff":
+        return roundoff(d.table("roundoff")), "roundoff"
+    if kind == "newton":
+        found = {jacobian_of(t, key): t for key, t in d.tables.items() if re.fullmatch(r"newton([_-]\w+)?", key)}
+        if not found:
+            raise _Missing("no 'newton' table in the result (numkin.report.newton_table makes it)")
+        return newton_residuals(found), "newton"
+    raise ValueError(f"unknown figure {kind!r}")  # pragma: no cover - parse_spec checked it
+
+
+def render(result, names: Sequence[str] | None = None, out_dir=".", formats: Sequence[str] = ("png", "svg")) -> list[Path]:
+    """Draw and save the figures a scene asks for; skip, with a warning, those whose data is absent.
+
+    Parameters
+    ----------
+    result : object
+        Duck-typed: ``sweep`` (Sweep), and as available ``analytic`` (or
+        ``kinematics``: the DataFrame of :func:`numkin.analytic.kinematics`),
+        ``finite`` (scheme -> DataFrame of
+        :func:`numkin.kinematics.finite_difference`; else taken from
+        ``comparisons``, quantity -> :class:`numkin.compare.Comparison`),
+        ``tables`` (name -> DataFrame, the names of
+        :func:`numkin.report.full_report`; Newton tables as ``newton`` or
+        ``newton_<jacobian>``), ``check_angles`` (rad; else the ``at_deg``
+        of ``checks``), ``figures`` (else ``scene.figures``) and
+        ``scene.report["quantity"]`` / ``scene.unknowns`` for the default
+        unknown.
+    names : sequence of str, optional
+        Figure names (see :func:`parse_spec`); default the result's.
+    out_dir : str or Path
+        Folder of the files ``<figure>[-<unknown>].<format>``.
+    formats : sequence of str
+
+    Returns
+    -------
+    list of Path
+        Files written.
+
+    Warns
+    -----
+    FigureSkipped
+        For each figure whose data the result does not hold.
+
+    Raises
+    ------
+    ValueError
+        For an unknown figure name or format, or an unknown that the
+        mechanism does not have.
+
+    Examples
+    --------
+    >>> import math, types
+    >>> import numpy as np
+    >>> from numkin import linkages, figures
+    >>> sweep = linkages.quick_return().sweep(np.radians(np.arange(0, 361)))
+    >>> result = types.SimpleNamespace(sweep=sweep, check_angles=[math.radians(30)], figures=["mechanism"])
+    >>> [p.name for p in figures.render(result, out_dir="/tmp/numkin-doc-render")]
+    ['mechanism.png', 'mechanism.svg']
+    """
+    if names is None:
+        names = getattr(result, "figures", None)
+        if names is None:
+            names = getattr(getattr(result, "scene", None), "figures", None) or ()
+    if isinstance(names, str):
+        names = [names]
+    specs = [(spec, *parse_spec(spec)) for spec in names]
+    if isinstance(formats, str):
+        formats = (formats,)
+    bad = [f for f in formats if str(f).lower().lstrip(".") not in METADATA]
+    if bad or not formats:
+        raise ValueError(
+            f"formats: {bad[0] if bad else 'nothing'!r} is not a figure format numkin writes; choose from {sorted(METADATA)}"
+        )
+    data = _Data(result)
+    out = Path(out_dir)
+    written: list[Path] = []
+    for spec, kind, arg in specs:
+        try:
+            fig, stem = _build(kind, arg, data)
+        except _Missing as why:
+            warnings.warn(f"figure '{spec}' skipped: {why}", FigureSkipped, stacklevel=2)
+            continue
+        written += save(fig, out / stem, formats)
+    return written

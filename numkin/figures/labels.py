@@ -1,0 +1,251 @@
+"""Labels, units and number formats of figures, and checks of the data they are given.
+
+Symbols are written in mathtext (``theta2`` -> ``$\\theta_{2}$``), input angles
+in degrees, every number with a true minus sign and never as ``−0``.
+
+Examples
+--------
+>>> from numkin.figures.labels import sym, value_text, deg_text
+>>> print(sym("theta2"), value_text(-0.0), deg_text(-1e-12))
+$\\theta_{2}$ 0.000 0°
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+
+__all__ = [
+    "GREEK", "check_points", "check_unknown", "deg_text", "degree_ticks", "frame_column", "frame_input",
+    "input_label", "input_name", "is_angle", "length_text", "length_unit", "mechanism_title", "no_negative_zero", "quantity_labels", "rate_columns",
+    "sig5", "sym", "table_column", "tex", "uniform_step", "unit_of", "value_text",
+]
+
+#: Names written as Greek letters.
+GREEK = {
+    "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa", "lambda",
+    "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi", "omega",
+    "Gamma", "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi", "Psi", "Omega",
+}
+
+
+def tex(name: str) -> str:
+    """Mathtext body for a symbol name: ``theta2`` -> ``\\theta_{2}``, ``r3`` -> ``r_{3}``."""
+    m = re.fullmatch(r"([A-Za-z]+?)_?(\d+|_[A-Za-z0-9]+)?", name)
+    if not m:
+        return r"\mathrm{" + re.sub(r"([_{}$\\])", r"\\\1", name) + "}"
+    base, sub = m.group(1), (m.group(2) or "").lstrip("_")
+    if base in GREEK:
+        base = "\\" + base
+    elif len(base) > 1:
+        base = r"\mathrm{" + base + "}"
+    return base + ("_{" + sub + "}" if sub else "")
+
+
+def sym(name: str) -> str:
+    """Mathtext symbol of a name: ``"beta"`` -> ``"$\\beta$"``."""
+    return f"${tex(name)}$"
+
+
+def input_name(sweep) -> str:
+    """Name of the sweep's input angle (``"theta2"``)."""
+    return str(sweep.mechanism.input_symbol)
+
+
+def mechanism_title(mechanism) -> str:
+    """The mechanism's name for a title, its dimensions with their unit.
+
+    ``"slider-crank (crank 0.08, rod 0.2, offset 0)"`` in metres becomes
+    ``"slider-crank (crank 0.08 m, rod 0.2 m, offset 0 m)"``; a number that
+    already has a unit, or a name without numbers, is left as it is.
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> mechanism_title(linkages.slider_crank(80, 200))
+    'slider-crank (crank 80 mm, rod 200 mm, offset 0 mm)'
+    """
+    name, unit = str(mechanism.name), mechanism.length_unit
+    head, paren, rest = name.partition(" (")
+    if not paren or not rest.endswith(")"):
+        return name
+    items = rest[:-1].split(", ")
+    fixed = [re.sub(r"^(\w+ [-+0-9.eE]+)$", rf"\1 {unit}", item) for item in items]
+    return f"{head} ({', '.join(fixed)})"
+
+
+def input_label(sweep) -> str:
+    """Axis label of the input angle, in degrees."""
+    return f"{sym(input_name(sweep))} [deg]"
+
+
+def is_angle(sweep, name: str) -> bool:
+    """Whether an unknown of the sweep is an angle (else a length)."""
+    return name in sweep.mechanism.angles
+
+
+def length_unit(sweep) -> str:
+    """The mechanism's length unit (``"mm"``)."""
+    return sweep.mechanism.length_unit
+
+
+def _quantities(sweep, name: str):
+    """The position, velocity and acceleration :class:`~numkin.quantities.Quantity` of an unknown."""
+    from ..quantities import Quantity
+
+    mech = sweep.mechanism
+    dim = "angle" if is_angle(sweep, name) else "length"
+    return [Quantity(name, order, dim, length_unit=mech.length_unit, input_name=input_name(sweep))
+            for order in (0, 1, 2)]
+
+
+def quantity_labels(sweep, name: str) -> tuple[str, str, str]:
+    """Axis labels of position, velocity and acceleration of an unknown, with units.
+
+    Units from :class:`~numkin.quantities.Quantity`; angles drawn in degrees.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([0.0, 1.0]))
+    >>> quantity_labels(sweep, "x")
+    ('$x$ [mm]', '$v_{x}$ [mm/s]', '$a_{x}$ [mm/s²]')
+    """
+    t = tex(name)
+    _, vel, acc = (q.unit.replace("^2", "²") for q in _quantities(sweep, name))
+    if is_angle(sweep, name):
+        return f"${t}$ [deg]", rf"$\omega_{{{t}}}$ [{vel}]", rf"$\alpha_{{{t}}}$ [{acc}]"
+    return f"${t}$ [{length_unit(sweep)}]", f"$v_{{{t}}}$ [{vel}]", f"$a_{{{t}}}$ [{acc}]"
+
+
+def rate_columns(sweep, name: str) -> tuple[str, str]:
+    """Velocity and acceleration column names of an unknown in the kinematics frames (Quantity names)."""
+    _, vel, acc = _quantities(sweep, name)
+    return vel.name, acc.name
+
+
+def no_negative_zero(text: str) -> str:
+    """A true minus sign, and no sign on a zero (``"-0.000"`` -> ``"0.000"``)."""
+    if text.startswith("-") and not any(ch in "123456789" for ch in text.split("e")[0]):
+        text = text[1:]
+    return text.replace("-", "−")
+
+
+def sig5(value: float, zeros: bool = True) -> str:
+    """Five significant digits (trailing zeros kept if `zeros`), a true minus sign, no ``−0``.
+
+    Examples
+    --------
+    >>> sig5(-1.5e-3), sig5(-0.0), sig5(2.0, zeros=False)
+    ('−0.0015000', '0.0000', '2')
+    """
+    text = f"{value:#.5g}" if zeros else f"{value:.5g}"
+    if "e" not in text:
+        text = text.rstrip(".")
+    return no_negative_zero(text)
+
+
+def value_text(value: float) -> str:
+    """At least three decimals and five significant digits (87.178, 130.767, 0.18330), true minus."""
+    v = float(value)
+    digits = 3 if v == 0 or not math.isfinite(v) else max(3, 4 - math.floor(math.log10(abs(v))))
+    return no_negative_zero(f"{v:.{digits}f}")
+
+
+def length_text(value: float) -> str:
+    """A dimension: as :func:`value_text`, trailing zeros dropped (60, 6.5, 130.767, 0.08)."""
+    text = value_text(value)
+    return text.rstrip("0").rstrip(".") if "." in text else text
+
+
+def deg_text(rad: float) -> str:
+    """An angle given in rad, written in degrees: whole degrees plain, else two decimals.
+
+    Examples
+    --------
+    >>> deg_text(math.radians(-30)), deg_text(math.radians(12.345)), deg_text(-1e-12)
+    ('−30°', '12.35°', '0°')
+    """
+    d = math.degrees(rad)
+    text = f"{round(d):.0f}°" if abs(d - round(d)) < 1e-6 else f"{d:.2f}°"
+    return no_negative_zero(text)
+
+
+def degree_ticks(ax, degrees: np.ndarray) -> None:
+    """Ticks every 30, 45 or 90 degrees, depending on the span."""
+    from matplotlib.ticker import MultipleLocator
+
+    span = float(np.nanmax(degrees) - np.nanmin(degrees)) if degrees.size else 0.0
+    if span >= 270:
+        ax.xaxis.set_major_locator(MultipleLocator(45 if span <= 400 else 90))
+    elif span >= 90:
+        ax.xaxis.set_major_locator(MultipleLocator(30))
+    ax.set_xlim(float(np.nanmin(degrees)), float(np.nanmax(degrees))) if span > 0 else None
+
+
+def check_unknown(sweep, name: str) -> str:
+    """`name`, if it is an unknown of the sweep; else a ValueError listing them."""
+    if name not in sweep.unknowns:
+        raise ValueError(
+            f"{name!r} is not an unknown of {sweep.mechanism.name}; unknowns are {list(sweep.unknowns)}"
+        )
+    return name
+
+
+def uniform_step(sweep) -> float:
+    """The sweep's input step (rad); a ValueError if the grid is not uniform."""
+    h = sweep.step
+    if h is None:
+        raise ValueError(
+            f"sweep of {sweep.mechanism.name}: finite differences need a uniform input step; "
+            "sweep a grid like np.radians(np.arange(0, 361))"
+        )
+    return h
+
+
+def frame_input(frame, sweep) -> np.ndarray:
+    """Input values (rad) of a kinematics frame: its input column, or the sweep's inputs."""
+    col = input_name(sweep)
+    if col in frame.columns:
+        return np.asarray(frame[col], dtype=float)
+    if len(frame) != len(sweep):
+        raise ValueError(
+            f"kinematics frame has {len(frame)} rows and no {col!r} column; the sweep has {len(sweep)} inputs"
+        )
+    return sweep.inputs
+
+
+def frame_column(frame, column: str, what: str) -> np.ndarray:
+    """A column of a frame as floats; a ValueError naming `what` if it is absent."""
+    if column not in frame.columns:
+        raise ValueError(f"{what} has no column {column!r}; columns are {list(frame.columns)}")
+    return np.asarray(frame[column], dtype=float)
+
+
+def check_points(check_angles, inputs) -> list[float]:
+    """The check angles (rad) that lie within the range of the inputs."""
+    if check_angles is None:
+        return []
+    if np.ndim(check_angles) == 0:
+        check_angles = [check_angles]
+    lo, hi = float(np.min(inputs)), float(np.max(inputs))
+    tol = 1e-9 * max(1.0, abs(hi))
+    return [float(a) for a in check_angles if lo - tol <= float(a) <= hi + tol]
+
+
+def table_column(table, prefix: str, what: str, required: bool = True):
+    """The first column whose name starts with `prefix`."""
+    for c in table.columns:
+        if str(c).startswith(prefix):
+            return c
+    if required:
+        raise ValueError(f"{what}: no column starting with {prefix!r}; columns are {list(table.columns)}")
+    return None
+
+
+def unit_of(label: str) -> str:
+    """``"$\\omega$ [rad/s]"`` -> ``"rad/s"``: the unit in the last brackets of an axis label."""
+    return label.rsplit("[", 1)[1].rstrip("]")

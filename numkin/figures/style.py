@@ -1,0 +1,190 @@
+"""The figure style, the colours of the derivative sources, and deterministic saving.
+
+Every numkin figure is drawn inside :func:`style` (matplotlib's defaults plus
+``numkin/numkin.mplstyle``), on a :class:`~matplotlib.figure.Figure` with an
+Agg canvas that pyplot does not know (:func:`new_figure`), and written by
+:func:`save` with no date or version in the files, so regenerating a figure
+gives the same bytes.
+
+Examples
+--------
+>>> from numkin.figures.style import source_style
+>>> source_style("forward", 0)["color"]
+'#D55E00'
+"""
+
+from __future__ import annotations
+
+import sys
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Sequence
+
+from .registries import family_of
+
+__all__ = [
+    "CYCLE", "METADATA", "SOURCE_MARKERS", "SOURCE_STYLE", "STYLE", "close", "new_figure", "save", "source_label",
+    "marker_style", "source_style", "style",
+]
+
+#: The package style file.
+STYLE = Path(__file__).resolve().parent.parent / "numkin.mplstyle"
+
+#: Metadata written into each format: nothing that changes between runs or versions.
+METADATA = {
+    "png": {"Software": None},
+    "svg": {"Date": None, "Creator": None},
+    "pdf": {"CreationDate": None, "ModDate": None, "Producer": None, "Creator": None},
+}
+
+#: Fixed colours and line styles of the derivative sources (others take the colour cycle).
+#: Schemes that can give the same numbers (forward and backward on a symmetric curve,
+#: five-point and Richardson) have dash patterns that interleave, so both stay visible.
+SOURCE_STYLE = {
+    "analytic": {"color": "black", "linestyle": "-", "linewidth": 1.0, "zorder": 4},
+    "forward": {"color": "#D55E00", "linestyle": (0, (5, 5)), "linewidth": 1.8},
+    "backward": {"color": "#CC79A7", "linestyle": (5, (5, 5)), "linewidth": 1.8},
+    "centred": {"color": "#0072B2", "linestyle": "-", "linewidth": 2.6, "alpha": 0.55, "zorder": 1.9},
+    "five_point": {"color": "#009E73", "linestyle": (0, (1.2, 1.8)), "linewidth": 2.4},
+    "richardson": {"color": "#E69F00", "linestyle": (0, (6, 4)), "linewidth": 1.4},
+    "spectral": {"color": "#56B4E9", "linestyle": "-.", "linewidth": 1.6},
+}
+
+#: Markers of the sources on the error figures: (marker, size, filled). Sources that give the
+#: same points (forward and backward, five-point and Richardson: the same errors on the same
+#: grids) stay visible one over the other: a large open marker around a small filled one.
+SOURCE_MARKERS = {
+    "analytic": ("o", 4.0, True), "complex step": ("s", 8.0, False), "complex_step": ("s", 8.0, False),
+    "forward": ("^", 8.5, False), "backward": ("v", 4.5, True), "centred": ("o", 4.5, True),
+    "five_point": ("D", 8.0, False), "richardson": ("o", 3.5, True), "spectral": ("*", 7.0, True),
+    "second_difference": ("o", 4.5, True), "forward_of_forward": ("^", 5.5, True),
+    "centred_of_centred": ("s", 8.0, False), "five_point_second": ("D", 8.0, False),
+    "spectral_second": ("*", 7.0, True),
+}
+
+#: Colour cycle of sources and curves without a fixed style.
+CYCLE = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000"]
+
+@contextmanager
+def style():
+    """Context in which numkin draws and saves: matplotlib's defaults plus :data:`STYLE`.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> from numkin.figures import style
+    >>> with style():
+    ...     matplotlib.rcParams["svg.hashsalt"]
+    'numkin'
+    """
+    import matplotlib.style
+
+    with matplotlib.style.context(str(STYLE), after_reset=True):
+        yield
+
+
+def new_figure(nrows=1, ncols=1, *, size=None, sharex=False, height_ratios=None):
+    """A Figure with an Agg canvas (not known to pyplot) and a grid of axes."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=size)
+    FigureCanvasAgg(fig)
+    gridspec = {"height_ratios": height_ratios} if height_ratios else None
+    axes = fig.subplots(nrows, ncols, sharex=sharex, squeeze=False, gridspec_kw=gridspec)
+    return fig, axes
+
+
+def close(fig) -> None:
+    """Release a figure (only pyplot keeps figures; numkin's are not registered with it)."""
+    if "matplotlib.pyplot" in sys.modules:
+        sys.modules["matplotlib.pyplot"].close(fig)
+
+
+def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
+    """Save a figure in each format, deterministically, and close it.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+    path_stem : str or Path
+        Path without the extension; ``".png"``, ``".svg"`` (or ``".pdf"``)
+        is appended. Missing folders are created.
+    formats : sequence of {"png", "svg", "pdf"}
+
+    Returns
+    -------
+    list of Path
+        The files written, in the order of `formats`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages, figures
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0, 181)))
+    >>> [p.name for p in figures.save(figures.position(sweep, ["x"]), "/tmp/numkin-doc-x", ["png"])]
+    ['numkin-doc-x.png']
+    """
+    import matplotlib
+
+    if isinstance(formats, str):
+        formats = (formats,)
+    fmts = [str(f).lower().lstrip(".") for f in formats]
+    try:
+        bad = [f for f in fmts if f not in METADATA]
+        if bad or not fmts:
+            raise ValueError(
+                f"formats: {bad[0] if bad else 'nothing'!r} is not a figure format numkin writes; "
+                f"choose from {sorted(METADATA)}"
+            )
+        stem = Path(path_stem)
+        stem.parent.mkdir(parents=True, exist_ok=True)
+        paths = []
+        with style():
+            # one layout for every format: computed once at the saving resolution, then frozen
+            if fig.get_layout_engine() is not None and len(fmts) > 1:
+                dpi = fig.dpi
+                fig.set_dpi(matplotlib.rcParams["savefig.dpi"])
+                fig.draw_without_rendering()
+                fig.set_dpi(dpi)
+                fig.set_layout_engine("none")
+            for fmt in fmts:
+                path = stem.with_name(f"{stem.name}.{fmt}")
+                fig.savefig(path, format=fmt, metadata=METADATA[fmt])
+                paths.append(path)
+        return paths
+    finally:
+        close(fig)
+
+
+
+def source_label(key: str) -> str:
+    """Legend text of a source: ``"five_point"`` -> ``"five point"``."""
+    return str(key).replace("_", " ")
+
+
+def source_style(key: str, k: int) -> dict:
+    """Line style of a source (colour of its family for second-derivative schemes); cycle index `k` else.
+
+    Examples
+    --------
+    >>> source_style("forward_of_forward", 0)["color"] == source_style("forward", 3)["color"]
+    True
+    """
+    key = str(key)
+    style_ = SOURCE_STYLE.get(key) or SOURCE_STYLE.get(family_of(key))
+    if key in ("complex_step", "complex step"):
+        style_ = {"color": "0.45", "linestyle": "-", "linewidth": 1.2}
+    if style_ is None:
+        style_ = {"color": CYCLE[k % len(CYCLE)], "linestyle": "-.", "linewidth": 1.5}
+    style_ = dict(style_)
+    if key != family_of(key) and key not in ("complex_step", "complex step"):
+        style_["linestyle"] = (0, (7, 2, 1.5, 2)) if key != "second_difference" else style_["linestyle"]
+    return style_
+
+
+def marker_style(key: str, color) -> dict:
+    """Keyword arguments of ``plot`` that draw a source's marker (:data:`SOURCE_MARKERS`) in `color`."""
+    marker, size, filled = SOURCE_MARKERS.get(str(key), ("o", 4.5, True))
+    return {"marker": marker, "markersize": size, "markerfacecolor": color if filled else "none",
+            "markeredgecolor": color, "markeredgewidth": 1.0}

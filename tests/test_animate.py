@@ -1,0 +1,88 @@
+"""Animations: a full turn where the input can turn, size and speed options, sliders as
+blocks, traces and arrows; the same bytes from the same call."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+pytest.importorskip("matplotlib")
+from PIL import Image
+
+from numkin import linkages
+from numkin.animate import animate, full_turn
+
+DEG = math.pi / 180
+
+
+def test_half_sweep_of_a_slider_crank_animates_a_full_turn():
+    """The crank of 80 mm against a rod of 200 mm turns fully: the animation covers 0..360 degrees."""
+    half = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0, 181)))
+    whole = full_turn(half)
+    t = whole.inputs
+    assert t[0] == 0.0 and t[-1] == pytest.approx(2 * math.pi, abs=1e-12) and len(whole) == 361
+    # piston position from the closed form x = r cos t + sqrt(l^2 - r^2 sin^2 t), over the whole turn
+    x = 80 * np.cos(t) + np.sqrt(200**2 - (80 * np.sin(t)) ** 2)
+    np.testing.assert_allclose(whole["x"], x, rtol=0, atol=1e-9)
+
+
+def test_no_full_turn_where_the_input_cannot_turn():
+    # ground 4, crank 3, coupler 2, rocker 2: at theta = 180 deg the pin is 7 from the rocker pivot > 2 + 2
+    sweep = linkages.four_bar(4, 3, 2, 2).sweep(np.radians(np.arange(0, 11)))
+    assert full_turn(sweep) is None
+
+
+def _frames(path):
+    out = []
+    with Image.open(path) as im:
+        for k in range(im.n_frames):
+            im.seek(k)
+            out.append(np.asarray(im.convert("RGB")))
+        return out, im.size
+
+
+def test_full_turn_loops_and_turn_sweep_keeps_the_half(tmp_path):
+    half = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0, 181)))
+    full, _ = _frames(animate(half, tmp_path / "full.gif", frames=8, dpi=30))
+    kept, _ = _frames(animate(half, tmp_path / "half.gif", frames=8, dpi=30, turn="sweep"))
+    # full turn: frames at 0, 45, ..., 315 deg: the 180-deg frame is the fifth, and no frame repeats the first
+    assert not any(np.array_equal(full[0], f) for f in full[1:])
+    # half turn: frames from 0 to 180 deg, the last one at the other dead centre
+    assert not np.array_equal(kept[-1], kept[0])
+    with pytest.raises(ValueError, match="turn must be 'full' or 'sweep'"):
+        animate(half, tmp_path / "x.gif", turn="half")
+
+
+def test_size_dpi_and_fps(tmp_path):
+    sweep = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0, 361, 5)))
+    path = animate(sweep, tmp_path / "big.gif", frames=4, fps=10, dpi=50, width=8.0)
+    with Image.open(path) as im:
+        assert im.size[0] == 400 and im.info["duration"] == 100
+    with pytest.raises(ValueError, match="dpi must be an integer"):
+        animate(sweep, tmp_path / "x.gif", dpi=0)
+    with pytest.raises(ValueError, match="width must be a number of inches"):
+        animate(sweep, tmp_path / "x.gif", width=0.1)
+
+
+def test_arrows_and_traces_deterministic(tmp_path):
+    sweep = linkages.quick_return().sweep(np.radians(np.arange(0, 361, 2)))
+    kwargs = dict(frames=6, dpi=40, traces=["B"], arrows="acceleration", omega="10 rad/s")
+    paths = [animate(sweep, tmp_path / f"run{k}" / "qr.gif", **kwargs) for k in range(2)]
+    assert paths[0].read_bytes() == paths[1].read_bytes()
+    plain = animate(sweep, tmp_path / "plain.gif", frames=6, dpi=40)
+    assert plain.read_bytes() != paths[0].read_bytes()
+    with pytest.raises(ValueError, match="give the input speed omega"):
+        animate(sweep, tmp_path / "x.gif", arrows="velocity")
+    with pytest.raises(ValueError, match="traces: 'Z' is not a named point"):
+        animate(sweep, tmp_path / "x.gif", traces=["Z"])
+
+
+def test_cli_animation_twice_gives_identical_bytes(tmp_path):
+    from numkin.cli import main
+
+    paths = [tmp_path / f"qr{k}.gif" for k in range(2)]
+    for p in paths:
+        assert main(["animate", "quick-return", "--out", str(p), "--frames", "6"]) == 0
+    assert paths[0].read_bytes() == paths[1].read_bytes()
