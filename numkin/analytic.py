@@ -56,8 +56,9 @@ import weakref
 import numpy as np
 import sympy as sp
 
-from . import units
 from .compiled import vector_function
+from .quantities import input_quantity, point_quantities, unknown_quantities
+from .units import input_rates
 from .newton import iterate
 from .sweep import COND_MAX, SingularityWarning
 
@@ -70,11 +71,14 @@ __all__ = [
     "complex_step",
     "input_rates",
     "column_units",
+    "check_sweep",
+    "kinematics_frame",
 ]
 
 
 # --------------------------------------------------------------------------- helpers
-def _check_sweep(sweep):
+def check_sweep(sweep):
+    """``(mechanism, inputs, values)`` of a sweep, or a TypeError for anything else."""
     for attr in ("mechanism", "inputs", "values"):
         if not hasattr(sweep, attr):
             raise TypeError(f"sweep must be a numkin Sweep (from Mechanism.sweep), got {type(sweep).__name__}")
@@ -83,67 +87,6 @@ def _check_sweep(sweep):
 
 def _deg(t) -> str:
     return f"{math.degrees(float(t)):.3f}°"
-
-
-def _rate(value, name: str, parse, count: int) -> np.ndarray:
-    """A scalar or per-point input rate as an (N,) array in SI angular units."""
-    if isinstance(value, str) or isinstance(value, numbers.Real) and not isinstance(value, bool):
-        try:
-            v = parse(value)
-        except (ValueError, TypeError) as exc:
-            raise type(exc)(f"{name}: {exc}") from None
-        return np.full(count, v)
-    if isinstance(value, bool) or value is None:
-        raise TypeError(f"{name} must be a number, a string with units or an array of numbers, got {value!r}")
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name} must be a number, a string with units or an array of numbers, got {value!r}") from None
-    if arr.ndim == 0:
-        return _rate(float(arr), name, parse, count)
-    if arr.shape != (count,):
-        raise ValueError(f"{name} as an array must have one value per input of the sweep, shape ({count},), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name}[{int(np.flatnonzero(~np.isfinite(arr))[0])}] is not finite")
-    return arr
-
-
-def input_rates(omega, alpha, count: int) -> tuple[np.ndarray, np.ndarray]:
-    """The input's angular speed (rad/s) and acceleration (rad/s^2) at each of `count` points.
-
-    Parameters
-    ----------
-    omega : float, str or array_like
-        Angular speed of the input: a number in rad/s, a string with units
-        (``"450 rad/min"``, ``"6000 rpm"``, ``"-10 rad/s"``), or one value
-        (rad/s) per point of the sweep.
-    alpha : float, str or array_like
-        Angular acceleration of the input: a number in rad/s^2, a string
-        (``"2 rad/s^2"``, ``"60 rpm/s"``) or one value per point.
-    count : int
-        Number of points of the sweep.
-
-    Returns
-    -------
-    omega, alpha : ndarray, shape (count,)
-
-    Raises
-    ------
-    numkin.units.UnitError
-        For an unreadable string or a unit of the wrong dimension (an
-        acceleration given as `omega`, a length, ...); the message names the
-        parameter.
-
-    Examples
-    --------
-    >>> w, a = input_rates("450 rad/min", 0, 3)
-    >>> w, a
-    (array([7.5, 7.5, 7.5]), array([0., 0., 0.]))
-    """
-    return (
-        _rate(omega, "omega", units.angular_speed, count),
-        _rate(alpha, "alpha", units.angular_acceleration, count),
-    )
 
 
 def column_units(mechanism) -> dict:
@@ -155,14 +98,15 @@ def column_units(mechanism) -> dict:
     >>> column_units(linkages.slider_crank(80, 200))
     {'theta': 'rad', 'omega_theta3': 'rad/s', 'alpha_theta3': 'rad/s^2', 'v_x': 'mm/s', 'a_x': 'mm/s^2'}
     """
-    out = {str(mechanism.input_symbol): "rad"}
-    lu = mechanism.length_unit
-    for name in mechanism.unknowns:
-        if name in mechanism.angles:
-            out[f"omega_{name}"], out[f"alpha_{name}"] = "rad/s", "rad/s^2"
-        else:
-            out[f"v_{name}"], out[f"a_{name}"] = f"{lu}/s", f"{lu}/s^2"
-    return out
+    return {name: q.unit for name, q in _unknown_columns(mechanism).items()}
+
+
+def _unknown_columns(mech, source: str = "analytic", second_source: str | None = None) -> dict:
+    """Column name -> :class:`~numkin.quantities.Quantity` of a kinematics table, in column order."""
+    cols = {str(mech.input_symbol): input_quantity(mech)}
+    for pair in unknown_quantities(mech, source, second_source):
+        cols.update((q.name, q) for q in pair)
+    return cols
 
 
 def _columnwise(solve, q, t, *extra) -> np.ndarray:
@@ -229,7 +173,7 @@ def tangent(sweep) -> np.ndarray:
     >>> print(np.round(analytic.tangent(sweep)[1], 6))   # dx/dtheta = -r at 90 deg
     [-80.]
     """
-    mech, t, q = _check_sweep(sweep)
+    mech, t, q = check_sweep(sweep)
     bad = _singular_mask(sweep, mech, t, "dq/dtheta is")
     dq = _tangent(mech, q, t, mech.parameter_values)
     dq[:, bad] = np.nan
@@ -267,7 +211,7 @@ def derivatives(sweep) -> tuple[np.ndarray, np.ndarray]:
     >>> float(d2q[1, 0])               # x'' = -r (1 + r/l) at theta = 0
     -112.0
     """
-    mech, t, q = _check_sweep(sweep)
+    mech, t, q = check_sweep(sweep)
     p = mech.parameter_values
     bad = _singular_mask(sweep, mech, t, "dq/dtheta and d2q/dtheta2 are")
     dq = _tangent(mech, q, t, p)
@@ -325,12 +269,10 @@ def kinematics(sweep, omega, alpha=0.0):
     >>> print(f"{row['omega_beta']:.4f} rad/s, {row['alpha_beta']:.4f} rad/s^2")
     10.6329 rad/s, -28.3750 rad/s^2
     """
-    import pandas as pd
-
-    mech, t, _ = _check_sweep(sweep)
+    mech, t, _ = check_sweep(sweep)
     w, a = input_rates(omega, alpha, t.size)
     dq, d2q = derivatives(sweep)
-    return _frame(pd, mech, t, w * dq, w**2 * d2q + a * dq, {"omega": w, "alpha": a, "method": "analytic"})
+    return kinematics_frame(mech, t, w * dq, w**2 * d2q + a * dq, {"omega": w, "alpha": a, "method": "analytic"})
 
 
 def _scalar_attr(values: np.ndarray):
@@ -339,18 +281,27 @@ def _scalar_attr(values: np.ndarray):
     return float(values[0]) if values.size and np.all(values == values[0]) else tuple(values.tolist())
 
 
-def _frame(pd, mech, t, first, second, attrs):
-    """The kinematics DataFrame from time derivatives (n, N) of the unknowns."""
+def kinematics_frame(mech, t, first, second, attrs, source="analytic", second_source=None):
+    """The kinematics DataFrame from time derivatives (n, N) of the unknowns.
+
+    ``frame.attrs["quantities"]`` maps each column to its
+    :class:`~numkin.quantities.Quantity` (source included) and
+    ``frame.attrs["units"]`` each column to its unit.
+    """
+    import pandas as pd
+
     attrs = {k: _scalar_attr(v) if k in ("omega", "alpha") else v for k, v in attrs.items()}
-    cols = {str(mech.input_symbol): t}
-    for k, name in enumerate(mech.unknowns):
-        v, acc = ("omega", "alpha") if name in mech.angles else ("v", "a")
-        cols[f"{v}_{name}"] = first[k]
-        cols[f"{acc}_{name}"] = second[k]
-    frame = pd.DataFrame(cols)
-    frame.attrs["units"] = column_units(mech)
+    quantities = _unknown_columns(mech, source, second_source)
+    values = [t] + [row for k in range(len(mech.unknowns)) for row in (first[k], second[k])]
+    frame = pd.DataFrame(dict(zip(quantities, values)))
+    _label(frame, quantities)
     frame.attrs.update(attrs)
     return frame
+
+
+def _label(frame, quantities: dict) -> None:
+    frame.attrs["quantities"] = quantities
+    frame.attrs["units"] = {name: q.unit for name, q in quantities.items()}
 
 
 # --------------------------------------------------------------------------- points
@@ -425,7 +376,7 @@ def point_derivatives(sweep, points=None) -> dict:
     >>> print(np.round(dP[:, 0], 9), np.round(d2P[:, 0], 9))
     [-80.   0.] [ -0. -80.]
     """
-    mech, t, q = _check_sweep(sweep)
+    mech, t, q = check_sweep(sweep)
     names = _point_names(mech, points)
     f0, f1, f2 = _point_functions(mech, names)
     dq, d2q = derivatives(sweep)
@@ -465,24 +416,18 @@ def point_kinematics(sweep, omega, alpha=0.0, points=None):
     """
     import pandas as pd
 
-    mech, t, _ = _check_sweep(sweep)
+    mech, t, _ = check_sweep(sweep)
     w, a = input_rates(omega, alpha, t.size)
     data = point_derivatives(sweep, points)
-    lu = mech.length_unit
+    quantities = {str(mech.input_symbol): input_quantity(mech)}
     cols = {str(mech.input_symbol): t}
-    unit = {str(mech.input_symbol): "rad"}
     for name, (P, dP, d2P) in data.items():
-        for k, axis in enumerate("xy"):
-            cols[f"{axis}_{name}"] = P[k]
-            unit[f"{axis}_{name}"] = lu
-        for k, axis in enumerate("xy"):
-            cols[f"v{axis}_{name}"] = w * dP[k]
-            unit[f"v{axis}_{name}"] = f"{lu}/s"
-        for k, axis in enumerate("xy"):
-            cols[f"a{axis}_{name}"] = w**2 * d2P[k] + a * dP[k]
-            unit[f"a{axis}_{name}"] = f"{lu}/s^2"
+        values = (P, w * dP, w**2 * d2P + a * dP)
+        for pair, v in zip(point_quantities(mech, name), values):
+            for k, q in enumerate(pair):
+                quantities[q.name], cols[q.name] = q, v[k]
     frame = pd.DataFrame(cols)
-    frame.attrs["units"] = unit
+    _label(frame, quantities)
     frame.attrs.update({"omega": _scalar_attr(w), "alpha": _scalar_attr(a), "method": "analytic"})
     return frame
 
@@ -537,7 +482,7 @@ def complex_step(sweep, h: float = 1e-30, *, order: int = 1) -> np.ndarray:
         raise ValueError(f"h must be a finite positive number, got {h!r}")
     if order not in (1, 2):
         raise ValueError(f"order must be 1 (dq/dtheta) or 2 (d2q/dtheta2), got {order!r}")
-    mech, t, q = _check_sweep(sweep)
+    mech, t, q = check_sweep(sweep)
     comp, p = mech.compiled, mech.parameter_values
     tc = t + 1j * float(h)
 
