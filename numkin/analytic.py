@@ -172,15 +172,20 @@ def _second(mech, q, dq, t, p):
     return _columnwise(lambda q_, dq_, t_: mech.compiled.second_derivative(q_, dq_, t_, p), q, t, dq)
 
 
-def _change_points(sweep, t, cond) -> list:
-    """Samples nearest a change point of the sweep whose Jacobian is (near) singular."""
+def _change_points(sweep, mech, q, t, cond) -> list:
+    """Samples where the sweep passes a change point: nearest a change-point event of the
+    sweep, or between two neighbours whose Jacobian determinants differ in sign; and with a
+    condition number above CHANGE_COND."""
     out = set()
     for event in getattr(sweep, "events", ()):
         if getattr(event, "kind", "") == "change point" and t.size:
-            k = int(np.argmin(np.abs(t - event.input_value)))
-            if not cond[k] <= CHANGE_COND:
-                out.add(k)
-    return sorted(out)
+            out.add(int(np.argmin(np.abs(t - event.input_value))))
+    high = [k for k in np.flatnonzero(~(cond <= CHANGE_COND)) if 0 < k < t.size - 1]
+    if high:
+        idx = np.array([[k - 1, k + 1] for k in high]).ravel()
+        sign = np.sign(np.linalg.det(mech.compiled.J(q[:, idx], t[idx], mech.parameter_values))).reshape(-1, 2)
+        out.update(k for k, (a, b) in zip(high, sign) if a * b < 0)
+    return sorted(k for k in out if not cond[k] <= CHANGE_COND)
 
 
 def _lagrange_at(x: np.ndarray, x0: float) -> np.ndarray:
@@ -280,7 +285,7 @@ def tangent(sweep) -> np.ndarray:
     """
     mech, t, q = check_sweep(sweep)
     cond = _cond(sweep, t)
-    change = _change_points(sweep, t, cond)
+    change = _change_points(sweep, mech, q, t, cond)
     bad = _singular_mask(sweep, mech, t, "dq/dtheta is", change)
     dq = _tangent(mech, q, t, mech.parameter_values)
     dq[:, bad] = np.nan
@@ -318,8 +323,10 @@ def derivatives(sweep, *, rtol: float = DIGITS_RTOL) -> tuple[np.ndarray, np.nda
 
     Notes
     -----
-    At a change point recorded by a sweep run with ``on_singular="report"``
-    (the sample nearest it having condition number above ``CHANGE_COND``)
+    At a change point passed by a sweep run with ``on_singular="report"``
+    (a sample with condition number above ``CHANGE_COND`` nearest a change
+    point the sweep recorded, or between neighbours whose Jacobian
+    determinants differ in sign)
     the derivatives are those of the branch the sweep kept: the polynomial
     through the ``CHANGE_NEIGHBOURS`` regular samples on each side,
     evaluated at the change point (the branch's smooth continuation), with
@@ -338,7 +345,7 @@ def derivatives(sweep, *, rtol: float = DIGITS_RTOL) -> tuple[np.ndarray, np.nda
     mech, t, q = check_sweep(sweep)
     p = mech.parameter_values
     cond = _cond(sweep, t)
-    change = _change_points(sweep, t, cond)
+    change = _change_points(sweep, mech, q, t, cond)
     bad = _singular_mask(sweep, mech, t, "dq/dtheta and d2q/dtheta2 are", change)
     dq = _tangent(mech, q, t, p)
     d2q = _second(mech, q, np.nan_to_num(dq), t, p)
