@@ -209,60 +209,48 @@ def _require_periodic(scheme: str, periodic: bool) -> None:
 # Stencil schemes (formulas, errors and end stencils come from the stencils)
 # --------------------------------------------------------------------------
 
+def _example(name: str, stop: str, count: int, func: str, index: int, digits: int, expected: str,
+             note: str, more: str = "") -> str:
+    """A doctest: `name` applied to ``func(x)`` on ``linspace(0, stop, count)``, printed at `index`."""
+    return (
+        f">>> import numpy as np\n>>> from numkin.derivatives import {name}\n"
+        f">>> x = np.linspace(0.0, {stop}, {count})\n"
+        f'>>> print(f"{{{name}(np.{func}(x), x[1] - x[0])[{index}]:.{digits}f}}")  # {note}\n{expected}{more}'
+    )
+
+
 forward = _built_in(
     "forward",
     summary="First derivative by forward differences, O(h).",
-    examples=""">>> import numpy as np
->>> from numkin.derivatives import forward
->>> x = np.linspace(0.0, 1.0, 101)
->>> print(f"{forward(np.exp(x), x[1] - x[0])[0]:.4f}")  # exact: 1
-1.0050""",
+    examples=_example("forward", "1.0", 101, "exp", 0, 4, "1.0050", "exact: 1"),
 )
 backward = _built_in(
     "backward",
     summary="First derivative by backward differences, O(h).",
-    examples=""">>> import numpy as np
->>> from numkin.derivatives import backward
->>> x = np.linspace(0.0, 1.0, 101)
->>> print(f"{backward(np.exp(x), x[1] - x[0])[-1]:.4f}")  # exact: e = 2.7183
-2.7047""",
+    examples=_example("backward", "1.0", 101, "exp", -1, 4, "2.7047", "exact: e = 2.7183"),
 )
 centred = _built_in(
     "centred",
     summary="First derivative by centred differences, O(h**2).",
-    examples=""">>> import numpy as np
->>> from numkin.derivatives import centred
->>> x = np.linspace(0.0, np.pi, 181)  # 1 degree steps
->>> dy = centred(np.sin(x), x[1] - x[0])
->>> print(f"{dy[60]:.6f}")  # exact: cos(60 deg) = 0.5
-0.499975
+    examples=_example("centred", "np.pi", 181, "sin", 60, 6, "0.499975", "1 deg steps; exact: cos(60 deg) = 0.5",
+                      """
 
 A crank angle that turns once over a full periodic sweep:
 
 >>> theta = np.linspace(0.0, 2 * np.pi, 360, endpoint=False)
 >>> rate = centred(theta, theta[1], periodic=True, period_offset=2 * np.pi)
 >>> print(np.allclose(rate, 1.0))
-True""",
+True"""),
 )
 five_point = _built_in(
     "five_point",
     summary="First derivative by the five-point centred stencil, O(h**4).",
-    examples=""">>> import numpy as np
->>> from numkin.derivatives import five_point
->>> x = np.linspace(0.0, np.pi, 181)
->>> dy = five_point(np.sin(x), x[1] - x[0])
->>> print(f"{dy[60]:.9f}")  # exact: 0.5
-0.499999998""",
+    examples=_example("five_point", "np.pi", 181, "sin", 60, 9, "0.499999998", "exact: 0.5"),
 )
 second_difference = _built_in(
     "second_difference",
     summary="Second derivative by the centred second difference, O(h**2).",
-    examples=""">>> import numpy as np
->>> from numkin.derivatives import second_difference
->>> x = np.linspace(0.0, np.pi, 181)
->>> d2y = second_difference(np.sin(x), x[1] - x[0])
->>> print(f"{d2y[90]:.6f}")  # exact: -sin(90 deg) = -1
--0.999975""",
+    examples=_example("second_difference", "np.pi", 181, "sin", 90, 6, "-0.999975", "exact: -sin(90 deg) = -1"),
 )
 forward_of_forward = _built_in(
     "forward_of_forward",
@@ -276,12 +264,8 @@ estimates ``y''`` at ``x[i+1]`` to O(h**2), so as an estimate of
     notes="""On an open grid the last two samples have no ``y[i+2]`` and use the
 mirror image (backward of backward, also O(h)); applying :func:`forward`
 twice literally would give 0 there.""",
-    examples=""">>> import numpy as np
->>> from numkin.derivatives import forward_of_forward
->>> x = np.linspace(0.0, np.pi, 181)
->>> d2y = forward_of_forward(np.sin(x), x[1] - x[0])
->>> print(f"{d2y[89]:.6f}")  # estimates y'' at x[90]: exact -1
--0.999975""",
+    examples=_example("forward_of_forward", "np.pi", 181, "sin", 89, 6, "-0.999975",
+                      "estimates y'' at x[90]: exact -1"),
 )
 centred_of_centred = _built_in(
     "centred_of_centred",
@@ -294,22 +278,12 @@ with truncation error ``h**2/3 y''''``, four times that of
     notes="""Applying :func:`centred` twice on an open grid is only O(h) at the two
 samples of each end (the one-sided first derivatives there have a different
 error constant); those samples use second-order stencils instead.""",
-    examples=""">>> import numpy as np
->>> from numkin.derivatives import centred_of_centred
->>> x = np.linspace(0.0, np.pi, 181)
->>> d2y = centred_of_centred(np.sin(x), x[1] - x[0])
->>> print(f"{d2y[90]:.6f}")  # exact: -1
--0.999898""",
+    examples=_example("centred_of_centred", "np.pi", 181, "sin", 90, 6, "-0.999898", "exact: -1"),
 )
 five_point_second = _built_in(
     "five_point_second",
     summary="Second derivative by the five-point centred stencil, O(h**4).",
-    examples=""">>> import numpy as np
->>> from numkin.derivatives import five_point_second
->>> x = np.linspace(0.0, np.pi, 181)
->>> d2y = five_point_second(np.sin(x), x[1] - x[0])
->>> print(f"{d2y[90]:.8f}")  # exact: -1
--1.00000000""",
+    examples=_example("five_point_second", "np.pi", 181, "sin", 90, 8, "-1.00000000", "exact: -1"),
 )
 
 
@@ -349,12 +323,7 @@ two agree to rounding).  On an open grid ``D(2h)`` is unavailable at the two
 samples of each end, which use the fourth-order one-sided stencils of
 :func:`five_point`.""",
     samples="at least 5 samples",
-    examples=""">>> import numpy as np
->>> from numkin.derivatives import richardson
->>> x = np.linspace(0.0, np.pi, 181)
->>> dy = richardson(np.sin(x), x[1] - x[0])
->>> print(f"{dy[60]:.9f}")  # exact: 0.5
-0.499999998""",
+    examples=_example("richardson", "np.pi", 181, "sin", 60, 9, "0.499999998", "exact: 0.5"),
 )
 
 
