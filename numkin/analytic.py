@@ -57,7 +57,16 @@ import numpy as np
 import sympy as sp
 
 from .compiled import vector_function
-from .quantities import catalogue, input_quantity, point_quantities, unknown_quantities
+from .conditioning import (
+    DIGITS_RTOL,
+    LostDigitsWarning,
+    change_points,
+    condition_numbers,
+    continue_branch,
+    lost_digits,
+    warn_lost_digits,
+)
+from .quantities import input_quantity, point_quantities, unknown_quantities
 from .units import input_rates
 from .newton import iterate
 from .sweep import COND_MAX, SingularityWarning
@@ -77,20 +86,6 @@ __all__ = [
     "lost_digits",
     "DIGITS_RTOL",
 ]
-
-#: Relative accuracy an analytic or differenced value is expected to keep: an
-#: estimated error (see :func:`lost_digits`) above it warns with :class:`LostDigitsWarning`.
-DIGITS_RTOL = 1e-6
-#: The sample nearest a change point (an event of the sweep) is continued from its
-#: neighbours when its condition number exceeds this.
-CHANGE_COND = 1e6
-#: Neighbouring samples on each side used to continue a branch through a change point.
-CHANGE_NEIGHBOURS = 3
-_EPS = float(np.finfo(float).eps)
-
-
-class LostDigitsWarning(SingularityWarning):
-    """The estimated rounding error of a value, from the condition number, exceeds the stated tolerance."""
 
 
 # --------------------------------------------------------------------------- helpers
@@ -141,13 +136,9 @@ def _columnwise(solve, q, t, *extra) -> np.ndarray:
         return out
 
 
-def _cond(sweep, inputs) -> np.ndarray:
-    return np.asarray(getattr(sweep, "cond", np.ones(inputs.size)), dtype=float)
-
-
 def _singular_mask(sweep, mech, inputs, what: str, skip=()) -> np.ndarray:
     """Points whose Jacobian is singular (condition number above COND_MAX), but for `skip`; warns once."""
-    cond = _cond(sweep, inputs)
+    cond = condition_numbers(sweep, inputs)
     bad = ~(cond <= COND_MAX)
     bad[list(skip)] = False
     if bad.any():
@@ -170,94 +161,6 @@ def _tangent(mech, q, t, p):
 def _second(mech, q, dq, t, p):
     """d2q/dtheta2 from ``J q'' = -(G_q q' + G_theta)`` (compiled on first use; NaN where J is singular)."""
     return _columnwise(lambda q_, dq_, t_: mech.compiled.second_derivative(q_, dq_, t_, p), q, t, dq)
-
-
-def _change_points(sweep, mech, q, t, cond) -> list:
-    """Samples where the sweep passes a change point: nearest a change-point event of the
-    sweep, or between two neighbours whose Jacobian determinants differ in sign; and with a
-    condition number above CHANGE_COND."""
-    out = set()
-    for event in getattr(sweep, "events", ()):
-        if getattr(event, "kind", "") == "change point" and t.size:
-            out.add(int(np.argmin(np.abs(t - event.input_value))))
-    high = [k for k in np.flatnonzero(~(cond <= CHANGE_COND)) if 0 < k < t.size - 1]
-    if high:
-        idx = np.array([[k - 1, k + 1] for k in high]).ravel()
-        sign = np.sign(np.linalg.det(mech.compiled.J(q[:, idx], t[idx], mech.parameter_values))).reshape(-1, 2)
-        out.update(k for k, (a, b) in zip(high, sign) if a * b < 0)
-    return sorted(k for k in out if not cond[k] <= CHANGE_COND)
-
-
-def _lagrange_at(x: np.ndarray, x0: float) -> np.ndarray:
-    """Weights of the interpolating polynomial through nodes `x`, evaluated at `x0`."""
-    w = np.ones(x.size)
-    for j in range(x.size):
-        others = np.delete(x, j)
-        w[j] = np.prod((x0 - others) / (x[j] - others))
-    return w
-
-
-def _continue_branch(mech, t, cond, change, arrays, what: str) -> None:
-    """At each change-point sample, replace the columns of `arrays` by the polynomial through the
-    neighbouring samples of the kept branch (its smooth continuation), or NaN if too few; warns."""
-    if not change:
-        return
-    good = np.isfinite(cond) & (cond <= CHANGE_COND) & np.all(np.isfinite(arrays[0]), axis=0)
-    good[change] = False
-    names = list(catalogue(mech, orders=(1,), wrt="input", points=False))
-    for k in change:
-        left = [j for j in range(k - 1, -1, -1) if good[j]][:CHANGE_NEIGHBOURS]
-        right = [j for j in range(k + 1, t.size) if good[j]][:CHANGE_NEIGHBOURS]
-        where = f"{mech.name}: the Jacobian is singular at the change point at input {_deg(t[k])} " \
-                f"(condition number {cond[k]:.3g}), where the branches meet"
-        if len(left) < 2 or len(right) < 2:
-            for a in arrays:
-                a[:, k] = np.nan
-            warnings.warn(f"{where}; {what} set to NaN there: fewer than 2 regular samples of the kept "
-                          "branch on each side to continue it from", SingularityWarning, stacklevel=3)
-            continue
-        idx = np.array(left[::-1] + right)
-        w = _lagrange_at(t[idx] - t[k], 0.0)
-        for a in arrays:
-            a[:, k] = a[:, idx] @ w
-        values = ", ".join(f"{n} = {v:.4g}" for n, v in zip(names, arrays[0][:, k]))
-        warnings.warn(f"{where}; {what} there continue the kept branch smoothly through it (polynomial "
-                      f"through {idx.size} neighbouring samples): {values}", SingularityWarning, stacklevel=3)
-
-
-def lost_digits(cond, order: int = 1) -> np.ndarray:
-    """Estimated relative error of an n-th derivative solved at a point of condition number `cond`.
-
-    ``(2n - 1) * eps * cond**2``: the position is known to about ``eps * cond``
-    (relative), and the derivative equations amplify that error by the
-    condition number again; near a toggle, where ``q ~ sqrt(distance)``, the
-    second derivative loses three times what the first does. On the toggle
-    of the 4/2/4.0001/2 four-bar this bounds the errors measured against
-    mpmath (40 digits) by a factor 6-20 from 1e-9 deg to 1e-1 deg off the limit.
-
-    Examples
-    --------
-    >>> print(f"{lost_digits(5.03e6, 1):.1e} {lost_digits(5.03e6, 2):.1e}")
-    5.6e-03 1.7e-02
-    """
-    return (2 * order - 1) * _EPS * np.asarray(cond, dtype=float) ** 2
-
-
-def _warn_lost_digits(mech, t, cond, skip, rtol, what="analytic") -> None:
-    """Warn if the estimated error of the second derivative (the larger) exceeds `rtol` anywhere."""
-    est = lost_digits(cond, 2)
-    over = (est > rtol) & (cond <= COND_MAX)
-    over[list(skip)] = False
-    if over.any():
-        k = int(np.flatnonzero(over)[np.argmax(est[over])])
-        warnings.warn(
-            f"{mech.name}: {what} derivatives lose digits near a singular position at {int(over.sum())} "
-            f"point(s): at input {_deg(t[k])} (condition number {cond[k]:.3g}) the estimated relative error "
-            f"is {lost_digits(cond[k], 1):.1e} for velocities and {est[k]:.1e} for accelerations, above the "
-            f"tolerance {rtol:.0e}",
-            LostDigitsWarning,
-            stacklevel=3,
-        )
 
 
 # --------------------------------------------------------------------------- unknowns
@@ -284,12 +187,12 @@ def tangent(sweep) -> np.ndarray:
     [-80.]
     """
     mech, t, q = check_sweep(sweep)
-    cond = _cond(sweep, t)
-    change = _change_points(sweep, mech, q, t, cond)
+    cond = condition_numbers(sweep, t)
+    change = change_points(sweep, mech, q, t, cond)
     bad = _singular_mask(sweep, mech, t, "dq/dtheta is", change)
     dq = _tangent(mech, q, t, mech.parameter_values)
     dq[:, bad] = np.nan
-    _continue_branch(mech, t, cond, change, [dq], "dq/dtheta")
+    continue_branch(mech, t, cond, change, [dq], "dq/dtheta")
     return dq
 
 
@@ -344,16 +247,16 @@ def derivatives(sweep, *, rtol: float = DIGITS_RTOL) -> tuple[np.ndarray, np.nda
     """
     mech, t, q = check_sweep(sweep)
     p = mech.parameter_values
-    cond = _cond(sweep, t)
-    change = _change_points(sweep, mech, q, t, cond)
+    cond = condition_numbers(sweep, t)
+    change = change_points(sweep, mech, q, t, cond)
     bad = _singular_mask(sweep, mech, t, "dq/dtheta and d2q/dtheta2 are", change)
     dq = _tangent(mech, q, t, p)
     d2q = _second(mech, q, np.nan_to_num(dq), t, p)
     dq[:, bad] = np.nan
     d2q[:, bad] = np.nan
     d2q[:, ~np.all(np.isfinite(dq), axis=0)] = np.nan
-    _continue_branch(mech, t, cond, change, [dq, d2q], "dq/dtheta and d2q/dtheta2")
-    _warn_lost_digits(mech, t, cond, change, rtol)
+    continue_branch(mech, t, cond, change, [dq, d2q], "dq/dtheta and d2q/dtheta2")
+    warn_lost_digits(mech, t, cond, change, rtol)
     return dq, d2q
 
 

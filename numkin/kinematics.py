@@ -51,7 +51,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import derivatives as _d
-from .analytic import DIGITS_RTOL, LostDigitsWarning, check_sweep, input_rates, kinematics_frame
+from .analytic import check_sweep, input_rates, kinematics_frame
+from .conditioning import DIGITS_RTOL, rounding_error, warn_rounding
 from . import schemes as _schemes
 
 __all__ = ["finite_difference", "rounding_error", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "PARTNER"]
@@ -350,7 +351,7 @@ def finite_difference(sweep, omega, alpha=0.0, method="centred", second_method="
         ``five_point_second``, ``spectral_second``).
     periodic : {"auto", True, False}, default "auto"
         "auto" treats a sweep over exactly one turn as periodic.
-    rtol : float, default :data:`numkin.analytic.DIGITS_RTOL`
+    rtol : float, default :data:`numkin.conditioning.DIGITS_RTOL`
         Relative error (to the largest value of each column) above which the
         estimated rounding error of a difference quotient warns, see
         :func:`rounding_error`.
@@ -375,7 +376,7 @@ def finite_difference(sweep, omega, alpha=0.0, method="centred", second_method="
 
     Warns
     -----
-    numkin.analytic.LostDigitsWarning
+    numkin.conditioning.LostDigitsWarning
         If the estimated rounding error of a scheme exceeds `rtol` somewhere.
 
     Notes
@@ -402,63 +403,10 @@ def finite_difference(sweep, omega, alpha=0.0, method="centred", second_method="
     w, a = input_rates(omega, alpha, t.size)
     d1, d2 = rows.apply(s1), rows.apply(s2)
     for scheme, d in ((s1, d1), (s2, d2)):
-        _warn_lost_digits(sweep, mech, t, rows, scheme, d, rtol)
+        warn_rounding(sweep, mech, t, rows, scheme, d, rtol)
     attrs = {
         "omega": w, "alpha": a, "method": s1.name, "second_method": s2.name,
         "h": rows.h, "periodic": rows.periodic,
     }
     return kinematics_frame(mech, t, w * d1, w**2 * d2 + a * d1, attrs, s1.name, s2.name)
 
-
-def rounding_error(scheme, h: float, values, cond, xscale) -> np.ndarray:
-    """Estimated rounding error of a difference quotient, per sample (unit of the derivative per rad^n).
-
-    ``sum|w_k| / h**n * delta``, with ``delta = eps * max(cond, 1) * max(|q|, xscale)``
-    the error of the solved positions (relative error ``eps`` amplified by the
-    condition number of the loop equations). The largest ``delta`` within the
-    stencil's reach is used. The spectral schemes are estimated with the
-    five-point stencil of the same derivative.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from numkin.derivatives import get_scheme
-    >>> e = rounding_error(get_scheme("centred"), 1e-8, np.ones((1, 5)), np.ones(5), np.ones(1))
-    >>> print(f"{e[0, 2]:.1e}")   # eps / h
-    2.2e-08
-    """
-    from . import schemes as _s
-
-    try:
-        stencil = _s.point_stencil(scheme.name)
-    except ValueError:  # spectral: bounded like the five-point stencil of the same derivative
-        stencil = _s.point_stencil("five_point" if scheme.derivative == 1 else "five_point_second")
-    eps = float(np.finfo(float).eps)
-    values = np.atleast_2d(np.asarray(values, dtype=float))
-    cond = np.maximum(np.nan_to_num(np.asarray(cond, dtype=float), nan=1.0), 1.0)
-    delta = eps * cond[None, :] * np.maximum(np.abs(values), np.asarray(xscale, dtype=float)[:, None])
-    reach = range(min(stencil.offsets), max(stencil.offsets) + 1)
-    n = delta.shape[-1]
-    spread = np.max([delta[:, np.clip(np.arange(n) + k, 0, n - 1)] for k in reach], axis=0)
-    return sum(abs(c) for c in stencil.coefficients) / h**scheme.derivative * spread
-
-
-def _warn_lost_digits(sweep, mech, t, rows, scheme, d, rtol) -> None:
-    cond = np.asarray(getattr(sweep, "cond", np.ones(t.size)), dtype=float)
-    if rows.reverse:
-        cond = cond[::-1]
-    err = rounding_error(scheme, rows.h, rows.y, cond, mech.xscale)
-    if rows.reverse:
-        err = err[:, ::-1]
-    scale = np.maximum(np.nanmax(np.abs(d), axis=1), mech.xscale)  # a column of zeros: per unit of the unknown
-    rel = err / scale[:, None]
-    if np.any(rel > rtol):
-        j, k = np.unravel_index(int(np.nanargmax(rel)), rel.shape)
-        warnings.warn(
-            f"{mech.name}: {scheme.name} loses digits to rounding: at input {math.degrees(t[k]):.3f}° "
-            f"(step h = {rows.h:.3g} rad, condition number {cond[k]:.3g}) the estimated rounding error of "
-            f"d{'' if scheme.derivative == 1 else '2'}{mech.unknowns[j]} is {rel[j, k]:.1e} of its largest value (or of 1 unit per rad), "
-            f"above the tolerance {rtol:.0e}",
-            LostDigitsWarning,
-            stacklevel=3,
-        )
