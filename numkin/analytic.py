@@ -75,6 +75,7 @@ __all__ = [
     "derivatives",
     "tangent",
     "kinematics",
+    "rates",
     "point_derivatives",
     "point_kinematics",
     "complex_step",
@@ -309,8 +310,41 @@ def kinematics(sweep, omega, alpha=0.0):
     """
     mech, t, _ = check_sweep(sweep)
     w, a = input_rates(omega, alpha, t.size)
+    first, second = rates(sweep, w, a)
+    return kinematics_frame(mech, t, first, second, {"omega": w, "alpha": a, "method": "analytic"})
+
+
+def rates(sweep, omega, alpha=0.0) -> tuple[np.ndarray, np.ndarray]:
+    """Time derivatives of all unknowns as arrays, without a DataFrame.
+
+    The numbers of :func:`kinematics` (which builds its table from them):
+    ``omega_in q'`` and ``omega_in**2 q'' + alpha_in q'``.
+
+    Parameters
+    ----------
+    sweep : Sweep
+    omega, alpha : float, str or array_like
+        Input speed (rad/s) and acceleration (rad/s^2), as in :func:`kinematics`.
+
+    Returns
+    -------
+    first, second : ndarray, shape (n, N)
+        Rows in ``sweep.unknowns`` order: rad/s and rad/s^2 for angles,
+        length unit/s and /s^2 for lengths.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import analytic, linkages
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([0.0, 90.0]))
+    >>> v, acc = analytic.rates(sweep, "6000 rpm")
+    >>> print(np.round(acc[1] / 1000, 1))   # a_x in m/s^2
+    [-44215.8  13783.8]
+    """
+    _, t, _ = check_sweep(sweep)
+    w, a = input_rates(omega, alpha, t.size)
     dq, d2q = derivatives(sweep)
-    return kinematics_frame(mech, t, w * dq, w**2 * d2q + a * dq, {"omega": w, "alpha": a, "method": "analytic"})
+    return w * dq, w**2 * d2q + a * dq
 
 
 def _scalar_attr(values: np.ndarray):

@@ -359,7 +359,10 @@ def input_rate(value, kind: str = "speed", count: int | None = None, name: str |
         raise ValueError(f"kind must be 'speed' or 'acceleration', got {kind!r}")
     default, parse = _RATE_PARSERS[kind]
     name = name or default
-    expected = f"{name} must be a number, a string with units or an array of numbers, got {value!r}"
+
+    def expected():
+        return TypeError(f"{name} must be a number, a string with units or an array of numbers, got {value!r}")
+
     if isinstance(value, (str, numbers.Real)) and not isinstance(value, bool):
         try:
             v = parse(value)
@@ -367,11 +370,11 @@ def input_rate(value, kind: str = "speed", count: int | None = None, name: str |
             raise type(exc)(f"{name}: {exc}") from None
         return v if count is None else np.full(count, v)
     if isinstance(value, bool) or value is None:
-        raise TypeError(expected)
+        raise expected()
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise TypeError(expected) from None
+        raise expected() from None
     if arr.ndim == 0:
         return input_rate(float(arr), kind, count, name)
     if count is None or arr.shape != (count,):
