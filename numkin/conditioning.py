@@ -155,11 +155,12 @@ def warn_lost_digits(mech, t, cond, skip, rtol, what="analytic") -> None:
 def rounding_error(scheme, h: float, values, cond, xscale) -> np.ndarray:
     """Estimated rounding error of a difference quotient, per sample (unit of the derivative per rad^n).
 
-    ``sum|w_k| / h**n * delta``, with ``delta = eps * max(cond, 1) * max(|q|, xscale)``
+    ``sum|w_k| / h**n * delta``, with ``delta = eps * max(cond, 1) * max(max|q|, xscale)``
     the error of the solved positions (relative error ``eps`` amplified by the
-    condition number of the loop equations). The largest ``delta`` within the
-    stencil's reach is used. The spectral schemes are estimated with the
-    five-point stencil of the same derivative.
+    condition number of the loop equations; ``max|q|`` over the row). The
+    largest condition number within the stencil's reach is used. The
+    spectral schemes are estimated with the five-point stencil of the same
+    derivative.
 
     Examples
     --------
@@ -178,11 +179,13 @@ def rounding_error(scheme, h: float, values, cond, xscale) -> np.ndarray:
     eps = float(np.finfo(float).eps)
     values = np.atleast_2d(np.asarray(values, dtype=float))
     cond = np.maximum(np.nan_to_num(np.asarray(cond, dtype=float), nan=1.0), 1.0)
-    delta = eps * cond[None, :] * np.maximum(np.abs(values), np.asarray(xscale, dtype=float)[:, None])
-    reach = range(min(stencil.offsets), max(stencil.offsets) + 1)
-    n = delta.shape[-1]
-    spread = np.max([delta[:, np.clip(np.arange(n) + k, 0, n - 1)] for k in reach], axis=0)
-    return sum(abs(c) for c in stencil.coefficients) / h**scheme.derivative * spread
+    spread = cond.copy()
+    for k in range(1, max(-min(stencil.offsets), max(stencil.offsets)) + 1):
+        np.maximum(spread[:-k], cond[k:], out=spread[:-k])
+        np.maximum(spread[k:], cond[:-k], out=spread[k:])
+    magnitude = np.maximum(np.max(np.abs(values), axis=1), np.asarray(xscale, dtype=float))
+    factor = eps * sum(abs(c) for c in stencil.coefficients) / h**scheme.derivative
+    return factor * magnitude[:, None] * spread[None, :]
 
 
 def warn_rounding(sweep, mech, t, rows, scheme, d, rtol) -> None:

@@ -32,7 +32,7 @@ import math
 import numbers
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import reduce
+from functools import cached_property, reduce
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -126,22 +126,22 @@ class Stencil:
         keep = [(k, w) for k, w in sorted(zip(ks, ws)) if w != 0]
         return cls(tuple(k for k, _ in keep), tuple(w for _, w in keep), int(derivative), p, c)
 
-    @property
+    @cached_property
     def coefficients(self) -> tuple[float, ...]:
         """The weights as floats."""
         return tuple(float(w) for w in self.weights)
 
-    @property
+    @cached_property
     def numerators(self) -> tuple[float, ...]:
         """The weights times :attr:`denominator` (integers, as floats)."""
         d = self.denominator
         return tuple(float(w * d) for w in self.weights)
 
-    @property
+    @cached_property
     def width(self) -> int:
         return max(self.offsets) - min(self.offsets) + 1
 
-    @property
+    @cached_property
     def denominator(self) -> int:
         """Least common denominator of the weights (12 for the five-point stencils)."""
         return reduce(math.lcm, (w.denominator for w in self.weights), 1)
