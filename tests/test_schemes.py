@@ -7,6 +7,8 @@ from fractions import Fraction as F
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from numkin import compare, derivatives, kinematics, linkages, schemes
 from numkin.stencils import Rule, Stencil
@@ -213,3 +215,25 @@ def test_point_stencil_evaluates_at_one_input():
 def test_rule_mirror_needs_a_one_sided_stencil():
     with pytest.raises(ValueError, match="mirror"):
         Rule.build(Stencil.from_offsets((-1, 0, 1), 1), "mirror")
+
+
+# -------------------------------------------------------------------- properties
+@given(
+    offsets=st.lists(st.integers(-5, 5), min_size=2, max_size=8, unique=True),
+    derivative=st.integers(1, 2),
+    data=st.data(),
+)
+def test_any_stencil_differentiates_polynomials_of_its_degree_exactly(offsets, derivative, data):
+    """For any distinct offsets, the weights differentiate every polynomial of degree
+    below len(offsets) exactly (in rational arithmetic), and the derived order is at
+    least len(offsets) - derivative."""
+    if len(offsets) <= derivative:
+        return
+    s = Stencil.from_offsets(offsets, derivative)
+    assert s.order >= len(offsets) - derivative
+    coefficients = data.draw(st.lists(st.integers(-9, 9), min_size=len(offsets), max_size=len(offsets)))
+    x0 = F(data.draw(st.integers(-3, 3)))
+    poly = lambda x: sum(F(c) * x**m for m, c in enumerate(coefficients))  # noqa: E731
+    exact = sum(F(c) * math.perm(m, derivative) * x0 ** (m - derivative)
+                for m, c in enumerate(coefficients) if m >= derivative)
+    assert sum(w * poly(x0 + k) for k, w in zip(s.offsets, s.weights)) == exact
