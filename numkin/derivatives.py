@@ -23,7 +23,11 @@ five_point_second   2nd    4          (-y[i+2] + 16y[i+1] - 30y[i] + 16y[i-1] - 
 spectral_second     2nd    spectral   FFT: multiply mode k by -k^2 (periodic grids only)
 ==================  =====  =========  =====================================================
 
-The same table is available at run time as :data:`SCHEMES`.
+The same table is available at run time as :data:`SCHEMES`.  The stencil
+schemes are declared in :mod:`numkin.schemes` by their offsets alone: their
+weights, orders, error terms and end stencils (and the formulas in the
+docstrings below) are computed by :mod:`numkin.stencils`, and
+:func:`numkin.schemes.register` adds a scheme at run time.
 
 Grids
 -----
