@@ -165,7 +165,7 @@ def _second(mech, q, dq, t, p):
 
 
 # --------------------------------------------------------------------------- unknowns
-def tangent(sweep) -> np.ndarray:
+def tangent(sweep, *, at_change_point: str = "nan") -> np.ndarray:
     """First derivatives dq/dtheta of all unknowns, from the velocity equations only.
 
     Parameters
@@ -193,11 +193,11 @@ def tangent(sweep) -> np.ndarray:
     bad = _singular_mask(sweep, mech, t, "dq/dtheta is", change)
     dq = _tangent(mech, q, t, mech.parameter_values)
     dq[:, bad] = np.nan
-    continue_branch(mech, t, cond, change, [dq], "dq/dtheta")
+    continue_branch(mech, t, cond, change, [dq], "dq/dtheta", at_change_point)
     return dq
 
 
-def derivatives(sweep, *, rtol: float = DIGITS_RTOL) -> tuple[np.ndarray, np.ndarray]:
+def derivatives(sweep, *, rtol: float = DIGITS_RTOL, at_change_point: str = "nan") -> tuple[np.ndarray, np.ndarray]:
     """dq/dtheta and d2q/dtheta2 of all unknowns from the differentiated loop equations.
 
     Solves ``J q' = -dF/dtheta`` and then ``J q'' = -(G_q q' + G_theta)``
@@ -224,6 +224,9 @@ def derivatives(sweep, *, rtol: float = DIGITS_RTOL) -> tuple[np.ndarray, np.nda
     rtol : float, default DIGITS_RTOL
         Relative error above which the estimate of :func:`lost_digits`
         warns (:class:`LostDigitsWarning`).
+    at_change_point : {"nan", "continue"}, default "nan"
+        The derivatives at a change point (see the notes): NaN, with the kept
+        branch's values in the warning, or those values.
 
     Notes
     -----
@@ -231,11 +234,12 @@ def derivatives(sweep, *, rtol: float = DIGITS_RTOL) -> tuple[np.ndarray, np.nda
     (a sample with condition number above ``CHANGE_COND`` nearest a change
     point the sweep recorded, or between neighbours whose Jacobian
     determinants differ in sign)
-    the derivatives are those of the branch the sweep kept: the polynomial
-    through the ``CHANGE_NEIGHBOURS`` regular samples on each side,
-    evaluated at the change point (the branch's smooth continuation), with
-    a :class:`~numkin.SingularityWarning` giving the values; NaN if there
-    are too few samples on either side.
+    no value belongs to both branches. The branch the sweep kept continues
+    smoothly through it: the polynomial through the ``CHANGE_NEIGHBOURS``
+    regular samples on each side, evaluated at the change point, gives its
+    derivatives there. They are named in a :class:`~numkin.SingularityWarning`
+    and returned with ``at_change_point="continue"``; otherwise (and if
+    there are too few samples on either side) the derivatives are NaN.
 
     Examples
     --------
@@ -256,12 +260,12 @@ def derivatives(sweep, *, rtol: float = DIGITS_RTOL) -> tuple[np.ndarray, np.nda
     dq[:, bad] = np.nan
     d2q[:, bad] = np.nan
     d2q[:, ~np.all(np.isfinite(dq), axis=0)] = np.nan
-    continue_branch(mech, t, cond, change, [dq, d2q], "dq/dtheta and d2q/dtheta2")
+    continue_branch(mech, t, cond, change, [dq, d2q], "dq/dtheta and d2q/dtheta2", at_change_point)
     warn_lost_digits(mech, t, cond, change, rtol)
     return dq, d2q
 
 
-def kinematics(sweep, omega, alpha=0.0):
+def kinematics(sweep, omega, alpha=0.0, *, at_change_point="nan"):
     """Angular velocities and accelerations (and linear ones of length unknowns) over a sweep.
 
     Parameters
@@ -278,6 +282,8 @@ def kinematics(sweep, omega, alpha=0.0):
         (``"2 rad/s^2"``), or one value per point. The input is taken to
         have speed `omega` and acceleration `alpha` at every listed
         position (for a constant speed, ``alpha = 0``).
+    at_change_point : {"nan", "continue"}, default "nan"
+        Values at a change point, as in :func:`derivatives`.
 
     Returns
     -------
@@ -310,11 +316,11 @@ def kinematics(sweep, omega, alpha=0.0):
     """
     mech, t, _ = check_sweep(sweep)
     w, a = input_rates(omega, alpha, t.size)
-    first, second = rates(sweep, w, a)
+    first, second = rates(sweep, w, a, at_change_point=at_change_point)
     return kinematics_frame(mech, t, first, second, {"omega": w, "alpha": a, "method": "analytic"})
 
 
-def rates(sweep, omega, alpha=0.0) -> tuple[np.ndarray, np.ndarray]:
+def rates(sweep, omega, alpha=0.0, *, at_change_point="nan") -> tuple[np.ndarray, np.ndarray]:
     """Time derivatives of all unknowns as arrays, without a DataFrame.
 
     The numbers of :func:`kinematics` (which builds its table from them):
@@ -325,6 +331,8 @@ def rates(sweep, omega, alpha=0.0) -> tuple[np.ndarray, np.ndarray]:
     sweep : Sweep
     omega, alpha : float, str or array_like
         Input speed (rad/s) and acceleration (rad/s^2), as in :func:`kinematics`.
+    at_change_point : {"nan", "continue"}, default "nan"
+        As in :func:`derivatives`.
 
     Returns
     -------
@@ -343,7 +351,7 @@ def rates(sweep, omega, alpha=0.0) -> tuple[np.ndarray, np.ndarray]:
     """
     _, t, _ = check_sweep(sweep)
     w, a = input_rates(omega, alpha, t.size)
-    dq, d2q = derivatives(sweep)
+    dq, d2q = derivatives(sweep, at_change_point=at_change_point)
     return w * dq, w**2 * d2q + a * dq
 
 

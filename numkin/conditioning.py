@@ -27,6 +27,7 @@ __all__ = [
     "DIGITS_RTOL",
     "CHANGE_COND",
     "CHANGE_NEIGHBOURS",
+    "AT_CHANGE_POINT",
     "LostDigitsWarning",
     "condition_numbers",
     "lost_digits",
@@ -89,9 +90,17 @@ def _lagrange_at(x: np.ndarray, x0: float) -> np.ndarray:
     return w
 
 
-def continue_branch(mech, t, cond, change, arrays, what: str) -> None:
-    """At each change-point sample, replace the columns of `arrays` by the polynomial through the
-    neighbouring samples of the kept branch (its smooth continuation), or NaN if too few; warns."""
+#: What the derivatives at a change point are: ``"nan"`` (with the kept branch's
+#: values in the warning) or ``"continue"`` (those values).
+AT_CHANGE_POINT = ("nan", "continue")
+
+
+def continue_branch(mech, t, cond, change, arrays, what: str, at_change_point: str = "nan") -> None:
+    """At each change-point sample, set the columns of `arrays` to NaN (``at_change_point="nan"``)
+    or to the kept branch's smooth continuation (``"continue"``): the polynomial through the
+    neighbouring regular samples, evaluated there. Warns, giving the continued values."""
+    if at_change_point not in AT_CHANGE_POINT:
+        raise ValueError(f"at_change_point must be one of {AT_CHANGE_POINT}, got {at_change_point!r}")
     if not change:
         return
     good = np.isfinite(cond) & (cond <= CHANGE_COND) & np.all(np.isfinite(arrays[0]), axis=0)
@@ -100,8 +109,8 @@ def continue_branch(mech, t, cond, change, arrays, what: str) -> None:
     for k in change:
         left = [j for j in range(k - 1, -1, -1) if good[j]][:CHANGE_NEIGHBOURS]
         right = [j for j in range(k + 1, t.size) if good[j]][:CHANGE_NEIGHBOURS]
-        where = f"{mech.name}: the Jacobian is singular at the change point at input {_deg(t[k])} " \
-                f"(condition number {cond[k]:.3g}), where the branches meet"
+        where = (f"{mech.name}: the Jacobian is singular at the change point at input {_deg(t[k])} "
+                 f"(condition number {cond[k]:.3g}), where the branches meet")
         if len(left) < 2 or len(right) < 2:
             for a in arrays:
                 a[:, k] = np.nan
@@ -110,11 +119,19 @@ def continue_branch(mech, t, cond, change, arrays, what: str) -> None:
             continue
         idx = np.array(left[::-1] + right)
         w = _lagrange_at(t[idx] - t[k], 0.0)
-        for a in arrays:
-            a[:, k] = a[:, idx] @ w
-        values = ", ".join(f"{n} = {v:.4g}" for n, v in zip(names, arrays[0][:, k]))
-        warnings.warn(f"{where}; {what} there continue the kept branch smoothly through it (polynomial "
-                      f"through {idx.size} neighbouring samples): {values}", SingularityWarning, stacklevel=3)
+        continued = [a[:, idx] @ w for a in arrays]
+        values = ", ".join(f"{n} = {v:.4g}" for n, v in zip(names, continued[0]))
+        how = f"the kept branch continues smoothly through it (polynomial through {idx.size} neighbouring samples)"
+        if at_change_point == "continue":
+            for a, c in zip(arrays, continued):
+                a[:, k] = c
+            message = f"{where}; {what} there are those of {how}: {values}"
+        else:
+            for a in arrays:
+                a[:, k] = np.nan
+            message = (f"{where}; {what} set to NaN there (no value belongs to both branches); {how} with "
+                       f"{values}: pass at_change_point='continue' for these values")
+        warnings.warn(message, SingularityWarning, stacklevel=3)
 
 
 def lost_digits(cond, order: int = 1) -> np.ndarray:

@@ -375,12 +375,27 @@ def test_change_point_gives_the_kept_branch():
     assert any(e.kind == "change point" for e in sweep.events)
     k = int(np.argmin(np.abs(sweep.inputs - np.pi)))
     with pytest.warns(SingularityWarning, match=r"dtheta4/dtheta2 = -0\.4286"):
-        dq, d2q = analytic.derivatives(sweep)
+        dq, d2q = analytic.derivatives(sweep, at_change_point="continue")
     assert dq[1, k] == pytest.approx(-3 / 7, abs=1e-6)
     assert dq[0, k] == pytest.approx(4 / 7, abs=1e-6)
     assert d2q[:, k] == pytest.approx([0.0, 0.0], abs=1e-6)  # symmetric about 180 deg on this branch
     with pytest.warns(SingularityWarning):
-        assert analytic.tangent(sweep)[1, k] == pytest.approx(-3 / 7, abs=1e-6)
+        assert analytic.tangent(sweep, at_change_point="continue")[1, k] == pytest.approx(-3 / 7, abs=1e-6)
+    with pytest.warns(SingularityWarning):
+        kin = analytic.kinematics(sweep, 2.0, at_change_point="continue")
+    assert kin["omega_theta4"][k] == pytest.approx(-6 / 7, abs=1e-5)
+
+
+def test_change_point_is_nan_by_default_with_the_kept_branch_named():
+    """Never the number of no branch (0.2857 before): NaN, and the warning gives -3/7."""
+    sweep = _crossed_antiparallelogram(np.arange(1, 360))
+    k = int(np.argmin(np.abs(sweep.inputs - np.pi)))
+    with pytest.warns(SingularityWarning, match=r"set to NaN.*dtheta4/dtheta2 = -0\.4286.*at_change_point='continue'"):
+        dq, d2q = analytic.derivatives(sweep)
+    assert np.all(np.isnan(dq[:, k])) and np.all(np.isnan(d2q[:, k]))
+    assert np.all(np.isfinite(np.delete(dq, k, axis=1)))
+    with pytest.raises(ValueError, match="at_change_point"):
+        analytic.derivatives(sweep, at_change_point="guess")
 
 
 def test_change_point_without_neighbours_is_nan_with_the_reason():
@@ -395,8 +410,8 @@ def test_change_point_found_from_the_jacobian_sign():
     """Found from the sign change of det J between the neighbours, whether or not recorded."""
     sweep = dataclasses.replace(_crossed_antiparallelogram(np.arange(1, 360)), events=[])
     k = int(np.argmin(np.abs(sweep.inputs - np.pi)))
-    with pytest.warns(SingularityWarning, match="continue the kept branch"):
-        dq, _ = analytic.derivatives(sweep)
+    with pytest.warns(SingularityWarning, match="kept branch continues smoothly"):
+        dq, _ = analytic.derivatives(sweep, at_change_point="continue")
     assert dq[1, k] == pytest.approx(-3 / 7, abs=1e-6)
 
 
