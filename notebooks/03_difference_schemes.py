@@ -234,6 +234,30 @@ for name, fun in [("forward", fd.forward), ("centred", fd.centred)]:
 assert abs(halving["forward"] - 2) < 0.3 and abs(halving["centred"] - 4) < 0.6
 
 # %% [markdown]
+# ## 4. Where the weights come from
+#
+# Each scheme is declared by its offsets. Requiring the Taylor expansion of
+# $\sum_k w_k\,y_{i+k}$ to give exactly $h\,y'_i$ (or $h^2 y''_i$) is a small linear system for
+# the weights, solved here in exact fractions; the first Taylor term left over gives the order
+# and the error constant. A new scheme is one call, and every function that takes a scheme by
+# name accepts it:
+
+# %%
+from numkin import schemes
+
+for name in ("forward", "centred", "second_difference", "five_point"):
+    s = schemes.SCHEMES[name]
+    print(f"{name:18s} offsets {s.offsets}, weights {[str(w) for w in s.weights]}, order {s.order}")
+seven = schemes.register("seven_point", range(-3, 4), 1)
+print("seven_point        weights", [str(w) for w in seven.weights], "order", seven.order,
+      "error constant", seven.rule.interior.error_constant)
+w7 = OMEGA * fd.differentiate(beta, h, "seven_point")
+e7 = np.abs(w7 - kin["omega_beta"].to_numpy()).max()
+print(f"seven_point: max error {e7:.2e} rad/s over the turn (centred: {pred.iloc[1, 2]:.2e} rad/s)")
+assert seven.order == 6 and e7 < pred.iloc[1, 2] / 100
+schemes.unregister("seven_point")
+
+# %% [markdown]
 # ## Questions
 #
 # 1. The forward-of-forward estimate is centred on $\theta_{i+1}$, not $\theta_i$. Shift it by

@@ -56,8 +56,18 @@ import weakref
 import numpy as np
 import sympy as sp
 
-from . import units
 from .compiled import vector_function
+from .conditioning import (
+    DIGITS_RTOL,
+    LostDigitsWarning,
+    change_points,
+    condition_numbers,
+    continue_branch,
+    lost_digits,
+    warn_lost_digits,
+)
+from .quantities import input_quantity, point_quantities, unknown_quantities
+from .units import input_rates
 from .newton import iterate
 from .sweep import COND_MAX, SingularityWarning
 
@@ -65,16 +75,23 @@ __all__ = [
     "derivatives",
     "tangent",
     "kinematics",
+    "rates",
     "point_derivatives",
     "point_kinematics",
     "complex_step",
     "input_rates",
     "column_units",
+    "check_sweep",
+    "kinematics_frame",
+    "LostDigitsWarning",
+    "lost_digits",
+    "DIGITS_RTOL",
 ]
 
 
 # --------------------------------------------------------------------------- helpers
-def _check_sweep(sweep):
+def check_sweep(sweep):
+    """``(mechanism, inputs, values)`` of a sweep, or a TypeError for anything else."""
     for attr in ("mechanism", "inputs", "values"):
         if not hasattr(sweep, attr):
             raise TypeError(f"sweep must be a numkin Sweep (from Mechanism.sweep), got {type(sweep).__name__}")
@@ -83,67 +100,6 @@ def _check_sweep(sweep):
 
 def _deg(t) -> str:
     return f"{math.degrees(float(t)):.3f}°"
-
-
-def _rate(value, name: str, parse, count: int) -> np.ndarray:
-    """A scalar or per-point input rate as an (N,) array in SI angular units."""
-    if isinstance(value, str) or isinstance(value, numbers.Real) and not isinstance(value, bool):
-        try:
-            v = parse(value)
-        except (ValueError, TypeError) as exc:
-            raise type(exc)(f"{name}: {exc}") from None
-        return np.full(count, v)
-    if isinstance(value, bool) or value is None:
-        raise TypeError(f"{name} must be a number, a string with units or an array of numbers, got {value!r}")
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name} must be a number, a string with units or an array of numbers, got {value!r}") from None
-    if arr.ndim == 0:
-        return _rate(float(arr), name, parse, count)
-    if arr.shape != (count,):
-        raise ValueError(f"{name} as an array must have one value per input of the sweep, shape ({count},), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name}[{int(np.flatnonzero(~np.isfinite(arr))[0])}] is not finite")
-    return arr
-
-
-def input_rates(omega, alpha, count: int) -> tuple[np.ndarray, np.ndarray]:
-    """The input's angular speed (rad/s) and acceleration (rad/s^2) at each of `count` points.
-
-    Parameters
-    ----------
-    omega : float, str or array_like
-        Angular speed of the input: a number in rad/s, a string with units
-        (``"450 rad/min"``, ``"6000 rpm"``, ``"-10 rad/s"``), or one value
-        (rad/s) per point of the sweep.
-    alpha : float, str or array_like
-        Angular acceleration of the input: a number in rad/s^2, a string
-        (``"2 rad/s^2"``, ``"60 rpm/s"``) or one value per point.
-    count : int
-        Number of points of the sweep.
-
-    Returns
-    -------
-    omega, alpha : ndarray, shape (count,)
-
-    Raises
-    ------
-    numkin.units.UnitError
-        For an unreadable string or a unit of the wrong dimension (an
-        acceleration given as `omega`, a length, ...); the message names the
-        parameter.
-
-    Examples
-    --------
-    >>> w, a = input_rates("450 rad/min", 0, 3)
-    >>> w, a
-    (array([7.5, 7.5, 7.5]), array([0., 0., 0.]))
-    """
-    return (
-        _rate(omega, "omega", units.angular_speed, count),
-        _rate(alpha, "alpha", units.angular_acceleration, count),
-    )
 
 
 def column_units(mechanism) -> dict:
@@ -155,14 +111,15 @@ def column_units(mechanism) -> dict:
     >>> column_units(linkages.slider_crank(80, 200))
     {'theta': 'rad', 'omega_theta3': 'rad/s', 'alpha_theta3': 'rad/s^2', 'v_x': 'mm/s', 'a_x': 'mm/s^2'}
     """
-    out = {str(mechanism.input_symbol): "rad"}
-    lu = mechanism.length_unit
-    for name in mechanism.unknowns:
-        if name in mechanism.angles:
-            out[f"omega_{name}"], out[f"alpha_{name}"] = "rad/s", "rad/s^2"
-        else:
-            out[f"v_{name}"], out[f"a_{name}"] = f"{lu}/s", f"{lu}/s^2"
-    return out
+    return {name: q.unit for name, q in _unknown_columns(mechanism).items()}
+
+
+def _unknown_columns(mech, source: str = "analytic", second_source: str | None = None) -> dict:
+    """Column name -> :class:`~numkin.quantities.Quantity` of a kinematics table, in column order."""
+    cols = {str(mech.input_symbol): input_quantity(mech)}
+    for pair in unknown_quantities(mech, source, second_source):
+        cols.update((q.name, q) for q in pair)
+    return cols
 
 
 def _columnwise(solve, q, t, *extra) -> np.ndarray:
@@ -180,10 +137,11 @@ def _columnwise(solve, q, t, *extra) -> np.ndarray:
         return out
 
 
-def _singular_mask(sweep, mech, inputs, what: str) -> np.ndarray:
-    """Points whose Jacobian is singular (condition number above COND_MAX); warns once."""
-    cond = np.asarray(getattr(sweep, "cond", np.ones(inputs.size)), dtype=float)
+def _singular_mask(sweep, mech, inputs, what: str, skip=()) -> np.ndarray:
+    """Points whose Jacobian is singular (condition number above COND_MAX), but for `skip`; warns once."""
+    cond = condition_numbers(sweep, inputs)
     bad = ~(cond <= COND_MAX)
+    bad[list(skip)] = False
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
         warnings.warn(
@@ -207,7 +165,7 @@ def _second(mech, q, dq, t, p):
 
 
 # --------------------------------------------------------------------------- unknowns
-def tangent(sweep) -> np.ndarray:
+def tangent(sweep, *, at_change_point: str = "nan") -> np.ndarray:
     """First derivatives dq/dtheta of all unknowns, from the velocity equations only.
 
     Parameters
@@ -229,14 +187,17 @@ def tangent(sweep) -> np.ndarray:
     >>> print(np.round(analytic.tangent(sweep)[1], 6))   # dx/dtheta = -r at 90 deg
     [-80.]
     """
-    mech, t, q = _check_sweep(sweep)
-    bad = _singular_mask(sweep, mech, t, "dq/dtheta is")
+    mech, t, q = check_sweep(sweep)
+    cond = condition_numbers(sweep, t)
+    change = change_points(sweep, mech, q, t, cond)
+    bad = _singular_mask(sweep, mech, t, "dq/dtheta is", change)
     dq = _tangent(mech, q, t, mech.parameter_values)
     dq[:, bad] = np.nan
+    continue_branch(mech, t, cond, change, [dq], "dq/dtheta", at_change_point)
     return dq
 
 
-def derivatives(sweep) -> tuple[np.ndarray, np.ndarray]:
+def derivatives(sweep, *, rtol: float = DIGITS_RTOL, at_change_point: str = "nan") -> tuple[np.ndarray, np.ndarray]:
     """dq/dtheta and d2q/dtheta2 of all unknowns from the differentiated loop equations.
 
     Solves ``J q' = -dF/dtheta`` and then ``J q'' = -(G_q q' + G_theta)``
@@ -255,8 +216,30 @@ def derivatives(sweep) -> tuple[np.ndarray, np.ndarray]:
     dq, d2q : ndarray, shape (n, N)
         Rows in ``sweep.unknowns`` order, derivatives per rad of input
         (angles rad/rad and rad/rad^2; lengths in length unit per rad and
-        per rad^2). NaN at points where the Jacobian is singular (toggle or
-        change points), with a :class:`~numkin.SingularityWarning`.
+        per rad^2). NaN at points where the Jacobian is singular (toggle
+        points), with a :class:`~numkin.SingularityWarning`.
+
+    Other Parameters
+    ----------------
+    rtol : float, default DIGITS_RTOL
+        Relative error above which the estimate of :func:`lost_digits`
+        warns (:class:`LostDigitsWarning`).
+    at_change_point : {"nan", "continue"}, default "nan"
+        The derivatives at a change point (see the notes): NaN, with the kept
+        branch's values in the warning, or those values.
+
+    Notes
+    -----
+    At a change point passed by a sweep run with ``on_singular="report"``
+    (a sample with condition number above ``CHANGE_COND`` nearest a change
+    point the sweep recorded, or between neighbours whose Jacobian
+    determinants differ in sign)
+    no value belongs to both branches. The branch the sweep kept continues
+    smoothly through it: the polynomial through the ``CHANGE_NEIGHBOURS``
+    regular samples on each side, evaluated at the change point, gives its
+    derivatives there. They are named in a :class:`~numkin.SingularityWarning`
+    and returned with ``at_change_point="continue"``; otherwise (and if
+    there are too few samples on either side) the derivatives are NaN.
 
     Examples
     --------
@@ -267,18 +250,22 @@ def derivatives(sweep) -> tuple[np.ndarray, np.ndarray]:
     >>> float(d2q[1, 0])               # x'' = -r (1 + r/l) at theta = 0
     -112.0
     """
-    mech, t, q = _check_sweep(sweep)
+    mech, t, q = check_sweep(sweep)
     p = mech.parameter_values
-    bad = _singular_mask(sweep, mech, t, "dq/dtheta and d2q/dtheta2 are")
+    cond = condition_numbers(sweep, t)
+    change = change_points(sweep, mech, q, t, cond)
+    bad = _singular_mask(sweep, mech, t, "dq/dtheta and d2q/dtheta2 are", change)
     dq = _tangent(mech, q, t, p)
     d2q = _second(mech, q, np.nan_to_num(dq), t, p)
     dq[:, bad] = np.nan
     d2q[:, bad] = np.nan
     d2q[:, ~np.all(np.isfinite(dq), axis=0)] = np.nan
+    continue_branch(mech, t, cond, change, [dq, d2q], "dq/dtheta and d2q/dtheta2", at_change_point)
+    warn_lost_digits(mech, t, cond, change, rtol)
     return dq, d2q
 
 
-def kinematics(sweep, omega, alpha=0.0):
+def kinematics(sweep, omega, alpha=0.0, *, at_change_point="nan"):
     """Angular velocities and accelerations (and linear ones of length unknowns) over a sweep.
 
     Parameters
@@ -295,6 +282,8 @@ def kinematics(sweep, omega, alpha=0.0):
         (``"2 rad/s^2"``), or one value per point. The input is taken to
         have speed `omega` and acceleration `alpha` at every listed
         position (for a constant speed, ``alpha = 0``).
+    at_change_point : {"nan", "continue"}, default "nan"
+        Values at a change point, as in :func:`derivatives`.
 
     Returns
     -------
@@ -325,12 +314,45 @@ def kinematics(sweep, omega, alpha=0.0):
     >>> print(f"{row['omega_beta']:.4f} rad/s, {row['alpha_beta']:.4f} rad/s^2")
     10.6329 rad/s, -28.3750 rad/s^2
     """
-    import pandas as pd
-
-    mech, t, _ = _check_sweep(sweep)
+    mech, t, _ = check_sweep(sweep)
     w, a = input_rates(omega, alpha, t.size)
-    dq, d2q = derivatives(sweep)
-    return _frame(pd, mech, t, w * dq, w**2 * d2q + a * dq, {"omega": w, "alpha": a, "method": "analytic"})
+    first, second = rates(sweep, w, a, at_change_point=at_change_point)
+    return kinematics_frame(mech, t, first, second, {"omega": w, "alpha": a, "method": "analytic"})
+
+
+def rates(sweep, omega, alpha=0.0, *, at_change_point="nan") -> tuple[np.ndarray, np.ndarray]:
+    """Time derivatives of all unknowns as arrays, without a DataFrame.
+
+    The numbers of :func:`kinematics` (which builds its table from them):
+    ``omega_in q'`` and ``omega_in**2 q'' + alpha_in q'``.
+
+    Parameters
+    ----------
+    sweep : Sweep
+    omega, alpha : float, str or array_like
+        Input speed (rad/s) and acceleration (rad/s^2), as in :func:`kinematics`.
+    at_change_point : {"nan", "continue"}, default "nan"
+        As in :func:`derivatives`.
+
+    Returns
+    -------
+    first, second : ndarray, shape (n, N)
+        Rows in ``sweep.unknowns`` order: rad/s and rad/s^2 for angles,
+        length unit/s and /s^2 for lengths.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import analytic, linkages
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([0.0, 90.0]))
+    >>> v, acc = analytic.rates(sweep, "6000 rpm")
+    >>> print(np.round(acc[1] / 1000, 1))   # a_x in m/s^2
+    [-44215.8  13783.8]
+    """
+    _, t, _ = check_sweep(sweep)
+    w, a = input_rates(omega, alpha, t.size)
+    dq, d2q = derivatives(sweep, at_change_point=at_change_point)
+    return w * dq, w**2 * d2q + a * dq
 
 
 def _scalar_attr(values: np.ndarray):
@@ -339,18 +361,27 @@ def _scalar_attr(values: np.ndarray):
     return float(values[0]) if values.size and np.all(values == values[0]) else tuple(values.tolist())
 
 
-def _frame(pd, mech, t, first, second, attrs):
-    """The kinematics DataFrame from time derivatives (n, N) of the unknowns."""
+def kinematics_frame(mech, t, first, second, attrs, source="analytic", second_source=None):
+    """The kinematics DataFrame from time derivatives (n, N) of the unknowns.
+
+    ``frame.attrs["quantities"]`` maps each column to its
+    :class:`~numkin.quantities.Quantity` (source included) and
+    ``frame.attrs["units"]`` each column to its unit.
+    """
+    import pandas as pd
+
     attrs = {k: _scalar_attr(v) if k in ("omega", "alpha") else v for k, v in attrs.items()}
-    cols = {str(mech.input_symbol): t}
-    for k, name in enumerate(mech.unknowns):
-        v, acc = ("omega", "alpha") if name in mech.angles else ("v", "a")
-        cols[f"{v}_{name}"] = first[k]
-        cols[f"{acc}_{name}"] = second[k]
-    frame = pd.DataFrame(cols)
-    frame.attrs["units"] = column_units(mech)
+    quantities = _unknown_columns(mech, source, second_source)
+    values = [t] + [row for k in range(len(mech.unknowns)) for row in (first[k], second[k])]
+    frame = pd.DataFrame(dict(zip(quantities, values)))
+    _label(frame, quantities)
     frame.attrs.update(attrs)
     return frame
+
+
+def _label(frame, quantities: dict) -> None:
+    frame.attrs["quantities"] = quantities
+    frame.attrs["units"] = {name: q.unit for name, q in quantities.items()}
 
 
 # --------------------------------------------------------------------------- points
@@ -425,7 +456,7 @@ def point_derivatives(sweep, points=None) -> dict:
     >>> print(np.round(dP[:, 0], 9), np.round(d2P[:, 0], 9))
     [-80.   0.] [ -0. -80.]
     """
-    mech, t, q = _check_sweep(sweep)
+    mech, t, q = check_sweep(sweep)
     names = _point_names(mech, points)
     f0, f1, f2 = _point_functions(mech, names)
     dq, d2q = derivatives(sweep)
@@ -465,24 +496,18 @@ def point_kinematics(sweep, omega, alpha=0.0, points=None):
     """
     import pandas as pd
 
-    mech, t, _ = _check_sweep(sweep)
+    mech, t, _ = check_sweep(sweep)
     w, a = input_rates(omega, alpha, t.size)
     data = point_derivatives(sweep, points)
-    lu = mech.length_unit
+    quantities = {str(mech.input_symbol): input_quantity(mech)}
     cols = {str(mech.input_symbol): t}
-    unit = {str(mech.input_symbol): "rad"}
     for name, (P, dP, d2P) in data.items():
-        for k, axis in enumerate("xy"):
-            cols[f"{axis}_{name}"] = P[k]
-            unit[f"{axis}_{name}"] = lu
-        for k, axis in enumerate("xy"):
-            cols[f"v{axis}_{name}"] = w * dP[k]
-            unit[f"v{axis}_{name}"] = f"{lu}/s"
-        for k, axis in enumerate("xy"):
-            cols[f"a{axis}_{name}"] = w**2 * d2P[k] + a * dP[k]
-            unit[f"a{axis}_{name}"] = f"{lu}/s^2"
+        values = (P, w * dP, w**2 * d2P + a * dP)
+        for pair, v in zip(point_quantities(mech, name), values):
+            for k, q in enumerate(pair):
+                quantities[q.name], cols[q.name] = q, v[k]
     frame = pd.DataFrame(cols)
-    frame.attrs["units"] = unit
+    _label(frame, quantities)
     frame.attrs.update({"omega": _scalar_attr(w), "alpha": _scalar_attr(a), "method": "analytic"})
     return frame
 
@@ -537,7 +562,7 @@ def complex_step(sweep, h: float = 1e-30, *, order: int = 1) -> np.ndarray:
         raise ValueError(f"h must be a finite positive number, got {h!r}")
     if order not in (1, 2):
         raise ValueError(f"order must be 1 (dq/dtheta) or 2 (d2q/dtheta2), got {order!r}")
-    mech, t, q = _check_sweep(sweep)
+    mech, t, q = check_sweep(sweep)
     comp, p = mech.compiled, mech.parameter_values
     tc = t + 1j * float(h)
 

@@ -46,8 +46,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import derivatives as _d
-from .analytic import _check_sweep, derivatives, input_rates, point_derivatives
+from .analytic import check_sweep, derivatives, input_rates, point_derivatives
 from .kinematics import PARTNER, prepare_rows, scheme_for, sweep_grid
+from .quantities import Quantity, catalogue, input_quantity
 
 __all__ = ["Comparison", "compare", "quantities", "DEFAULT_SCHEMES"]
 
@@ -85,6 +86,9 @@ class Comparison:
         Grid step, rad.
     periodic : bool
         Whether the sweep was differenced as one periodic turn.
+    target : Quantity or None
+        The compared :class:`~numkin.quantities.Quantity`; ``table.attrs["quantities"]``
+        maps each value column (analytic and each scheme) to its Quantity.
     """
 
     quantity: str
@@ -94,6 +98,7 @@ class Comparison:
     scale: float
     h: float
     periodic: bool
+    target: Quantity | None = None
 
     def __repr__(self) -> str:
         return (
@@ -105,21 +110,8 @@ class Comparison:
 
 # --------------------------------------------------------------------------- quantities
 def _catalog(mechanism) -> dict:
-    """name -> (derivative order, unit, kind ("unknown" or "point"), unknown or point name, axis)."""
-    lu = mechanism.length_unit
-    out = {}
-    for name in mechanism.unknowns:
-        if name in mechanism.angles:
-            out[f"omega_{name}"] = (1, "rad/s", "unknown", name, None)
-            out[f"alpha_{name}"] = (2, "rad/s^2", "unknown", name, None)
-        else:
-            out[f"v_{name}"] = (1, f"{lu}/s", "unknown", name, None)
-            out[f"a_{name}"] = (2, f"{lu}/s^2", "unknown", name, None)
-    for p in mechanism.points:
-        for k, axis in enumerate("xy"):
-            out.setdefault(f"v{axis}_{p}", (1, f"{lu}/s", "point", p, k))
-            out.setdefault(f"a{axis}_{p}", (2, f"{lu}/s^2", "point", p, k))
-    return out
+    """Velocities and accelerations (name -> :class:`~numkin.quantities.Quantity`) that compare accepts."""
+    return catalogue(mechanism, orders=(1, 2))
 
 
 def quantities(mechanism) -> dict:
@@ -132,20 +124,22 @@ def quantities(mechanism) -> dict:
     >>> q["alpha_theta3"], q["v_x"], q["ax_P"]
     ((2, 'rad/s^2'), (1, 'mm/s'), (2, 'mm/s^2'))
     """
-    return {k: v[:2] for k, v in _catalog(mechanism).items()}
+    return {k: (q.order, q.unit) for k, q in _catalog(mechanism).items()}
 
 
-def _resolve(mech, quantity: str):
-    """(order, unit, kind, name, axis) of a quantity name, or a ValueError listing the valid ones."""
+def _resolve(mech, quantity) -> Quantity:
+    """The :class:`~numkin.quantities.Quantity` of a velocity or acceleration, or a ValueError listing the valid ones."""
+    catalog = _catalog(mech)
+    if isinstance(quantity, Quantity) and quantity.order in (1, 2):
+        return quantity
     if not isinstance(quantity, str):
         raise TypeError(f"quantity must be a string such as 'omega_{mech.unknowns[0]}', got {quantity!r}")
-    catalog = _catalog(mech)
     if quantity in catalog:
         return catalog[quantity]
     hint = ""
     if quantity in mech.unknowns:
-        pre = ("omega", "alpha") if quantity in mech.angles else ("v", "a")
-        hint = f" (for the unknown {quantity!r} use '{pre[0]}_{quantity}' or '{pre[1]}_{quantity}')"
+        velocity, acceleration = (catalog[n] for n in catalogue(mech, (1, 2), points=False) if catalog[n].of == quantity)
+        hint = f" (for the unknown {quantity!r} use {velocity.name!r} or {acceleration.name!r})"
     raise ValueError(f"unknown quantity {quantity!r} for {mech.name}{hint}; valid: {sorted(catalog)}")
 
 
@@ -204,18 +198,20 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
     """
     import pandas as pd
 
-    mech, t, q = _check_sweep(sweep)
-    order, unit, kind, name, axis = _resolve(mech, quantity)
+    mech, t, q = check_sweep(sweep)
+    target = _resolve(mech, quantity)
+    quantity, order, unit, name = target.name, target.order, target.unit, target.of
     grid = sweep_grid(sweep, periodic)
     w, a = input_rates(omega, alpha, t.size)
 
     # the signal and its exact theta-derivatives
-    if kind == "unknown":
+    if not target.is_point:
         k = mech.unknowns.index(name)
         dq, d2q = derivatives(sweep)
         y, d1, d2 = q[k], dq[k], d2q[k]
-        is_angle = name in mech.angles
+        is_angle = target.dimension == "angle"
     else:
+        axis = "xy".index(target.axis)
         P, dP, d2P = point_derivatives(sweep, name)[name]
         y, d1, d2 = P[axis], dP[axis], d2P[axis]
         is_angle = False
@@ -231,8 +227,10 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
     if not chosen:
         raise ValueError("schemes must name at least one finite-difference scheme")
 
-    in_col = f"{mech.input_symbol} [deg]"
-    table = {in_col: np.degrees(t), f"analytic [{unit}]": exact}
+    in_col = f"{input_quantity(mech).name} [deg]"
+    analytic_q = target.with_source("analytic")
+    table = {in_col: np.degrees(t), analytic_q.source_label(): exact}
+    columns = {analytic_q.source_label(): analytic_q}
     scale = float(np.nanmax(np.abs(exact))) if np.any(np.isfinite(exact)) else float("nan")
     summary = []
     keep = slice(None, -1) if rows.periodic else slice(None)  # the last row repeats the first
@@ -245,16 +243,18 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
         rel = err / scale if scale > 0 else np.full_like(err, np.nan)
         with np.errstate(divide="ignore", invalid="ignore"):
             pointwise = np.where(exact != 0, err / np.abs(exact), np.nan)
-        table[f"{s.name} [{unit}]"] = value
-        table[f"{s.name} abs error [{unit}]"] = err
+        sq = target.with_source(s.name)
+        columns[sq.source_label()] = sq
+        table[sq.source_label()] = value
+        table[sq.source_label("abs error")] = err
         table[f"{s.name} rel error"] = rel
         table[f"{s.name} pointwise rel error"] = pointwise
         worst = int(np.nanargmax(err)) if np.any(np.isfinite(err)) else 0
         summary.append({
             "scheme": s.name,
             "order": "spectral" if s.order == 0 else str(s.order),
-            f"max abs error [{unit}]": float(np.nanmax(err)),
-            f"rms abs error [{unit}]": float(np.sqrt(np.nanmean(err[keep] ** 2))),
+            target.with_source("max").source_label("abs error"): float(np.nanmax(err)),
+            target.with_source("rms").source_label("abs error"): float(np.sqrt(np.nanmean(err[keep] ** 2))),
             "max rel error": float(np.nanmax(rel)),
             "rms rel error": float(np.sqrt(np.nanmean(rel[keep] ** 2))),
             f"max at {in_col}": float(np.degrees(t[worst])),
@@ -262,5 +262,7 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
     table_df = pd.DataFrame(table)
     summary_df = pd.DataFrame(summary).set_index("scheme")
     for df in (table_df, summary_df):
-        df.attrs.update({"quantity": quantity, "unit": unit, "h": rows.h, "periodic": rows.periodic})
-    return Comparison(quantity, unit, table_df, summary_df, scale, rows.h, rows.periodic)
+        df.attrs.update({"quantity": quantity, "unit": unit, "h": rows.h, "periodic": rows.periodic,
+                         "target": target})
+    table_df.attrs["quantities"] = columns
+    return Comparison(quantity, unit, table_df, summary_df, scale, rows.h, rows.periodic, target)

@@ -51,19 +51,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import derivatives as _d
-from .analytic import _check_sweep, _frame, input_rates
+from .analytic import check_sweep, input_rates, kinematics_frame
+from .conditioning import DIGITS_RTOL, rounding_error, warn_rounding
+from . import schemes as _schemes
 
-__all__ = ["finite_difference", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "PARTNER"]
+__all__ = ["finite_difference", "rounding_error", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "PARTNER"]
 
 #: First-derivative scheme used with each second-derivative scheme (for the
-#: ``alpha_in * q'`` term of an accelerating input, and by :mod:`numkin.compare`).
-PARTNER = {
-    "second_difference": "centred",
-    "forward_of_forward": "forward",
-    "centred_of_centred": "centred",
-    "five_point_second": "five_point",
-    "spectral_second": "spectral",
-}
+#: ``alpha_in * q'`` term of an accelerating input, and by :mod:`numkin.compare`):
+#: a read-only view of :data:`numkin.schemes.PARTNER`.
+PARTNER = _schemes.PARTNER
 
 _TURN = 2.0 * math.pi
 
@@ -119,7 +116,7 @@ def sweep_grid(sweep, periodic="auto") -> SweepGrid:
     >>> round(float(np.degrees(g.h)), 6), g.periodic
     (10.0, True)
     """
-    _, t, _ = _check_sweep(sweep)
+    _, t, _ = check_sweep(sweep)
     if periodic not in ("auto", True, False):
         raise ValueError(f"periodic must be 'auto', True or False, got {periodic!r}")
     if t.size < 2:
@@ -272,7 +269,7 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
 def _unknown_rows(sweep, periodic):
     """(mechanism, inputs, prepared rows of the unknowns)."""
     grid = sweep_grid(sweep, periodic)
-    mech, t, q = _check_sweep(sweep)
+    mech, t, q = check_sweep(sweep)
     angle = np.array([u in mech.angles for u in mech.unknowns], dtype=bool)
     return mech, t, prepare_rows(q, angle, mech.unknowns, t, grid, mech.length_scale, periodic)
 
@@ -332,7 +329,8 @@ def sweep_derivative(sweep, method="centred", periodic="auto") -> np.ndarray:
     return rows.apply(scheme)
 
 
-def finite_difference(sweep, omega, alpha=0.0, method="centred", second_method="second_difference", periodic="auto"):
+def finite_difference(sweep, omega, alpha=0.0, method="centred", second_method="second_difference", periodic="auto",
+                      *, rtol=DIGITS_RTOL):
     """Angular velocities and accelerations from finite differences of a sweep.
 
     Parameters
@@ -353,6 +351,10 @@ def finite_difference(sweep, omega, alpha=0.0, method="centred", second_method="
         ``five_point_second``, ``spectral_second``).
     periodic : {"auto", True, False}, default "auto"
         "auto" treats a sweep over exactly one turn as periodic.
+    rtol : float, default :data:`numkin.conditioning.DIGITS_RTOL`
+        Relative error (to the largest value of each column) above which the
+        estimated rounding error of a difference quotient warns, see
+        :func:`rounding_error`.
 
     Returns
     -------
@@ -372,6 +374,11 @@ def finite_difference(sweep, omega, alpha=0.0, method="centred", second_method="
     numkin.units.UnitError
         If `omega` or `alpha` has the wrong dimension.
 
+    Warns
+    -----
+    numkin.conditioning.LostDigitsWarning
+        If the estimated rounding error of a scheme exceeds `rtol` somewhere.
+
     Notes
     -----
     ``alpha_q = omega_in**2 D2(q) + alpha_in D1(q)`` with D1 = `method` and
@@ -390,15 +397,16 @@ def finite_difference(sweep, omega, alpha=0.0, method="centred", second_method="
     >>> print(f"{fw['omega_beta'][100]:.5f} {fw['alpha_beta'][100]:.4f}")
     10.59998 -28.1266
     """
-    import pandas as pd
-
     s1 = scheme_for(method, 1, "method")
     s2 = scheme_for(second_method, 2, "second_method")
     mech, t, rows = _unknown_rows(sweep, periodic)
     w, a = input_rates(omega, alpha, t.size)
     d1, d2 = rows.apply(s1), rows.apply(s2)
+    for scheme, d in ((s1, d1), (s2, d2)):
+        warn_rounding(sweep, mech, t, rows, scheme, d, rtol)
     attrs = {
         "omega": w, "alpha": a, "method": s1.name, "second_method": s2.name,
         "h": rows.h, "periodic": rows.periodic,
     }
-    return _frame(pd, mech, t, w * d1, w**2 * d2 + a * d1, attrs)
+    return kinematics_frame(mech, t, w * d1, w**2 * d2 + a * d1, attrs, s1.name, s2.name)
+

@@ -41,12 +41,12 @@ from __future__ import annotations
 import difflib
 from dataclasses import dataclass, replace
 
-__all__ = ["Quantity", "catalogue", "resolve", "KINDS", "SOURCES"]
+__all__ = ["Quantity", "catalogue", "resolve", "input_quantity", "unknown_quantities", "point_quantities", "KINDS", "SOURCES"]
 
 #: Names of the derivative orders.
 KINDS = ("position", "velocity", "acceleration")
 #: Sources that are not difference schemes.
-SOURCES = ("analytic", "complex_step", "solved")
+SOURCES = ("analytic", "complex_step", "solved", "input")
 
 _PREFIX = {  # (dimension, order) -> name prefix, time derivatives
     ("angle", 1): "omega_",
@@ -139,8 +139,13 @@ class Quantity:
     @property
     def label(self) -> str:
         """Column or axis label: name, source unless analytic or solved, and unit in brackets."""
-        source = "" if self.source in ("analytic", "solved") else f", {self.source}"
+        source = "" if self.source in ("analytic", "solved", "input") else f", {self.source}"
         return f"{self.name}{source} [{self.unit}]"
+
+    def source_label(self, what: str = "") -> str:
+        """Column label of this quantity among several sources: ``"centred [rad/s]"``,
+        ``"centred abs error [rad/s]"`` (with ``what="abs error"``)."""
+        return f"{self.source}{' ' + what if what else ''} [{self.unit}]"
 
     @property
     def symbol(self) -> str:
@@ -252,3 +257,53 @@ def resolve(mechanism, name, *, wrt: str = "time") -> Quantity:
     near = difflib.get_close_matches(name, list(table), n=1)
     hint = f" (did you mean {near[0]!r}?)" if near else ""
     raise ValueError(f"unknown quantity {name!r} for {mechanism.name}{hint}; valid: {', '.join(table)}")
+
+
+def input_quantity(mechanism) -> Quantity:
+    """The input angle as a quantity (column ``theta`` [rad], source ``"input"``).
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> input_quantity(linkages.slider_crank(80, 200)).label
+    'theta [rad]'
+    """
+    name = str(mechanism.input_symbol)
+    return Quantity(name, 0, "angle", length_unit=mechanism.length_unit, source="input", input_name=name)
+
+
+def unknown_quantities(mechanism, source: str = "analytic", second_source: str | None = None) -> list:
+    """``[(velocity, acceleration)]`` quantities of each unknown, in unknown order.
+
+    `second_source` (default `source`) is the source of the accelerations.
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> [(v.name, a.label) for v, a in unknown_quantities(linkages.slider_crank(80, 200), "centred",
+    ...                                                   "second_difference")]
+    [('omega_theta3', 'alpha_theta3, second_difference [rad/s^2]'), ('v_x', 'a_x, second_difference [mm/s^2]')]
+    """
+    cat = catalogue(mechanism, orders=(1, 2), points=False)
+    by = {(q.of, q.order): q for q in cat.values()}
+    return [
+        (by[name, 1].with_source(source), by[name, 2].with_source(second_source or source))
+        for name in mechanism.unknowns
+    ]
+
+
+def point_quantities(mechanism, point: str, source: str = "analytic") -> list:
+    """The six quantities of a named point: ``[(x, y), (vx, vy), (ax, ay)]``.
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> [[q.name for q in pair] for pair in point_quantities(linkages.slider_crank(80, 200), "P")]
+    [['x_P', 'y_P'], ['vx_P', 'vy_P'], ['ax_P', 'ay_P']]
+    """
+    common = dict(length_unit=mechanism.length_unit, input_name=str(mechanism.input_symbol))
+    return [
+        tuple(Quantity(point, order, "length", axis=axis, source="solved" if order == 0 else source, **common)
+              for axis in "xy")
+        for order in (0, 1, 2)
+    ]

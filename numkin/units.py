@@ -31,6 +31,8 @@ __all__ = [
     "UnitError",
     "angular_speed",
     "angular_acceleration",
+    "input_rate",
+    "input_rates",
     "length_factor",
     "convert_length",
 ]
@@ -305,3 +307,91 @@ def convert_length(
     from_mm, to_mm = _millimetres_per(from_unit), _millimetres_per(to_unit)
     converted = np.asarray(value, dtype=float) * from_mm / to_mm
     return float(converted) if converted.ndim == 0 else converted
+
+
+_RATE_PARSERS = {"speed": ("omega", angular_speed), "acceleration": ("alpha", angular_acceleration)}
+
+
+def input_rate(value, kind: str = "speed", count: int | None = None, name: str | None = None):
+    """The input's angular speed (rad/s) or acceleration (rad/s^2), parsed once at the edge.
+
+    The one reader of input rates: scenes, the command line, tables and the
+    kinematics all call it, and pass the number (or array) on.
+
+    Parameters
+    ----------
+    value : float, str or array_like
+        A number in rad/s (rad/s^2), a string with units (``"450 rad/min"``,
+        ``"6000 rpm"``, ``"2 rad/s^2"``), or, with `count`, one number per point.
+    kind : {"speed", "acceleration"}
+    count : int, optional
+        Number of points: the result is then an array of shape ``(count,)``
+        (a scalar is repeated). Without it, a float.
+    name : str, optional
+        Parameter name for messages (default ``omega`` or ``alpha``).
+
+    Returns
+    -------
+    float or numpy.ndarray
+
+    Raises
+    ------
+    UnitError
+        For an unreadable string or a unit of the wrong dimension; the
+        message names the parameter.
+    TypeError, ValueError
+        For a value that is not a number, string or array, an array of the
+        wrong length, or a value that is not finite.
+
+    Examples
+    --------
+    >>> from numkin.units import input_rate
+    >>> input_rate("450 rad/min")
+    7.5
+    >>> input_rate("60 rpm/s", "acceleration", count=2)
+    array([6.28318531, 6.28318531])
+    >>> input_rate("5 m/s")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    numkin.units.UnitError: omega: '5 m/s' is a linear speed, not an angular speed; ...
+    """
+    if kind not in _RATE_PARSERS:
+        raise ValueError(f"kind must be 'speed' or 'acceleration', got {kind!r}")
+    default, parse = _RATE_PARSERS[kind]
+    name = name or default
+
+    def expected():
+        return TypeError(f"{name} must be a number, a string with units or an array of numbers, got {value!r}")
+
+    if isinstance(value, (str, numbers.Real)) and not isinstance(value, bool):
+        try:
+            v = parse(value)
+        except (ValueError, TypeError) as exc:
+            raise type(exc)(f"{name}: {exc}") from None
+        return v if count is None else np.full(count, v)
+    if isinstance(value, bool) or value is None:
+        raise expected()
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise expected() from None
+    if arr.ndim == 0:
+        return input_rate(float(arr), kind, count, name)
+    if count is None or arr.shape != (count,):
+        want = "a single value" if count is None else f"one value per input of the sweep, shape ({count},)"
+        raise ValueError(f"{name} as an array must have {want}, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name}[{int(np.flatnonzero(~np.isfinite(arr))[0])}] is not finite")
+    return arr
+
+
+def input_rates(omega, alpha=0.0, count: int | None = None):
+    """``(input_rate(omega, "speed", count), input_rate(alpha, "acceleration", count))``.
+
+    Examples
+    --------
+    >>> from numkin.units import input_rates
+    >>> input_rates("450 rad/min", 0, 3)
+    (array([7.5, 7.5, 7.5]), array([0., 0., 0.]))
+    """
+    return input_rate(omega, "speed", count), input_rate(alpha, "acceleration", count)

@@ -350,3 +350,119 @@ def test_exactly_singular_systems_give_nan_not_an_exception():
     out = analytic._columnwise(solve, np.ones((2, 3)), np.array([0.0, 1.0, 2.0]))
     np.testing.assert_array_equal(out[:, [0, 2]], 1.0)
     assert np.isnan(out[:, 1]).all()
+
+
+# --------------------------------------------------------------------------- change points
+def _crossed_antiparallelogram(degrees):
+    import warnings as _w
+
+    mech = linkages.four_bar(5, 2, 5, 2, branch="crossed")
+    with _w.catch_warnings():
+        _w.simplefilter("ignore")
+        return mech.sweep(np.radians(degrees), on_singular="report")
+
+
+def test_change_point_gives_the_kept_branch():
+    """Anti-parallelogram 5/2/5/2 at theta2 = 180 deg, where the branches meet.
+
+    With theta2 = pi + e, theta3 = d3, theta4 = pi + d4, the loop
+    2 e^(i theta2) + 5 e^(i theta3) = 5 + 2 e^(i theta4) gives, to first order
+    in the imaginary part, -2e + 5 d3 = -2 d4, and to second order in the real
+    part e^2 - 5 d3^2 / 2 = d4^2.  With r = d4/e: 7 r^2 - 4 r - 3 = 0, so
+    r = 1 (parallelogram) or r = -3/7 (crossed), and d3/e = (2 - 2r)/5 = 4/7.
+    """
+    sweep = _crossed_antiparallelogram(np.arange(1, 360))
+    assert any(e.kind == "change point" for e in sweep.events)
+    k = int(np.argmin(np.abs(sweep.inputs - np.pi)))
+    with pytest.warns(SingularityWarning, match=r"dtheta4/dtheta2 = -0\.4286"):
+        dq, d2q = analytic.derivatives(sweep, at_change_point="continue")
+    assert dq[1, k] == pytest.approx(-3 / 7, abs=1e-6)
+    assert dq[0, k] == pytest.approx(4 / 7, abs=1e-6)
+    assert d2q[:, k] == pytest.approx([0.0, 0.0], abs=1e-6)  # symmetric about 180 deg on this branch
+    with pytest.warns(SingularityWarning):
+        assert analytic.tangent(sweep, at_change_point="continue")[1, k] == pytest.approx(-3 / 7, abs=1e-6)
+    with pytest.warns(SingularityWarning):
+        kin = analytic.kinematics(sweep, 2.0, at_change_point="continue")
+    assert kin["omega_theta4"][k] == pytest.approx(-6 / 7, abs=1e-5)
+
+
+def test_change_point_is_nan_by_default_with_the_kept_branch_named():
+    """Never the number of no branch (0.2857 before): NaN, and the warning gives -3/7."""
+    sweep = _crossed_antiparallelogram(np.arange(1, 360))
+    k = int(np.argmin(np.abs(sweep.inputs - np.pi)))
+    with pytest.warns(SingularityWarning, match=r"set to NaN.*dtheta4/dtheta2 = -0\.4286.*at_change_point='continue'"):
+        dq, d2q = analytic.derivatives(sweep)
+    assert np.all(np.isnan(dq[:, k])) and np.all(np.isnan(d2q[:, k]))
+    assert np.all(np.isfinite(np.delete(dq, k, axis=1)))
+    with pytest.raises(ValueError, match="at_change_point"):
+        analytic.derivatives(sweep, at_change_point="guess")
+
+
+def test_change_point_without_neighbours_is_nan_with_the_reason():
+    sweep = _crossed_antiparallelogram([178.0, 179.0, 180.0, 181.0])
+    with pytest.warns(SingularityWarning, match="fewer than 2 regular samples"):
+        dq, _ = analytic.derivatives(sweep)
+    assert np.all(np.isnan(dq[:, 2]))
+    assert np.all(np.isfinite(dq[:, [0, 1, 3]]))
+
+
+def test_change_point_found_from_the_jacobian_sign():
+    """Found from the sign change of det J between the neighbours, whether or not recorded."""
+    sweep = dataclasses.replace(_crossed_antiparallelogram(np.arange(1, 360)), events=[])
+    k = int(np.argmin(np.abs(sweep.inputs - np.pi)))
+    with pytest.warns(SingularityWarning, match="kept branch continues smoothly"):
+        dq, _ = analytic.derivatives(sweep, at_change_point="continue")
+    assert dq[1, k] == pytest.approx(-3 / 7, abs=1e-6)
+
+
+# --------------------------------------------------------------------------- lost digits
+def _toggle_reference(distance_deg):
+    """theta4 of the 4/2/4.0001/2 four-bar (branch through theta3 = -0.00707 rad) near its
+    limit, in 50-digit arithmetic: circle intersection, derivatives by mpmath."""
+    import mpmath as mp
+
+    mp.mp.dps = 50
+    a, b, c, d = 4, 2, mp.mpf("4.0001"), 2
+    limit = mp.acos((a**2 + b**2 - (c - d) ** 2) / (2 * a * b))
+    theta = limit + mp.radians(mp.mpf(distance_deg))
+
+    def theta4(t):
+        ax, ay = b * mp.cos(t), b * mp.sin(t)
+        length = mp.sqrt((a - ax) ** 2 + ay**2)
+        t3 = mp.atan2(-ay, a - ax) + mp.acos((c**2 + length**2 - d**2) / (2 * c * length))
+        return mp.atan2(ay + c * mp.sin(t3), ax + c * mp.cos(t3) - a)
+
+    return float(theta), float(mp.diff(theta4, theta)), float(mp.diff(theta4, theta, 2))
+
+
+def test_lost_digits_near_a_toggle_warn_and_bound_the_error():
+    theta, d1, d2 = _toggle_reference("1e-9")
+    sweep = linkages.four_bar(4, 2, 4.0001, 2).sweep(np.array([theta]))
+    with pytest.warns(analytic.LostDigitsWarning, match="estimated relative error"):
+        dq, d2q = analytic.derivatives(sweep)
+    err1, err2 = abs(dq[1, 0] / d1 - 1), abs(d2q[1, 0] / d2 - 1)
+    assert 1e-4 < err1 < 1e-2 and 1e-4 < err2 < 1e-2  # about 0.09 % and 0.27 %
+    cond = sweep.cond[0]
+    assert analytic.lost_digits(cond, 1) >= err1 and analytic.lost_digits(cond, 2) >= err2
+
+
+def test_no_lost_digits_warning_far_from_the_toggle():
+    import warnings as _w
+
+    theta, d1, _ = _toggle_reference("10")
+    sweep = linkages.four_bar(4, 2, 4.0001, 2).sweep(np.array([theta]))
+    with _w.catch_warnings():
+        _w.simplefilter("error", analytic.LostDigitsWarning)
+        dq, _ = analytic.derivatives(sweep)
+    assert dq[1, 0] == pytest.approx(d1, rel=1e-10)
+
+
+def test_kinematics_columns_carry_their_quantities():
+    sweep = linkages.slider_crank(80, 200).sweep(np.radians([0.0, 90.0]))
+    kin = analytic.kinematics(sweep, "6000 rpm")
+    q = kin.attrs["quantities"]
+    assert list(q) == list(kin.columns)
+    assert (q["a_x"].order, q["a_x"].unit, q["a_x"].source) == (2, "mm/s^2", "analytic")
+    assert kin.attrs["units"] == {name: quantity.unit for name, quantity in q.items()}
+    pk = analytic.point_kinematics(sweep, "6000 rpm", points="P")
+    assert pk.attrs["quantities"]["ay_P"].axis == "y"

@@ -136,3 +136,12 @@ def test_quantities_catalogue():
     assert q["omega_theta5"] == (1, "rad/s")
     assert q["a_x"] == (2, "cm/s^2")
     assert q["vx_D"] == (1, "cm/s")
+
+
+def test_value_columns_carry_their_quantities(homework):
+    c = compare(homework, W_HW, "alpha_beta", schemes=("second_difference",))
+    q = c.table.attrs["quantities"]
+    assert set(q) == {"analytic [rad/s^2]", "second_difference [rad/s^2]"}
+    assert q["second_difference [rad/s^2]"].source == "second_difference"
+    assert (c.target.name, c.target.order, c.target.unit) == ("alpha_beta", 2, "rad/s^2")
+    assert all(v.name == "alpha_beta" for v in q.values())

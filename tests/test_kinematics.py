@@ -286,3 +286,35 @@ def test_centred_error_quarters_when_h_halves_four_bar(dims):
 def test_centred_error_quarters_when_h_halves_slider_crank(dims):
     ratio = _centred_ratio(linkages.slider_crank(*dims))
     assert ratio == pytest.approx(4.0, rel=0.2)
+
+
+# --------------------------------------------------------------------------- rounding
+def _slider_velocity(r, l, theta):
+    """dx/dtheta from x = r cos(theta) + sqrt(l^2 - r^2 sin^2(theta))."""
+    s, c = np.sin(theta), np.cos(theta)
+    return -r * s - r**2 * s * c / np.sqrt(l**2 - r**2 * s**2)
+
+
+def test_rounding_error_estimate_bounds_tiny_steps_and_warns():
+    from numkin.analytic import LostDigitsWarning
+
+    mech = linkages.slider_crank(80, 200)
+    theta = np.pi / 2 + 1e-9 * np.arange(11)
+    sweep = mech.sweep(theta)
+    with pytest.warns(LostDigitsWarning, match="forward_of_forward loses digits"):
+        fd = kinematics.finite_difference(sweep, 1.0, method="forward", second_method="forward_of_forward")
+    actual = np.abs(fd["v_x"].to_numpy() - _slider_velocity(80, 200, theta))
+    estimate = kinematics.rounding_error(kinematics.scheme_for("forward", 1, "method"), 1e-9, sweep.values,
+                                         sweep.cond, mech.xscale)[1]
+    assert np.all(actual <= estimate) and actual.max() > 1e-7  # rounding, not truncation (h/2 x'' ~ 2e-8)
+
+
+def test_no_rounding_warning_on_a_degree_grid():
+    import warnings
+
+    from numkin.analytic import LostDigitsWarning
+
+    sweep = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0, 361)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", LostDigitsWarning)
+        kinematics.finite_difference(sweep, 1.0, method="five_point", second_method="five_point_second")

@@ -189,3 +189,34 @@ def test_convert_length_round_trip():
 def test_convert_length_unknown_unit():
     with pytest.raises(UnitError, match="parsec"):
         convert_length(1.0, "parsec", "m")
+
+
+# --------------------------------------------------------------------------- input rates
+def test_input_rate_is_the_one_parser():
+    from numkin import analytic
+    from numkin.units import input_rate, input_rates
+
+    assert input_rate("450 rad/min") == 7.5
+    assert input_rate(-10) == -10.0
+    np.testing.assert_array_equal(input_rate("2 rad/s^2", "acceleration", count=3), [2.0, 2.0, 2.0])
+    np.testing.assert_array_equal(input_rate([1.0, 2.0], count=2), [1.0, 2.0])
+    assert analytic.input_rates is input_rates
+
+
+@pytest.mark.parametrize(
+    "value, kind, count, error, match",
+    [
+        ("2 rad/s^2", "speed", None, UnitError, r"omega: .*angular acceleration, not an angular speed"),
+        ("10 rad/s", "acceleration", None, UnitError, r"alpha: .*angular speed"),
+        ([1.0, 2.0], "speed", 3, ValueError, r"shape \(3,\)"),
+        ([1.0, np.nan], "speed", 2, ValueError, r"omega\[1\] is not finite"),
+        (None, "speed", None, TypeError, "omega must be"),
+        (True, "speed", None, TypeError, "omega must be"),
+        ("1 rad/s", "jerk", None, ValueError, "kind"),
+    ],
+)
+def test_input_rate_errors_name_the_parameter(value, kind, count, error, match):
+    from numkin.units import input_rate
+
+    with pytest.raises(error, match=match):
+        input_rate(value, kind, count)

@@ -1,0 +1,405 @@
+"""The registry of finite-difference schemes: each declared by its stencil.
+
+A stencil scheme is declared by its offsets (in steps h) and the derivative
+it estimates; its weights and order of accuracy are computed exactly
+(:mod:`numkin.stencils`). Each scheme also records
+
+* its **partner**: the scheme for the other derivative used with it (the
+  first-derivative scheme in ``alpha_in * q'`` beside a second-derivative
+  scheme, and the second-derivative scheme of the same family beside a
+  first-derivative one);
+* its **family**: the first-derivative scheme it belongs with (figures give
+  a family one colour); ``centred_of_centred`` is centred applied twice, so
+  its family is ``centred``;
+* its **ends**: how the samples of an open grid where the interior stencil
+  does not fit are handled (``"one-sided"``: the smallest one-sided window
+  of at least the interior's order; ``"mirror"``: the interior reflected).
+
+Rule for partners (checked by the tests): a second-derivative scheme's
+partner is a first-derivative scheme of the same family and the same order,
+and a first-derivative scheme's partner has it as partner in turn.
+
+Schemes that are not stencils -- ``richardson`` (an extrapolation of two
+centred differences), the FFT schemes ``spectral`` and ``spectral_second``,
+and ``complex_step`` (of a function, not of samples) -- are described in the
+same registry with their ``kind``.
+
+Examples
+--------
+Add a 7-point centred first derivative at run time; every function that
+takes a scheme by name then accepts it:
+
+>>> import numpy as np
+>>> from numkin import derivatives, schemes
+>>> s = schemes.register("seven_point", range(-3, 4), 1)
+>>> s.order, [str(w) for w in s.weights]
+(6, ['-1/60', '3/20', '-3/4', '3/4', '-3/20', '1/60'])
+>>> x = np.linspace(0.0, 2 * np.pi, 60, endpoint=False)
+>>> dy = derivatives.differentiate(np.sin(x), x[1], "seven_point", periodic=True)
+>>> bool(np.max(np.abs(dy - np.cos(x))) < 1e-7)
+True
+>>> schemes.unregister("seven_point")
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Callable
+
+from .stencils import Rule, Stencil
+
+__all__ = [
+    "Scheme",
+    "SCHEMES",
+    "REGISTRY",
+    "PARTNER",
+    "FAMILY",
+    "BUILT_IN",
+    "ALIASES",
+    "register",
+    "unregister",
+    "get_scheme",
+    "lookup",
+    "point_stencil",
+]
+
+
+@dataclass(frozen=True)
+class Scheme:
+    """One scheme of the registry.
+
+    Attributes
+    ----------
+    name : str
+        Registry name (for the built-in schemes, also the name of the
+        function in :mod:`numkin.derivatives`).
+    derivative : int
+        Which derivative the scheme estimates: 1 or 2.
+    order : int
+        Order p of the truncation error O(h**p) on uniform grids, ends
+        included; derived from the stencil. 0 marks the spectral schemes,
+        whose error on smooth periodic data falls faster than any power of h.
+    stencil : str
+        Interior formula, for tables and plot legends.
+    function : callable
+        ``function(y, h, periodic=..., period_offset=0.0)`` (``complex_step``:
+        ``function(f, x, h)``).
+    periodic_only : bool
+        True if the scheme needs ``periodic=True``.
+    description : str
+        One-line description.
+    kind : {"stencil", "richardson", "spectral", "complex_step"}
+    offsets, weights : tuple
+        Interior stencil (offsets in steps h, exact weights); empty for the
+        FFT schemes.
+    partner : str or None
+        The scheme for the other derivative used with this one.
+    family : str
+        The first-derivative scheme this one belongs with.
+    ends : str
+        End handling on open grids.
+    rule : numkin.stencils.Rule or None
+        Interior and end stencils, for stencil schemes.
+
+    Examples
+    --------
+    >>> from numkin.derivatives import SCHEMES
+    >>> scheme = SCHEMES["centred"]
+    >>> print(scheme.order, scheme.stencil)
+    2 (y[i+1] - y[i-1])/(2h)
+    >>> SCHEMES["centred_of_centred"].partner, SCHEMES["centred_of_centred"].family
+    ('centred', 'centred')
+    """
+
+    name: str
+    derivative: int
+    order: int
+    stencil: str
+    function: Callable
+    periodic_only: bool
+    description: str
+    kind: str = "stencil"
+    offsets: tuple = ()
+    weights: tuple = ()
+    partner: str | None = None
+    family: str = ""
+    ends: str = ""
+    rule: Rule | None = field(default=None, compare=False, repr=False)
+
+
+#: Declarations of the built-in schemes: name -> keyword arguments of :func:`register`
+#: (``offsets``/``derivative`` for stencils, ``kind`` and the rest for the others).
+BUILT_IN = {
+    "forward": dict(offsets=(0, 1), derivative=1, ends="mirror", partner="forward_of_forward",
+                    description="forward difference"),
+    "backward": dict(offsets=(-1, 0), derivative=1, ends="mirror", description="backward difference"),
+    "centred": dict(offsets=(-1, 0, 1), derivative=1, partner="second_difference",
+                    description="centred difference"),
+    "five_point": dict(offsets=(-2, -1, 0, 1, 2), derivative=1, partner="five_point_second",
+                       description="five-point centred difference"),
+    "richardson": dict(kind="richardson", derivative=1, order=4, stencil="(4 D(h) - D(2h))/3",
+                       offsets=(-2, -1, 0, 1, 2), ends="one-sided (five_point's)",
+                       description="Richardson extrapolation of centred differences with steps h and 2h"),
+    "spectral": dict(kind="spectral", derivative=1, order=0, stencil="ik Y_k (FFT)", partner="spectral_second",
+                     description="FFT differentiation of one full period"),
+    "second_difference": dict(offsets=(-1, 0, 1), derivative=2, partner="centred",
+                              description="centred second difference"),
+    "forward_of_forward": dict(offsets=(0, 1, 2), derivative=2, ends="mirror", partner="forward",
+                               description="forward difference applied twice (centred on sample i+1)"),
+    "centred_of_centred": dict(offsets=(-2, 0, 2), derivative=2, partner="centred",
+                               description="centred difference applied twice (2h-wide second difference)"),
+    "five_point_second": dict(offsets=(-2, -1, 0, 1, 2), derivative=2, partner="five_point",
+                              description="five-point centred second difference"),
+    "spectral_second": dict(kind="spectral", derivative=2, order=0, stencil="-k^2 Y_k (FFT)",
+                            partner="spectral", description="FFT second derivative of one full period"),
+    "complex_step": dict(kind="complex_step", derivative=1, order=2, stencil="Im f(x + ih)/h",
+                         family="complex_step",
+                         description="complex step of a function: no subtractive cancellation"),
+}
+
+#: Other spellings accepted by :func:`get_scheme`.
+ALIASES = {"central": "centred", "centered": "centred", "second": "second_difference", "five-point": "five_point"}
+
+_REGISTRY: dict[str, Scheme] = {}
+_LOADED = False
+
+
+def _load() -> dict[str, Scheme]:
+    """The registry, with the built-in schemes added on first use."""
+    global _LOADED
+    if not _LOADED:
+        _LOADED = True
+        from . import derivatives
+
+        for name, decl in BUILT_IN.items():
+            _REGISTRY[name] = _build(name, function=getattr(derivatives, name), **decl)
+    return _REGISTRY
+
+
+class _View(Mapping):
+    """A read-only, always current view of the registry."""
+
+    def __init__(self, select, value):
+        self._select, self._value = select, value
+
+    def _items(self):
+        return {k: self._value(s) for k, s in _load().items() if self._select(s)}
+
+    def __getitem__(self, key):
+        return self._items()[key]
+
+    def __iter__(self):
+        return iter(self._items())
+
+    def __len__(self):
+        return len(self._items())
+
+    def __repr__(self):
+        return repr(self._items())
+
+
+#: Every scheme, complex step included: name -> :class:`Scheme`.
+REGISTRY: Mapping = _View(lambda s: True, lambda s: s)
+#: The schemes of sampled data (all but complex step): name -> :class:`Scheme`.
+SCHEMES: Mapping = _View(lambda s: s.kind != "complex_step", lambda s: s)
+#: Second-derivative scheme -> the first-derivative scheme used with it.
+PARTNER: Mapping = _View(lambda s: s.derivative == 2 and s.partner is not None, lambda s: s.partner)
+#: Scheme -> family (the first-derivative scheme it belongs with).
+FAMILY: Mapping = _View(lambda s: True, lambda s: s.family)
+
+
+def _build(name, *, derivative, offsets=(), kind="stencil", ends="one-sided", partner=None, family=None,
+           description=None, order=None, stencil=None, function=None) -> Scheme:
+    rule = None
+    weights: tuple = ()
+    if kind == "stencil":
+        rule = Rule.build(Stencil.from_offsets(offsets, derivative), ends)
+        order, stencil = rule.order, rule.interior.formula()
+        offsets, weights = rule.interior.offsets, rule.interior.weights
+        if function is None:
+            from .derivatives import scheme_function
+
+            function = scheme_function(name, rule)
+    elif kind == "richardson":
+        weights = Stencil.from_offsets(offsets, derivative).weights
+    if family is None:
+        family = name if derivative == 1 else (partner or name)
+    return Scheme(
+        name=name, derivative=int(derivative), order=int(order), stencil=stencil, function=function,
+        periodic_only=kind == "spectral", description=description or f"{len(offsets)}-point stencil {stencil}",
+        kind=kind, offsets=tuple(offsets), weights=tuple(weights), partner=partner, family=family,
+        ends="periodic only" if kind == "spectral" else ends, rule=rule,
+    )
+
+
+def _default_partner(derivative: int, rule: Rule) -> str | None:
+    """A registered stencil scheme for the other derivative with the same span and order."""
+    span = (min(rule.interior.offsets), max(rule.interior.offsets))
+    for s in _load().values():
+        if s.kind == "stencil" and s.derivative == 3 - derivative and s.order == rule.order and s.rule and (
+            (min(s.rule.interior.offsets), max(s.rule.interior.offsets)) == span
+        ):
+            return s.name
+    return None
+
+
+def register(name: str, offsets, derivative: int, *, partner: str | None = None, family: str | None = None,
+             ends: str = "one-sided", description: str | None = None, replace: bool = False) -> Scheme:
+    """Add a finite-difference scheme declared by its stencil offsets.
+
+    After this call :func:`numkin.derivatives.differentiate`,
+    :func:`numkin.kinematics.finite_difference`, :func:`numkin.compare.compare`
+    and everything else that looks schemes up by name accept `name`.
+
+    Parameters
+    ----------
+    name : str
+        New scheme name (letters, digits and ``_``).
+    offsets : sequence of int
+        Sample offsets of the interior stencil, in steps h (``range(-3, 4)``
+        for the 7-point centred stencil). The weights are solved exactly and
+        the order of accuracy derived from them.
+    derivative : {1, 2}
+        The derivative estimated.
+    partner : str, optional
+        Scheme for the other derivative used with this one. Default: a
+        registered stencil scheme for the other derivative with the same span
+        and order. Required for a second-derivative scheme if there is none.
+    family : str, optional
+        Default: `name` for a first derivative, the partner for a second.
+    ends : {"one-sided", "mirror"}, default "one-sided"
+        End stencils on open grids (see the module notes).
+    description : str, optional
+    replace : bool, default False
+        Allow replacing a scheme registered earlier at run time (never a built-in one).
+
+    Returns
+    -------
+    Scheme
+
+    Raises
+    ------
+    ValueError
+        For a taken or malformed name, offsets that cannot give the
+        derivative, an unknown partner, or a partner of the wrong derivative
+        or order.
+
+    Examples
+    --------
+    >>> from numkin import schemes
+    >>> s = schemes.register("seven_point_second", range(-3, 4), 2, partner="five_point")
+    Traceback (most recent call last):
+    ...
+    ValueError: partner='five_point' of seven_point_second has order 4; the scheme has order 6: give a partner of the same order
+    """
+    registry = _load()
+    if not isinstance(name, str) or not name.isidentifier():
+        raise ValueError(f"a scheme name must be letters, digits and '_', got {name!r}")
+    if name in BUILT_IN or name in ALIASES or (name in registry and not replace):
+        raise ValueError(f"scheme {name!r} is already registered" + ("" if name in BUILT_IN else "; pass replace=True"))
+    if derivative not in (1, 2) or isinstance(derivative, bool):
+        raise ValueError(f"derivative must be 1 or 2, got {derivative!r}")
+    scheme = _build(name, derivative=derivative, offsets=tuple(offsets), ends=ends, family=family,
+                    description=description)
+    if partner is None:
+        partner = _default_partner(derivative, scheme.rule)
+    if partner is not None:
+        other = get_scheme(partner)
+        if other.derivative == derivative:
+            raise ValueError(f"partner={partner!r} of {name} estimates the same derivative; it must estimate the other")
+        if other.order != scheme.order:
+            raise ValueError(f"partner={partner!r} of {name} has order {other.order}; the scheme has order "
+                             f"{scheme.order}: give a partner of the same order")
+        partner = other.name
+    elif derivative == 2:
+        raise ValueError(f"{name}: no first-derivative scheme of order {scheme.order} on the same offsets is "
+                         "registered; register one first or give partner=")
+    scheme = _build(name, derivative=derivative, offsets=tuple(offsets), ends=ends, family=family,
+                    description=description, partner=partner)
+    registry[name] = scheme
+    return scheme
+
+
+def unregister(name: str) -> None:
+    """Remove a scheme added with :func:`register` (built-in schemes stay)."""
+    if name in BUILT_IN:
+        raise ValueError(f"{name!r} is a built-in scheme and cannot be removed")
+    if _load().pop(name, None) is None:
+        raise ValueError(f"no scheme {name!r} was registered")
+
+
+def lookup(name: str) -> Scheme:
+    """Any scheme of :data:`REGISTRY` by name or alias, complex step included."""
+    key = name.strip().lower() if isinstance(name, str) else name
+    try:
+        return _load()[ALIASES.get(key, key)]
+    except (KeyError, TypeError):
+        raise ValueError(
+            f"unknown finite-difference method {name!r}; valid names: "
+            f"{', '.join(SCHEMES)} (aliases: {', '.join(ALIASES)})"
+        ) from None
+
+
+def get_scheme(name: str) -> Scheme:
+    """Look up a scheme of sampled data by name or alias.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`SCHEMES` or one of the aliases ``"central"`` and
+        ``"centered"`` (centred), ``"second"`` (second_difference) and
+        ``"five-point"`` (five_point). Case and surrounding spaces are ignored.
+
+    Returns
+    -------
+    Scheme
+
+    Raises
+    ------
+    ValueError
+        For any other name; the message lists the valid names.
+
+    Examples
+    --------
+    >>> from numkin.derivatives import get_scheme
+    >>> get_scheme("central").name
+    'centred'
+    """
+    scheme = lookup(name)
+    if scheme.kind == "complex_step":
+        raise ValueError(f"{name!r} differentiates a function, not samples; valid names: {', '.join(SCHEMES)}")
+    return scheme
+
+
+def point_stencil(name: str) -> Stencil:
+    """The stencil of a scheme for a derivative at one input, from values at ``x + k h``.
+
+    ``estimate = stencil.apply(values, h)`` with ``values[..., j] = f(x + stencil.offsets[j] * h)``;
+    ``stencil.offsets``, ``stencil.coefficients`` (floats), ``stencil.weights`` (exact),
+    ``stencil.derivative`` and ``stencil.order`` describe it. Richardson's
+    extrapolation is the five-point stencil written out.
+
+    Raises
+    ------
+    ValueError
+        For the spectral schemes and complex step, which have no real stencil.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin.schemes import point_stencil
+    >>> s = point_stencil("five_point")
+    >>> s.offsets, s.coefficients
+    ((-2, -1, 1, 2), (0.08333333333333333, -0.6666666666666666, 0.6666666666666666, -0.08333333333333333))
+    >>> h = 1e-3
+    >>> print(f"{s.apply(np.sin(0.5 + h * np.array(s.offsets)), h):.12f}")   # cos(0.5)
+    0.877582561890
+    """
+    scheme = lookup(name)
+    if scheme.rule is not None:
+        return scheme.rule.interior
+    if scheme.kind == "richardson":
+        return Stencil.from_offsets(scheme.offsets, scheme.derivative)
+    raise ValueError(f"{scheme.name} ({scheme.kind}) has no finite stencil at one input")
+
