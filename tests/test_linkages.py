@@ -1,4 +1,4 @@
-"""Ready-made linkages against closed forms derived here, and the source documents' numbers.
+"""Ready-made linkages against closed forms derived here, and the numbers the source documents give.
 
 Every reference below is computed in this file from the geometry (circle
 intersections, Freudenstein's equation, the slider-crank and quick-return
@@ -154,6 +154,7 @@ def quick_return_reference(theta2, r1, r2, r6):
 
 
 def test_quick_return_document_numbers():
+    """Report 000 at theta2 = 30 deg (its hand value 130.75 for r4 is an arithmetic slip)."""
     m = linkages.quick_return()
     assert m.unknowns == ("r3", "theta3", "r4", "r5")
     res = m.solve(math.radians(30))
@@ -209,23 +210,29 @@ def six_bar_reference(theta2, side_b, side_d):
     return theta3, theta4, theta5, x_d
 
 
-def test_six_bar_document_numbers_and_closed_form():
+def test_six_bar_closed_form_on_the_documents_assembly():
     m = linkages.six_bar()
     assert m.unknowns == ("theta3", "theta4", "theta5", "x")
     assert m.length_unit == "cm"
     sweep = m.sweep(FULL_TURN)
-    # which of the four assemblies is the document's: the one with x_D(0) = -1.77881
+    # Report 001 shows x_D only as plots; its assembly is the one its solver's fixed guesses
+    # pick at theta2 = 0: (theta3, theta4) from (0, 1) rad, (theta5, x) from (1 rad, 1 cm).
     sides = [(sb, sd) for sb in (1.0, -1.0) for sd in (1.0, -1.0)]
-    at0 = {s: float(six_bar_reference(np.array([0.0]), *s)[3][0]) for s in sides}
-    doc = [s for s in sides if round(at0[s], 5) == -1.77881]
-    assert len(doc) == 1
-    t3, t4, t5, x = six_bar_reference(FULL_TURN, *doc[0])
+
+    def miss(side):
+        t3, t4, t5, x = (float(v[0]) for v in six_bar_reference(np.array([0.0]), *side))
+        return (abs(math.remainder(t3, TWO_PI)) + abs(math.remainder(t4 - 1.0, TWO_PI))
+                + abs(math.remainder(t5 - 1.0, TWO_PI)) + abs(x - 1.0))
+
+    doc = min(sides, key=lambda s: miss(s) if math.isfinite(miss(s)) else math.inf)
+    t3, t4, t5, x = six_bar_reference(FULL_TURN, *doc)
     np.testing.assert_allclose(sweep["x"], x, rtol=0, atol=POS_TOL)
     for name, ref in (("theta3", t3), ("theta4", t4), ("theta5", t5)):
         assert_angle_continuous(sweep[name], ref)
+    # README's x_D table (numkin's values, not the report's) is the closed form's, to 5 decimals
     for deg, value in ((0, -1.77881), (90, -3.70858), (180, -5.84838)):
-        assert round(float(sweep["x"][deg]), 5) == value
         assert round(float(x[deg]), 5) == value
+        assert round(float(sweep["x"][deg]), 5) == value
 
 
 # ------------------------------------------------------- chained four-bars
@@ -251,7 +258,7 @@ def homework_linkage(theta, fixed, inp, coupler, out, guess):
     return best[1], best[2]
 
 
-def test_chained_four_bars_closed_form_and_document_numbers():
+def test_chained_four_bars_closed_form():
     m = linkages.chained_four_bars()
     assert m.unknowns == ("phi", "psi", "beta", "gamma")
     assert m.length_unit == "in"
@@ -263,9 +270,11 @@ def test_chained_four_bars_closed_form_and_document_numbers():
                                    np.radians([30.0, 270.0]))
     for name, ref in (("phi", phi), ("psi", psi), ("beta", beta), ("gamma", gamma)):
         assert_angle_continuous(sweep[name], ref)
+    # README's positions at theta = 100 deg (numkin's values; homework 003 prints none) are the closed form's
+    assert round(math.degrees(phi[100]), 4) == 94.4375
+    assert round(math.degrees(beta[100]) % 360.0, 4) == 214.7270
     assert round(math.degrees(sweep["phi"][100]), 4) == 94.4375
     assert round(math.degrees(sweep["beta"][100]) % 360.0, 4) == 214.7270
-    assert round(math.degrees(phi[100]), 4) == 94.4375
 
 
 def test_chained_four_bars_dimensions_by_keyword():
