@@ -350,8 +350,8 @@ class BlockStructure:
                     i0 = a * n + a
                     p, q, r, s = (np.real(J[i]) for i in (i0, i0 + 1, i0 + n, i0 + n + 1))
                     ca, cb = self._col[a], self._col[a + 1]
-                    if ca != cb:  # scaling all entries alike leaves the condition number alone
-                        p, q, r, s = p * (ca / cb), q, r * (ca / cb), s
+                    # scaled entries are of order one whatever the length scale: no overflow in the squares
+                    p, q, r, s = p * ca, q * cb, r * ca, s * cb
                     det = p * s - q * r
                     fro = p * p + q * q + r * r + s * s
                     sg = np.copysign(1.0, det)

@@ -45,22 +45,74 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-__all__ = ["newton", "NewtonResult", "JACOBIANS", "has_converged"]
+__all__ = [
+    "newton", "NewtonResult", "JACOBIANS", "has_converged", "check_tol", "is_singular", "fd_step",
+    "fd_jacobian", "COND_MAX", "COND_WARN", "TOL_MIN",
+]
 
 EPS = np.finfo(float).eps
 #: Jacobian choices accepted by :func:`newton` and :meth:`Mechanism.sweep`.
 JACOBIANS = ("symbolic", "forward", "central")
 _FD_STEP = {"forward": np.sqrt(EPS), "central": EPS ** (1.0 / 3.0)}
+#: The conditioning rule: a Jacobian whose scaled condition number exceeds this is singular.
+COND_MAX = 1e12
+#: Condition number above which a solved point is reported as near-singular (digits lost).
+COND_WARN = 1e8
+#: Smallest tolerance accepted: a scaled residual of a few units of round-off is the floor.
+TOL_MIN = 4.0 * EPS
 
 
-def has_converged(res, step, prev_step, tol):
+def has_converged(res, step, prev_step, tol, floor=0.0):
     """The stopping rule of the module docstring, for floats or arrays.
 
     ``res`` is the scaled residual after a step, ``step`` the scaled step
     that led to it and ``prev_step`` the one before (``inf`` at the first).
+    ``floor`` is the round-off floor of the residual where it exceeds ``tol``
+    (angles of many turns evaluate their sines to ``eps * |angle|``): a
+    residual at the floor whose steps have stopped shrinking has converged
+    as far as float64 allows.
     """
     superlinear = (step <= tol ** (2.0 / 3.0)) & (step <= 0.25 * prev_step)
-    return (res <= tol) & ((step <= tol) | superlinear | (step >= 0.9 * prev_step))
+    stuck = step >= 0.9 * prev_step
+    return ((res <= tol) & ((step <= tol) | superlinear | stuck)) | ((res <= floor) & stuck)
+
+
+def residual_floor(x, t=0.0):
+    """Round-off floor of a scaled residual at the point ``x`` (scaled unknowns) and input ``t``.
+
+    Sines and cosines of an argument ``a`` are known to ``eps * |a|``; a few
+    terms add up. Below ``tol`` for any sweep of fewer than about 1e3 turns.
+    """
+    big = max(1.0, abs(t), *(abs(v) for v in x)) if not isinstance(x, np.ndarray) else max(
+        1.0, abs(t), float(np.max(np.abs(x), initial=0.0)))
+    return 16.0 * EPS * big
+
+
+def check_tol(tol, name="tol"):
+    """``tol`` as a float, or ValueError if it is not a number in [TOL_MIN, 1)."""
+    if isinstance(tol, bool) or not isinstance(tol, (int, float, np.number)) or not math.isfinite(tol) or tol <= 0:
+        raise ValueError(f"{name} must be a positive number, got {tol!r}")
+    if tol < TOL_MIN:
+        raise ValueError(
+            f"{name}={tol:.3g} is below the round-off floor of float64 residuals (about {TOL_MIN:.1e}, "
+            f"a few units of eps = {EPS:.3g}): no Newton step can meet it; use {name} >= {TOL_MIN:.1e}"
+        )
+    if tol >= 1:
+        raise ValueError(f"{name} must be below 1 (a relative tolerance), got {tol!r}")
+    return float(tol)
+
+
+def is_singular(cond, cond_max=COND_MAX):
+    """The conditioning rule every Newton path applies: True (or a mask) where ``cond`` exceeds ``cond_max`` or is NaN."""
+    return ~(np.asarray(cond) <= cond_max) if np.ndim(cond) else not cond <= cond_max
+
+
+def fd_step(xj, scale, method):
+    """The finite-difference step of the module docstring for one unknown (float or array),
+    rounded so that ``xj + h`` is exact; returns ``(xj + h, h)``."""
+    h = _FD_STEP[method] * np.maximum(np.abs(xj), scale)
+    xp = xj + h
+    return xp, xp - xj
 
 
 @dataclass(frozen=True, repr=False)
@@ -86,6 +138,13 @@ class NewtonResult:
         What happened, in words.
     residual : ndarray
         Residual vector at ``x``.
+    iterates : ndarray, shape (iterations + 1, n)
+        The starting point and every iterate, in order (the last is ``x``).
+    nfev : int
+        Evaluations of the residual function (finite-difference columns
+        included), as scipy counts them.
+    njev : int
+        Evaluations of the Jacobian (symbolic or by finite differences).
     """
 
     x: np.ndarray
@@ -96,6 +155,28 @@ class NewtonResult:
     cond: float
     message: str
     residual: np.ndarray = field(default_factory=lambda: np.empty(0))
+    iterates: np.ndarray = field(default_factory=lambda: np.empty((0, 0)))
+    nfev: int = 0
+    njev: int = 0
+
+    @classmethod
+    def from_batch(cls, out, k, cond, message):
+        """The result of column ``k`` of a :class:`BatchResult` (recorded with ``record=True``)."""
+        it = int(out.iterations[k])
+        iterates = np.array([h[:, k] for h in out.x_history])[: it + 1] if out.x_history else np.empty((0, 0))
+        return cls(
+            x=out.x[:, k],
+            converged=bool(out.converged[k]),
+            iterations=it,
+            residual_norms=np.array([h[k] for h in out.residual_history])[: it + 1],
+            step_norms=np.array([s[k] for s in out.step_history if np.isfinite(s[k])]),
+            cond=float(cond),
+            message=message,
+            residual=out.f[:, k],
+            iterates=iterates,
+            nfev=int(out.nfev[k]),
+            njev=int(out.njev[k]),
+        )
 
     def __repr__(self) -> str:
         return (
@@ -130,18 +211,18 @@ class BatchResult:
     residual_history: list  # of (N,) arrays
     step_history: list  # of (N,) arrays
     f: np.ndarray  # (n, N) residual vectors
+    nfev: np.ndarray = None  # (N,) residual evaluations per system
+    njev: np.ndarray = None  # (N,) Jacobian evaluations per system
+    x_history: list = field(default_factory=list)  # of (n, N) arrays, with record=True
 
 
 def fd_jacobian(F, x, f0, method, xscale):
     """Finite-difference Jacobian of ``F`` at a batch ``x`` of shape (n, N) -> (N, n, n)."""
     n, N = x.shape
-    c = _FD_STEP[method]
     jac = np.empty((N, f0.shape[0], n), dtype=np.result_type(x, f0))
     for j in range(n):
-        h = c * np.maximum(np.abs(x[j]), xscale[j])
         xp = x.copy()
-        xp[j] = x[j] + h
-        h = xp[j] - x[j]
+        xp[j], h = fd_step(x[j], xscale[j], method)
         if method == "forward":
             col = (F(xp) - f0) / h
         else:
@@ -186,7 +267,7 @@ def _solve(jac, rhs, fscale, xscale, cond_max):
     return dx, bad
 
 
-def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=1e12, check_cond=True):
+def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=COND_MAX, check_cond=True, record=False):
     """Newton-Raphson on a batch of independent systems.
 
     Parameters
@@ -208,6 +289,8 @@ def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=1e12, c
         Compute condition numbers at every step to refuse near-singular
         solves (``cond > cond_max``). With ``False`` only an exactly singular
         or non-finite solve is refused.
+    record : bool
+        Keep every iterate in ``BatchResult.x_history``.
 
     Returns
     -------
@@ -225,6 +308,10 @@ def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=1e12, c
     active = np.isfinite(res)
     res_hist = [res.copy()]
     step_hist = []
+    x_hist = [x.copy()] if record else []
+    nfev = np.ones(N, dtype=int)
+    njev = np.zeros(N, dtype=int)
+    fd_cost = 0 if not isinstance(J, str) else (n if J == "forward" else 2 * n)
     prev_step = np.full(N, np.inf)
     for _ in range(maxiter):
         if not active.any():
@@ -236,6 +323,8 @@ def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=1e12, c
             ja = fd_jacobian(lambda z: F(z, idx), xa, fa, J, xscale)
         else:
             ja = J(xa, idx)
+        njev[idx] += 1
+        nfev[idx] += fd_cost
         dx, bad = _solve(ja, -fa.T, fscale_arr[idx], xscale, cond_max if check_cond else None)
         singular[idx[bad]] = True
         good = idx[~bad]
@@ -245,16 +334,19 @@ def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=1e12, c
             iterations[good] += 1
             step[good] = np.max(np.abs(dx[~bad].T / xscale[:, None]), axis=0)
             f_new = F(x[:, good], good)
+            nfev[good] += 1
             f[:, good] = f_new
             res[good] = np.max(np.abs(f_new), axis=0) / fscale_arr[good]
         step_hist.append(step)
         res_hist.append(res.copy())
+        if record:
+            x_hist.append(x.copy())
         done = has_converged(res, step, prev_step, tol)
         converged |= done & active
         diverged = ~np.isfinite(res) | ~np.all(np.isfinite(x), axis=0)
         active &= ~(converged | singular | diverged)
         prev_step = np.where(np.isnan(step), prev_step, step)
-    return BatchResult(x, converged, singular, iterations, res, res_hist, step_hist, f)
+    return BatchResult(x, converged, singular, iterations, res, res_hist, step_hist, f, nfev, njev, x_hist)
 
 
 def _sympy_system(exprs, unknowns):
@@ -349,8 +441,7 @@ def newton(
         raise ValueError(f"x0 must be a 1-D guess, got shape {x0.shape}")
     if not np.all(np.isfinite(x0)):
         raise ValueError(f"x0 has a non-finite entry at index {int(np.flatnonzero(~np.isfinite(x0))[0])}")
-    if not (np.isfinite(tol) and tol > 0):
-        raise ValueError(f"tol must be a positive number, got {tol!r}")
+    tol = check_tol(tol)
     if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
         raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")
     n = x0.size
@@ -397,13 +488,10 @@ def newton(
             "the system must be square"
         )
     xs = np.broadcast_to(np.asarray(xscale, dtype=float), (n,))
-    out = iterate(F, J, x0[:, None], fscale=fscale, xscale=xs, tol=tol, maxiter=maxiter, cond_max=cond_max)
-    x = out.x[:, 0]
+    out = iterate(F, J, x0[:, None], fscale=fscale, xscale=xs, tol=tol, maxiter=maxiter, cond_max=cond_max,
+                  record=True)
     jac_end = J(out.x) if not isinstance(J, str) else fd_jacobian(F, out.x, out.f, J, xs)
     cond = float(scaled_cond(jac_end, np.array([fscale]), xs)[0])
-    res_norms = np.array([h[0] for h in out.residual_history])
-    steps = np.array([s[0] for s in out.step_history if np.isfinite(s[0])])
-    res_norms = res_norms[: out.iterations[0] + 1]
     if out.converged[0]:
         msg = f"converged in {out.iterations[0]} iterations"
     elif out.singular[0]:
@@ -415,13 +503,4 @@ def newton(
         msg = f"diverged after {out.iterations[0]} iterations"
     else:
         msg = f"did not converge in {maxiter} iterations (scaled residual {out.residual[0]:.3g})"
-    return NewtonResult(
-        x=x,
-        converged=bool(out.converged[0]),
-        iterations=int(out.iterations[0]),
-        residual_norms=res_norms,
-        step_norms=steps,
-        cond=cond,
-        message=msg,
-        residual=out.f[:, 0],
-    )
+    return NewtonResult.from_batch(out, 0, cond, msg)

@@ -1,0 +1,844 @@
+"""Position sweeps by continuation, on one assembly branch.
+
+Algorithm
+---------
+1. Solve at the first input from the guess (Newton, up to ``maxiter`` steps,
+   refusing near-singular Jacobians); the angles are then reduced to the
+   guess's turn and polished by further Newton steps, so the first point is
+   as accurate as every other.
+2. March sequentially to *nodes*, grid points about ``max_step`` apart (30°
+   by default): each step predicts with the tangent ``q' = -J^-1 dF/dt``
+   (and the previous point, a quadratic, only when that point is a sane
+   distance away and the quadratic term stays below the step times the
+   tangent) and corrects with Newton. The predicted change of every unknown
+   is at most :data:`MAX_PREDICTION` (scaled), so no prediction can reach
+   another turn. The corrected angles are taken nearest the prediction.
+   A step is accepted only if Newton converges, the correction is small
+   (:data:`MAX_CORRECTION`) and the sign of every loop's Jacobian
+   determinant (its *orientation*, constant along a branch) is unchanged;
+   otherwise the step is halved, so a large ``max_step`` costs no safety and
+   a small one loses none.
+3. Fill the grid points between nodes in one batch: a cubic Hermite predictor
+   from the nodes' values and tangents, then Newton on all points at once.
+   A point that fails the same acceptance tests (converged, small
+   correction, the orientation of its nodes) is re-solved sequentially from
+   its neighbour; a segment between two nodes where neighbouring batch
+   points differ by half a turn or more (a run of points on another turn)
+   is marched sequentially point by point.
+
+The sequential steps work on plain floats (``math``-module functions, the
+Jacobian's block-triangular shape solved by Cramer's rule per loop), the
+batch on numpy arrays; both apply the stopping rule and the conditioning
+rule of :mod:`numkin.newton`. Every loop is bounded.
+
+A change of orientation between two accepted points means the linkage passed
+a singular position (a change point, where branches meet); a step that
+shrinks to nothing where the Jacobian is ill-conditioned (or has become so
+along the step) is a limit (toggle) position. Both raise
+:class:`~numkin.BranchError` (or, with ``on_singular="report"``, a change
+point is recorded in :attr:`Sweep.events` with a warning naming the branch
+kept, the one whose tangent is continuous, and the sweep goes on; a toggle
+cannot be passed). A Newton that fails elsewhere raises
+:class:`~numkin.ConvergenceError`; a linkage that cannot be assembled at the
+start raises :class:`~numkin.AssemblyError` (``cause`` says whether the
+guess was poor or the equations dependent).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+
+from .compiled import MATH_ERRORS, _stack
+from .errors import AssemblyError, BranchError, ConvergenceError
+from .newton import (
+    COND_MAX,
+    COND_WARN,
+    JACOBIANS,
+    check_tol,
+    fd_jacobian,
+    has_converged,
+    is_singular,
+    residual_floor,
+)
+from .sweep import Sweep, SweepEvent, SingularityWarning
+
+__all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION"]
+
+#: Correction (scaled: rad, or lengths / length_scale) above which a continuation step is refused.
+MAX_CORRECTION = 0.3
+#: Largest predicted change of an unknown in one step (scaled): with MAX_CORRECTION well below
+#: pi, an accepted point is never a whole turn away from its predecessor.
+MAX_PREDICTION = 1.0
+#: The quadratic predictor uses the previous point only if it is at least this fraction of
+#: the step away (closer points make the quadratic term blow up).
+SANE_DISTANCE = 0.2
+#: Condition number above which a solved point's tangent is not used to predict (it carries
+#: the position's error times the condition number: noise next to a change point).
+COND_TANGENT = 1e6
+#: Newton steps allowed for a continuation corrector.
+CORRECTOR_ITERATIONS = 12
+#: Trial steps allowed for one march between nodes (accepted or refused).
+MAX_TRIALS = 100_000
+#: Batches smaller than this always iterate on whole arrays (gathering the few active
+#: columns costs more than it saves).
+COMPACT_MIN = 2000
+#: Default largest input step (rad) between the sequentially solved nodes of a sweep.
+DEFAULT_MAX_STEP = math.radians(30.0)
+#: A step that shrinks to nothing where the condition number exceeds this (or has grown
+#: TOGGLE_GROWTH-fold since the start of the march) is a limit (toggle) position.
+TOGGLE_COND = 1e3
+TOGGLE_GROWTH = 30.0
+#: Scaled residual above which a point where Newton met a singular Jacobian is not a solution.
+FAR = 1e-6
+TWO_PI = 2.0 * math.pi
+
+
+def _deg(t: float, digits: int = 3) -> str:
+    return f"{math.degrees(t):.{digits}f}°"
+
+
+class _Continuation:
+    """State and numerical kernels shared by the steps of one sweep.
+
+    One scalar Newton kernel (:meth:`newton1`: plain floats, ``math``-module
+    functions and the block-triangular solve of
+    :class:`~numkin.compiled.BlockStructure`, with the symbolic or the
+    finite-difference Jacobian of :func:`numkin.newton.fd_jacobian` plugged
+    in) for the sequential steps, and a batched one (:meth:`newton_batch`)
+    for the remaining grid points; both apply the stopping rule of
+    :mod:`numkin.newton`.
+    """
+
+    def __init__(self, mech, jacobian, tol, max_step, on_singular):
+        self.mech = mech
+        self.jacobian = jacobian
+        self.symbolic = jacobian == "symbolic"
+        self.tol = tol
+        self.max_step = max_step
+        self.on_singular = on_singular
+        self.events: list = []
+        comp = mech.compiled
+        self.comp = comp
+        self.n = len(mech.unknowns)
+        self.nn = self.n * self.n
+        self.p = mech.parameter_values
+        self.pt = tuple(self.p.tolist())
+        self.fscale = float(mech.length_scale)
+        self.xs = mech.xscale.tolist()
+        self.xs_arr = np.asarray(mech.xscale, dtype=float)
+        self.blocks = mech.block_structure
+        self.inv_xs = self.blocks.inv_xscale
+        self.loop_names = [lp.name for lp in mech.loops]
+        self.angle_idx = [k for k, u in enumerate(mech.unknowns) if u in mech.angles]
+        self._fjt = comp.scalar_FJT
+        self._f = comp.scalar_F
+        self.last_previous = None
+        self.started_on_default = False
+        self.crossings: list = []  # change points passed: (input, loop)
+
+    # ------------------------------------------------------------ one point
+    def eval1(self, x, t):
+        """Residuals, Jacobian rows and dF/dt at one point (flat list), or None where undefined."""
+        try:
+            v = self._fjt(*x, t, *self.pt)
+        except MATH_ERRORS:
+            return None
+        return v if math.isfinite(sum(v)) else None
+
+    def resid1(self, x, t):
+        try:
+            f = self._f(*x, t, *self.pt)
+        except MATH_ERRORS:
+            return None
+        return f if math.isfinite(sum(f)) else None
+
+    def eval1_fd(self, x, t):
+        """Residuals and finite-difference Jacobian rows at one point (flat list), or None."""
+        f = self.resid1(x, t)
+        if f is None:
+            return None
+        tt = np.array([t])
+        comp, p = self.comp, self.p
+        jac = fd_jacobian(lambda z: comp.F(z, tt, p), np.array(x, dtype=float)[:, None],
+                          np.array(f, dtype=float)[:, None], self.jacobian, self.xs_arr)
+        rows = jac[0].ravel().tolist()
+        return f + rows if math.isfinite(sum(rows)) else None
+
+    def newton1(self, x, t, maxiter, cond_max=None):
+        """Newton-Raphson at one input from ``x`` (list): the scalar kernel.
+
+        Returns ``(x, status, iterations, residual, v)``: status is
+        ``"converged"``, ``"singular"``, ``"diverged"`` or ``"maxiter"``;
+        ``v`` is :meth:`eval1` at the returned ``x`` (None if unknown).
+        With ``cond_max`` a Jacobian whose loop blocks have a larger scaled
+        condition number is refused as singular (the conditioning rule of
+        :mod:`numkin.newton`); otherwise only an exactly singular or
+        non-finite solve is.
+        """
+        n, nn, fscale, tol = self.n, self.nn, self.fscale, self.tol
+        update = self.blocks.update1
+        evaluate = self.eval1 if self.symbolic else self.eval1_fd
+        v = evaluate(x, t)
+        if v is None:
+            return x, "diverged", 0, math.nan, None
+        res = max([abs(a) for a in v[:n]]) / fscale
+        prev = math.inf
+        it = 0
+        status = "maxiter"
+        while it < maxiter:
+            if cond_max is not None and is_singular(max(self.blocks.cond1(v[n : n + nn])), cond_max):
+                status = "singular"
+                break
+            x_new, step = update(v, x)
+            if x_new is None:
+                status = "singular"
+                break
+            x = x_new
+            it += 1
+            v = evaluate(x, t)
+            if v is None:
+                return x, "diverged", it, math.nan, None
+            res = max([abs(a) for a in v[:n]]) / fscale
+            floor = residual_floor([a * w for a, w in zip(x, self.inv_xs)], t) if res > tol else 0.0
+            if has_converged(res, step, prev, tol, floor):
+                status = "converged"
+                break
+            prev = step
+        if not self.symbolic:
+            v = self.eval1(x, t)
+        return x, status, it, res, v
+
+    def nearest_turn(self, x, ref):
+        """``x`` with every angle moved by whole turns to lie nearest ``ref``; and whether any moved."""
+        moved = False
+        for k in self.angle_idx:
+            if abs(x[k] - ref[k]) > math.pi:
+                if not moved:
+                    x, moved = list(x), True
+                x[k] = ref[k] + math.remainder(x[k] - ref[k], TWO_PI)
+        return x, moved
+
+    def correct(self, x_pred, t, maxiter=CORRECTOR_ITERATIONS):
+        """Newton from a prediction; the angles taken nearest the prediction (polished again if moved)."""
+        x, status, it, res, v = self.newton1(x_pred, t, maxiter)
+        if status == "converged":
+            x, moved = self.nearest_turn(x, x_pred)
+            if moved:
+                x, status, it2, res, v = self.newton1(x, t, maxiter)
+                it += it2
+        return x, status, it, res, v
+
+    def local1(self, v):
+        """Tangent dq/dt and loop orientations at a solved point; (None, None) if its Jacobian is singular."""
+        n, nn = self.n, self.nn
+        if v is None:
+            return None, None
+        return self.blocks.solve1(v[n : n + nn], [-a for a in v[n + nn :]])
+
+    def small_correction(self, x, x_pred) -> bool:
+        return max([abs(a - b) * w for a, b, w in zip(x, x_pred, self.inv_xs)]) <= MAX_CORRECTION
+
+    def worst1(self, x, t, which="residual"):
+        """(loop name, value) of the loop with the largest residual or condition number at one point."""
+        v = self.eval1(x, t)
+        if v is None:
+            return self.loop_names[0], math.nan
+        if which == "residual":
+            vals = [max(abs(a) for a in v[a0:b0]) / self.fscale for a0, b0 in self.blocks.blocks]
+        else:
+            vals = self.blocks.cond1(v[self.n : self.n + self.nn])
+        k = max(range(len(vals)), key=lambda i: math.inf if vals[i] != vals[i] else vals[i])
+        return self.loop_names[k], float(vals[k])
+
+    # ------------------------------------------------------------ many points
+    def eval_batch(self, x, t, fixed=None):
+        """Residuals (n, N) and Jacobian rows (list of n*n arrays or numbers) at many points.
+
+        ``fixed``: :meth:`CompiledMechanism.fixed_terms` at ``t``, if known.
+        """
+        v = self.comp.FJ_rows(x, t, self.p, fixed)
+        return _stack(v[: self.n], t.size), v[self.n :]
+
+    def newton_batch(self, x, t, active, maxiter=CORRECTOR_ITERATIONS):
+        """Newton on the columns ``active`` of ``x`` (n, N) at the inputs ``t``; other columns are kept.
+
+        The iteration and stopping rule of :func:`numkin.newton.iterate`, with
+        the block-triangular solve. While most columns are active it works on
+        whole arrays; once few are left, on those columns only (compaction).
+        Returns ``x``, ``converged`` (N,), ``iterations`` (N,), and the
+        residuals (n, N) and (symbolic) Jacobian rows at the returned ``x``.
+        Call it under ``numpy.errstate(all="ignore")``.
+        """
+        nn, tol = self.nn, self.tol
+        inv_xs = np.asarray(self.inv_xs)[:, None]
+        unit_scale = bool(np.all(inv_xs == 1.0))
+        xs = self.xs_arr
+        x = np.array(x, dtype=float)
+        N = x.shape[1]
+        sym = self.symbolic
+        comp, p = self.comp, self.p
+        newton_step = self.blocks.newton_step
+        floor = residual_floor(np.abs(x).max(axis=1) * inv_xs[:, 0], float(np.abs(t).max(initial=0.0)))
+
+        fixed_all = comp.fixed_terms(t, p) if sym else None
+
+        def evaluate(z, tz, fixed=None):
+            if sym:
+                return self.eval_batch(z, tz, fixed_all if fixed is None else fixed)
+            return comp.F(z, tz, p), None
+
+        def jacobian(z, tz, fz, jz):
+            if sym:
+                return jz
+            return list(fd_jacobian(lambda w: comp.F(w, tz, p), z, fz, self.jacobian, xs).reshape(z.shape[1], nn).T)
+
+        def scaled_max(dx):
+            return _colmax(np.abs(dx) if unit_scale else np.abs(dx) * inv_xs)
+
+        f, jac = evaluate(x, t)
+        fmax = _colmax(np.abs(f))
+        converged = np.zeros(N, dtype=bool)
+        iterations = np.zeros(N, dtype=int)
+        act = active & np.isfinite(fmax)
+        prev = np.full(N, np.inf)
+        for _ in range(maxiter):
+            idx = np.flatnonzero(act)
+            M = idx.size
+            if M == 0:
+                break
+            if M * 4 > N or N < COMPACT_MIN:  # whole arrays; the inactive columns do not move
+                dx, bad = newton_step(jacobian(x, t, f, jac), f)
+                upd = act & ~bad
+                if M < N or bad.any():
+                    dx[:, ~upd] = 0.0
+                x = x + dx
+                step = scaled_max(dx)
+                f, jac = evaluate(x, t)
+                fmax = _colmax(np.abs(f))
+            else:  # the active columns only
+                tz = t.take(idx)
+                z, fz = x.take(idx, axis=1), f.take(idx, axis=1)
+                jz = [r.take(idx) if np.ndim(r) else r for r in jac] if sym else None
+                dx, bad_z = newton_step(jacobian(z, tz, fz, jz), fz)
+                if bad_z.any():
+                    dx[:, bad_z] = 0.0
+                z = z + dx
+                fz, jz = evaluate(z, tz, [u.take(idx) if np.ndim(u) else u for u in fixed_all] if sym else None)
+                x[:, idx] = z
+                f[:, idx] = fz
+                if sym:
+                    jac = [_scatter(r, rz, idx, N) for r, rz in zip(jac, jz)]
+                bad = np.zeros(N, dtype=bool)
+                bad[idx] = bad_z
+                upd = act & ~bad
+                step = np.full(N, np.inf)
+                step[idx] = scaled_max(dx)
+                fmax[idx] = _colmax(np.abs(fz))
+            iterations += upd
+            done = upd & has_converged(fmax / self.fscale, step, prev, tol, floor)
+            converged |= done
+            act &= ~(done | bad) & np.isfinite(fmax)
+            prev = np.where(upd, step, prev)
+        if not sym:
+            f, jac = self.eval_batch(x, t)
+        return x, converged, iterations, f, jac
+
+    # ------------------------------------------------------------ events
+    def record(self, kind, t, loop, message, *, raise_kind=None, cond=None, **extra):
+        """Raise (``on_singular="raise"``) or record an event once and warn."""
+        if raise_kind is not None and self.on_singular == "raise":
+            raise BranchError(message, kind=raise_kind, input_value=float(t), loop=loop, cond=cond)
+        for e in self.events:  # the same crossing met again (from a node, then from a grid point)
+            if e.kind == kind and e.loop == loop and abs(e.input_value - t) <= 1e-6 * max(1.0, abs(t)):
+                return
+        self.events.append(SweepEvent(kind, float(t), loop, message, **extra))
+        warnings.warn(message, SingularityWarning, stacklevel=4)
+
+    def change_point(self, t, t_new, loop):
+        """Raise at a change point, or note it (once) to be described when the sweep is done."""
+        where = f"{self.mech.name}: loop '{loop}' passes a singular position at input {_deg(0.5 * (t + t_new), 4)}"
+        if self.on_singular == "raise":
+            self.record(
+                "change point", t_new, loop,
+                f"{where} (its Jacobian changes sign): a change point, where the branches meet and the "
+                "continuation is ambiguous; pass on_singular='report' to go on along the branch whose "
+                "tangent is continuous",
+                raise_kind="change point",
+            )
+        tc = 0.5 * (t + t_new)
+        if not any(abs(c - tc) <= 1e-6 * max(1.0, abs(tc)) and lp == loop for c, lp in self.crossings):
+            self.crossings.append((tc, loop))
+
+    def one_sided_tangent(self, t, X, O, cond, tc, side, h):
+        """dq/d(input) at the change point ``tc`` from one side (``side`` -1 or +1), on the sweep's branch.
+
+        Marches from the best-conditioned grid point on that side to
+        ``tc + side h`` and ``tc + side 2h`` and extrapolates the tangents
+        there linearly to ``tc`` (error of order h^2). None if there is no
+        such grid point or the march fails.
+        """
+        on_side = np.flatnonzero((np.sign(t - tc) == side) & (cond < 1e6))
+        if on_side.size == 0:
+            return None
+        j = int(on_side[np.argmin(np.abs(t[on_side] - tc))])
+        xj = X[:, j].tolist()
+        d, o = self.local1(self.eval1(xj, float(t[j])))
+        if d is None:
+            return None
+        try:
+            x1, d1, o1, _ = self.march(float(t[j]), xj, d, o, tc + 2 * side * h)
+            _, d2, _, _ = self.march(tc + 2 * side * h, x1, d1, o1, tc + side * h)
+        except (BranchError, ConvergenceError):
+            return None
+        if d1 is None or d2 is None:
+            return None
+        return [2.0 * b - a for a, b in zip(d1, d2)]
+
+    def describe_crossings(self, t, X, O, cond):
+        """Record every change point passed (``on_singular="report"``): the branch kept and its tangent."""
+        mech = self.mech
+        inp = str(mech.input_symbol)
+        branch = getattr(mech, "branch", None)
+        kept = f"the {branch} branch" if branch and self.started_on_default else "the branch the sweep was on"
+        span = float(abs(t[-1] - t[0])) if t.size > 1 else 1.0
+        h = min(1e-3, 0.25 * span)
+        for tc, loop in self.crossings:
+            sides = [self.one_sided_tangent(t, X, O, cond, tc, side, h) for side in (-1.0, 1.0)]
+            if t.size > 1 and t[-1] < t[0]:
+                sides.reverse()  # before and after in the sweep's direction
+            before, after = (list(v) if v is not None else [math.nan] * self.n for v in sides)
+            known = [v for v in (before, after) if not math.isnan(v[0])]
+            tangent = [sum(c) / len(known) for c in zip(*known)] if known else [math.nan] * self.n
+            scale = max([abs(a) * w for a, w in zip(tangent, self.inv_xs)] + [1.0])
+            continuous = None
+            if len(known) == 2:
+                continuous = all(abs(a - b) * w <= 1e-3 * scale for a, b, w in zip(before, after, self.inv_xs))
+            rates = ", ".join(f"d{u}/d{inp} = {v:.4f}" for u, v in zip(mech.unknowns, tangent))
+            how = {True: "its tangent is continuous", False: "its tangent jumps here",
+                   None: "its tangent from one side"}[continuous]
+            message = (
+                f"{mech.name}: loop '{loop}' passes a singular position at input {_deg(tc, 4)} (its Jacobian "
+                f"changes sign): a change point, where the branches meet; kept {kept} ({how}: {rates})"
+            )
+            self.record(
+                "change point", tc, loop, message, branch=kept, tangent=tuple(tangent),
+                tangent_before=tuple(before), tangent_after=tuple(after), tangent_continuous=continuous,
+            )
+
+    # -------------------------------------------------------------- sequential
+    def march(self, t0, x0, d0, o0, t1, previous=None):
+        """Continue from (t0, x0), tangent d0 and orientations o0, to the input t1.
+
+        ``previous`` is an earlier point ``(t, x)`` of the same branch for the
+        quadratic predictor of the first step. Returns ``(x, d, o,
+        iterations)`` at t1; :attr:`last_previous` keeps the point before it.
+        """
+        span = t1 - t0
+        direction = 1.0 if span > 0 else -1.0
+        step = min(self.max_step, abs(span))
+        if previous is None:
+            step = min(step, 0.5 * self.max_step)  # the first predictor is linear: start shorter
+        min_step = 1e-9 * max(1.0, abs(span))
+        t, x, d, o = t0, x0, d0, o0
+        t_prev, x_prev = previous if previous is not None else (None, None)
+        iters = 0
+        inv_xs = self.inv_xs
+        n, nn = self.n, self.nn
+        for _ in range(MAX_TRIALS):
+            if t == t1:
+                break
+            remaining = abs(t1 - t)
+            dt = step
+            if d is not None:  # no predicted change above MAX_PREDICTION
+                rate = max([abs(a) * w for a, w in zip(d, inv_xs)])
+                if rate * dt > MAX_PREDICTION:
+                    dt = MAX_PREDICTION / rate
+            if remaining <= dt * (1.0 + 1e-9):
+                t_new = t1
+            else:
+                if remaining < 2.0 * dt:  # no short last step: split what is left in two
+                    dt = 0.5 * remaining
+                t_new = t + direction * dt
+            if dt < min_step or t_new == t:
+                self.fail(t0, x0, t, x, t_new, x, "singular", "singular", 0, math.nan)
+            x_pred = _predict(t, x, d, t_prev, x_prev, t_new, inv_xs)
+            x_new, status, it, res, v = self.correct(x_pred, t_new)
+            reason = status
+            ok = status == "converged"
+            if ok and not self.small_correction(x_new, x_pred):
+                ok, reason = False, "correction"
+            if ok:
+                d_new, o_new = self.local1(v)
+                if o_new is None:
+                    ok, reason = False, "singular"
+                elif o_new != o:
+                    k = next(i for i, (a, b) in enumerate(zip(o_new, o)) if a != b)
+                    if dt > 64 * min_step:
+                        ok, reason = False, "orientation"  # localise the crossing before deciding
+                    else:
+                        self.change_point(t, t_new, self.loop_names[k])
+            if ok:
+                if d is not None and is_singular(max(self.blocks.cond1(v[n : n + nn])), COND_TANGENT):
+                    d_new = d  # a tangent solved through a near-singular Jacobian is noise: keep the last good one
+                t_prev, x_prev = t, x
+                t, x, d, o = t_new, x_new, d_new, o_new
+                iters = it
+                step = min(self.max_step, 2.0 * dt)
+                continue
+            step = 0.5 * dt
+            if step < min_step:
+                self.fail(t0, x0, t, x, t_new, x_new, status, reason, it, res)
+        else:
+            raise ConvergenceError(
+                f"{self.mech.name}: the continuation from input {_deg(t0, 3)} to {_deg(t1, 3)} made no "
+                f"progress in {MAX_TRIALS} trial steps (stopped at {_deg(t, 6)})",
+                input_value=float(t), loop=self.loop_names[0], iterations=MAX_TRIALS, cause="no progress",
+            )
+        self.last_previous = (t_prev, x_prev) if t_prev is not None else None
+        return x, d, o, iters
+
+    def fail(self, t0, x0, t, x, t_next, x_try, status, reason, iterations, res):
+        """Explain why the continuation cannot go from t to t_next, and raise.
+
+        The step has shrunk to nothing. If the Jacobian at the last point
+        reached is ill-conditioned (or has grown so since the start of the
+        march) the linkage is at a limit position: a toggle. Otherwise Newton
+        failed, or the solution jumps, at a regular point.
+        """
+        loop, cond = self.worst1(x, t, which="cond")
+        _, cond0 = self.worst1(x0, t0, which="cond")
+        if reason == "singular" or not cond < TOGGLE_COND or not cond < TOGGLE_GROWTH * cond0:
+            raise BranchError(
+                f"{self.mech.name}: limit (toggle) position of loop '{loop}' near {_deg(t, 3)} "
+                f"(condition number {cond:.3g}): the input cannot be driven past it on this branch",
+                kind="toggle", input_value=float(t), loop=loop, cond=cond,
+            )
+        bad_loop, bad_res = self.worst1(x_try, t_next)
+        if reason in ("correction", "orientation"):
+            what = (
+                "moves the solution too far" if reason == "correction" else "lands on another assembly branch"
+            )
+            msg = (
+                f"{self.mech.name}: no continuous solution from input {_deg(t, 6)} to {_deg(t_next, 6)}: "
+                f"the smallest step {what} (loop '{bad_loop}'); the loop equations jump there"
+            )
+            cause = "jump"
+        else:
+            msg = (
+                f"{self.mech.name}: Newton did not converge at input {_deg(t_next, 3)} (condition number "
+                f"{cond:.3g}): loop '{bad_loop}' residual {bad_res:.3g} after {iterations} iterations"
+            )
+            cause = "no convergence"
+        raise ConvergenceError(msg, input_value=float(t_next), loop=bad_loop, residual=bad_res, iterations=iterations,
+                               cause=cause)
+
+
+def _colmax(a):
+    """Largest entry of every column of a small (n, N) array (faster than ``a.max(axis=0)``)."""
+    out = a[0]
+    for row in a[1:]:
+        out = np.maximum(out, row)
+    return out
+
+
+def _scatter(row, sub, idx, N):
+    """A Jacobian row (array or number) with the columns ``idx`` replaced by ``sub``."""
+    if not np.ndim(row):
+        if not np.ndim(sub):
+            return row
+        row = np.full(N, row, dtype=np.result_type(row, sub))
+    row[idx] = sub
+    return row
+
+
+def _predict(t, x, d, t_prev, x_prev, t_new, inv_xs):
+    """Predictor of a continuation step that cannot blow up.
+
+    The tangent ``x + d s``; plus the quadratic term through the previous
+    point only when that point is at least :data:`SANE_DISTANCE` times the
+    step away and the term is below the step times (tangent + 1) in every
+    unknown. Without a tangent: the secant through a sane previous point, or
+    ``x`` itself.
+    """
+    s = t_new - t
+    if d is None:
+        if x_prev is None or abs(t - t_prev) < SANE_DISTANCE * abs(s):
+            return list(x)
+        r = s / (t - t_prev)
+        lin = [a + (a - b) * r for a, b in zip(x, x_prev)]
+        if max([abs(a - b) * w for a, b, w in zip(lin, x, inv_xs)]) <= MAX_PREDICTION:
+            return lin
+        return list(x)
+    lin = [a + da * s for a, da in zip(x, d)]
+    if x_prev is None:
+        return lin
+    h = t_prev - t
+    if abs(h) < SANE_DISTANCE * abs(s):
+        return lin
+    s2 = s * s / (h * h)
+    quad = [(b - a - da * h) * s2 for a, da, b in zip(x, d, x_prev)]
+    limit = abs(s)
+    for q, da, w in zip(quad, d, inv_xs):
+        if not abs(q) * w <= limit * (abs(da) * w + 1.0):
+            return lin
+    return [a + q for a, q in zip(lin, quad)]
+
+
+def _validate_inputs(inputs) -> np.ndarray:
+    t = np.asarray(inputs, dtype=float)
+    if t.ndim == 0:
+        t = t.reshape(1)
+    if t.ndim != 1 or t.size == 0:
+        raise ValueError(f"inputs must be a non-empty 1-D array of input values (rad), got shape {t.shape}")
+    if not math.isfinite(t.sum()):
+        raise ValueError(f"inputs[{int(np.flatnonzero(~np.isfinite(t))[0])}] is not finite")
+    if t.size > 1:
+        d = t[1:] - t[:-1]
+        if not ((d > 0).all() or (d < 0).all()):
+            k = int(np.flatnonzero(np.sign(d) != np.sign(d[0]))[0]) if np.any(d != 0) else 0
+            raise ValueError(f"inputs must be strictly monotonic for continuation (check inputs[{k}:{k + 2}])")
+    return t
+
+
+def _start(ctx: _Continuation, t0: float, guess, maxiter: int):
+    """Solve the first point from the guess (continuing from ``guess_input`` if needed).
+
+    Returns ``(x, iterations, v)``.
+    """
+    mech = ctx.mech
+    g = mech.default_guess if guess is None else guess
+    ctx.started_on_default = guess is None
+    if guess is None and g is not None and not callable(g) and mech.guess_input is not None and mech.guess_input != t0:
+        tg = float(mech.guess_input)
+        x_g, _, v = _solve_first(ctx, tg, mech.guess_vector(g, tg), maxiter, note=" (the default guess's input)")
+        d, o = ctx.local1(v)
+        x, _, _, iters = ctx.march(tg, x_g, d, o, t0)
+        return x, iters, ctx.eval1(x, t0)
+    return _solve_first(ctx, t0, mech.guess_vector(g, t0), maxiter)
+
+
+def _dependent(ctx, x, t0) -> bool:
+    """Whether the Jacobian is singular wherever it is tried near ``x``: dependent equations."""
+    for delta in (0.0, 0.37, -0.61, 1.13):
+        y = [a + delta * (1.0 + 0.71 * k) * s for k, (a, s) in enumerate(zip(x, ctx.xs))]
+        v = ctx.eval1(y, t0)
+        if v is None:
+            continue
+        if not is_singular(max(ctx.blocks.cond1(v[ctx.n : ctx.n + ctx.nn]))):
+            return False
+    return True
+
+
+def _solve_first(ctx, t0, x_guess, maxiter, note=""):
+    """Newton from the guess at t0, the angles reduced to the guess's turn, then polished."""
+    mech = ctx.mech
+    guess = x_guess.tolist()
+    x, status, it, res, v = ctx.newton1(guess, t0, maxiter, cond_max=COND_MAX)
+    where = f"input {_deg(t0, 3)}{note}"
+    if status == "singular":
+        loop, cond = ctx.worst1(x, t0, which="cond")
+        _, res = ctx.worst1(x, t0)
+        if _dependent(ctx, x, t0):
+            raise AssemblyError(
+                f"{mech.name}: the loop equations are dependent: their Jacobian (loop '{loop}') is singular "
+                f"at {where} and at every nearby point tried, so they do not fix the unknowns; "
+                "check that no equation repeats another",
+                input_value=float(t0), loop=loop, cause="dependent equations", residual=res, iterations=it,
+            )
+        if not res <= FAR:
+            raise AssemblyError(
+                f"{mech.name}: cannot assemble at {where} from the guess: Newton met a singular Jacobian "
+                f"of loop '{loop}' after {it} iterations, far from any solution (scaled residual {res:.3g}); "
+                "give a guess nearer the position (angles in rad)",
+                input_value=float(t0), loop=loop, cause="bad guess", residual=res, iterations=it,
+            )
+        raise BranchError(
+            f"{mech.name}: the Jacobian of loop '{loop}' is singular at {where} "
+            f"(condition number {cond:.3g}): a toggle or change point, where the branch cannot be chosen; "
+            "start the sweep at another input (and pass on_singular='report' if the sweep crosses "
+            "such a position)",
+            kind="singular", input_value=float(t0), loop=loop, cond=cond,
+        )
+    if status != "converged":
+        loop, res = ctx.worst1(x, t0)
+        raise AssemblyError(
+            f"{mech.name}: cannot assemble at {where}: Newton from the guess did not converge "
+            f"(loop '{loop}' residual {res:.3g} after {it} iterations); "
+            "check the dimensions or give a better guess (angles in rad)",
+            input_value=float(t0), loop=loop, cause="bad guess", residual=res, iterations=it,
+        )
+    x, moved = ctx.nearest_turn(x, guess)
+    if moved:  # reduced to the guess's turn, then polished there
+        x, status, it2, _, v = ctx.newton1(x, t0, maxiter, cond_max=COND_MAX)
+        it += it2
+    return x, it, v
+
+
+def _nodes(t: np.ndarray, max_step: float) -> np.ndarray:
+    """Grid indices marched sequentially: at most ``max_step`` apart where the grid allows."""
+    if t.size <= 2:
+        return np.arange(t.size)
+    h = np.abs(np.diff(t)).max()
+    every = max(1, int(max_step / h * (1.0 + 1e-9))) if h > 0 else 1
+    idx = np.arange(0, t.size, every)
+    if idx[-1] != t.size - 1:
+        idx = np.append(idx, t.size - 1)
+    return idx
+
+
+def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxiter=50,
+              max_step=DEFAULT_MAX_STEP, on_singular="raise", progress=False):
+    """Solve ``mech`` over ``inputs`` by continuation; see :meth:`Mechanism.sweep`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> s = run_sweep(linkages.four_bar(4, 1, 3, 3), np.radians([0.0, 90.0]))
+    >>> np.round(np.degrees(s["theta4"]), 4)
+    array([120.    , 119.3714])
+    """
+    if on_singular not in ("raise", "report"):
+        raise ValueError(f"on_singular must be 'raise' or 'report', got {on_singular!r}")
+    if max_step is None:
+        max_step = DEFAULT_MAX_STEP
+    if not (isinstance(max_step, (int, float, np.number)) and max_step > 0 and math.isfinite(max_step)):
+        raise ValueError(f"max_step must be a positive angle in rad, got {max_step!r}")
+    tol = check_tol(tol)
+    if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
+        raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")
+    if jacobian not in JACOBIANS:
+        raise ValueError(f"jacobian must be one of {JACOBIANS}, got {jacobian!r}")
+    t = _validate_inputs(inputs)
+    mech.check_assembly(t)
+    ctx = _Continuation(mech, jacobian, tol, float(max_step), on_singular)
+    n, N = ctx.n, t.size
+    tl = t.tolist()
+    X = np.empty((n, N))
+    D = np.full((n, N), np.nan)
+    O = np.zeros((len(mech.loops), N))
+    iters = np.zeros(N, dtype=int)
+
+    with np.errstate(all="ignore"):
+        x0, iters[0], v0 = _start(ctx, tl[0], guess, maxiter)
+        d0, o0 = ctx.local1(v0)
+        X[:, 0], D[:, 0], O[:, 0] = x0, d0, o0
+
+        nodes = _nodes(t, max_step)
+        x, d, o = x0, d0, o0
+        ctx.last_previous = None
+        pairs = zip(nodes[:-1].tolist(), nodes[1:].tolist())
+        if progress:
+            from tqdm.auto import tqdm
+
+            pairs = tqdm(pairs, total=nodes.size - 1, desc=mech.name, unit="node")
+        for a, b in pairs:
+            x, d, o, iters[b] = ctx.march(tl[a], x, d, o, tl[b], ctx.last_previous)
+            X[:, b], D[:, b], O[:, b] = x, d, o
+
+        f, jac = _fill(ctx, t, X, D, O, iters, nodes)
+        residual = _colmax(np.abs(f)) / ctx.fscale
+        cond = _colmax(ctx.blocks.cond(jac, N))
+        if ctx.crossings:
+            ctx.describe_crossings(t, X, O, cond)
+    _report_near_singular(ctx, t, X, cond)
+    return Sweep(mech, t, X, iters, residual, cond, ctx.events, jacobian, tol)
+
+
+def _fill(ctx, t, X, D, O, iters, nodes):
+    """Solve the grid points between nodes in one Newton batch (cubic Hermite predictor).
+
+    Returns the residuals (n, N) and Jacobian rows at every point of the sweep.
+    """
+    N = t.size
+    if nodes.size == N:
+        return ctx.eval_batch(X, t)
+    fine_mask = np.ones(N, dtype=bool)
+    fine_mask[nodes] = False
+    # every column's left and right node (a node is its own left node, at s = 0)
+    k = np.searchsorted(nodes, np.arange(N), side="right") - 1
+    a = nodes.take(k)
+    b = nodes.take(np.minimum(k + 1, nodes.size - 1))
+    ta = t.take(a)
+    delta = t.take(b) - ta
+    delta[a == b] = 1.0
+    s = (t - ta) / delta
+    s2 = s * s
+    s3 = s2 * s
+    h01 = 3 * s2 - 2 * s3
+    h10, h11 = (s3 - 2 * s2 + s) * delta, (s3 - s2) * delta
+    xa = X.take(a, axis=1)
+    x_pred = xa + h01 * (X.take(b, axis=1) - xa) + h10 * D.take(a, axis=1) + h11 * D.take(b, axis=1)
+    x, converged, it, f, jac = ctx.newton_batch(x_pred, t, fine_mask)
+    # accept a point if Newton converged on the turn of its prediction, the correction is
+    # small and no loop changed orientation
+    corr = np.abs(x - x_pred)
+    if not all(w == 1.0 for w in ctx.inv_xs):
+        corr *= np.asarray(ctx.inv_xs)[:, None]
+    ok = converged & (_colmax(corr) <= MAX_CORRECTION)
+    o = ctx.blocks.signs(jac, N)
+    On = O.take(nodes, axis=1)
+    if (On == On[:, :1]).all():  # one orientation at all nodes: compare with it
+        for kk in range(O.shape[0]):
+            ok &= o[kk] == On[kk, 0]
+    else:
+        Oa, Ob = O.take(a, axis=1), O.take(b, axis=1)
+        for kk in range(O.shape[0]):
+            ok &= (o[kk] == Oa[kk]) & (Oa[kk] == Ob[kk])
+    ok |= ~fine_mask
+    X[...] = x  # the nodes were not active: unchanged
+    if ctx.angle_idx:
+        # Both nodes of a segment are right (marched), so a run of batch points on another turn
+        # shows as a neighbour step of half a turn or more: march that whole segment.
+        jump = np.flatnonzero(_colmax(np.abs(np.diff(X[ctx.angle_idx], axis=1))) >= math.pi)
+        if jump.size:
+            ok &= ~(fine_mask & np.isin(k, k.take(jump)))
+    O[...] = np.where(fine_mask, o, O)
+    iters[...] = np.where(fine_mask, it, iters)
+    redo = np.flatnonzero(~ok)
+    if redo.size:
+        # Points the batch could not place safely are reached one by one from their left neighbour.
+        tl = t.tolist()
+        for k in redo.tolist():
+            left = k - 1
+            xl = X[:, left].tolist()
+            if np.all(np.isfinite(D[:, left])):
+                dl = D[:, left].tolist()
+            else:
+                dl, _ = ctx.local1(ctx.eval1(xl, tl[left]))
+            xk, dk, ok_, iters[k] = ctx.march(tl[left], xl, dl, O[:, left].tolist(), tl[k])
+            X[:, k], D[:, k], O[:, k] = xk, dk, ok_
+        f_redo, jac_redo = ctx.eval_batch(X[:, redo], t[redo])
+        f[:, redo] = f_redo
+        jac = _stack(jac, N)
+        jac[:, redo] = _stack(jac_redo, redo.size)
+    return f, jac
+
+
+def _report_near_singular(ctx, t, X, cond):
+    singular = np.flatnonzero(is_singular(cond))
+    if singular.size:
+        k = singular[0]
+        loop, _ = ctx.worst1(X[:, k].tolist(), float(t[k]), which="cond")
+        ctx.record(
+            "singular", t[k], loop,
+            f"{ctx.mech.name}: the Jacobian of loop '{loop}' is singular at input {_deg(t[k], 3)} "
+            f"(condition number {cond[k]:.3g}): a toggle or change point, where the branch cannot be told",
+            raise_kind="singular", cond=float(cond[k]),
+        )
+    near = np.flatnonzero((cond > COND_WARN) & (cond <= COND_MAX))
+    if near.size == 0:
+        return
+    k = near[np.argmax(cond[near])]
+    loop, _ = ctx.worst1(X[:, k].tolist(), float(t[k]), which="cond")
+    ctx.events.append(
+        SweepEvent(
+            "near-singular", float(t[k]), loop,
+            f"{ctx.mech.name}: {near.size} point(s) near a singular position of loop '{loop}' "
+            f"(condition number up to {cond[k]:.3g} at {_deg(t[k], 3)}): expect lost digits there",
+        )
+    )
+    warnings.warn(ctx.events[-1].message, SingularityWarning, stacklevel=3)
