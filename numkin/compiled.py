@@ -185,6 +185,8 @@ class BlockStructure:
         self.inv_xscale = [1.0 / v for v in self.xscale.tolist()]
         # scale of entry (i, j) of a scaled block: xscale_j / fscale
         self._col = [v / self.fscale for v in self.xscale.tolist()]
+        # squares of unscaled entries would leave the normal float64 range
+        self._extreme = not all(1e-30 <= c <= 1e30 for c in self._col)
         self._rows = {(a, b): [i * n + j for i in range(a, b) for j in range(a, b)] for a, b in self.blocks}
         self._small = all(b - a <= 2 for a, b in self.blocks)
         self._step = None
@@ -350,8 +352,10 @@ class BlockStructure:
                     i0 = a * n + a
                     p, q, r, s = (np.real(J[i]) for i in (i0, i0 + 1, i0 + n, i0 + n + 1))
                     ca, cb = self._col[a], self._col[a + 1]
-                    # scaled entries are of order one whatever the length scale: no overflow in the squares
-                    p, q, r, s = p * ca, q * cb, r * ca, s * cb
+                    if self._extreme:  # entries of order one whatever the length scale: no overflow in the squares
+                        p, q, r, s = p * ca, q * cb, r * ca, s * cb
+                    elif ca != cb:  # scaling all entries alike leaves the condition number alone
+                        p, q, r, s = p * (ca / cb), q, r * (ca / cb), s
                     det = p * s - q * r
                     fro = p * p + q * q + r * r + s * s
                     sg = np.copysign(1.0, det)

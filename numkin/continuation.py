@@ -54,14 +54,17 @@ import numpy as np
 from .compiled import MATH_ERRORS, _stack
 from .errors import AssemblyError, BranchError, ConvergenceError
 from .newton import (
+    COMPACT_MIN,
     COND_MAX,
     COND_WARN,
     JACOBIANS,
     check_tol,
     fd_jacobian,
+    colmax as _colmax,
     has_converged,
     is_singular,
     residual_floor,
+    solve_batch,
 )
 from .sweep import Sweep, SweepEvent, SingularityWarning
 
@@ -82,9 +85,6 @@ COND_TANGENT = 1e6
 CORRECTOR_ITERATIONS = 12
 #: Trial steps allowed for one march between nodes (accepted or refused).
 MAX_TRIALS = 100_000
-#: Batches smaller than this always iterate on whole arrays (gathering the few active
-#: columns costs more than it saves).
-COMPACT_MIN = 2000
 #: Default largest input step (rad) between the sequentially solved nodes of a sweep.
 DEFAULT_MAX_STEP = math.radians(30.0)
 #: A step that shrinks to nothing where the condition number exceeds this (or has grown
@@ -138,6 +138,7 @@ class _Continuation:
         self.last_previous = None
         self.started_on_default = False
         self.crossings: list = []  # change points passed: (input, loop)
+        self.floor = 0.0  # round-off floor of the batch's residuals (set before the batch)
 
     # ------------------------------------------------------------ one point
     def eval1(self, x, t):
@@ -202,7 +203,9 @@ class _Continuation:
             if v is None:
                 return x, "diverged", it, math.nan, None
             res = max([abs(a) for a in v[:n]]) / fscale
-            floor = residual_floor([a * w for a, w in zip(x, self.inv_xs)], t) if res > tol else 0.0
+            floor = 0.0
+            if res > tol and step >= 0.9 * prev:  # stalled above tol: is it the round-off floor?
+                floor = residual_floor([a * w for a, w in zip(x, self.inv_xs)], t)
             if has_converged(res, step, prev, tol, floor):
                 status = "converged"
                 break
@@ -265,86 +268,53 @@ class _Continuation:
     def newton_batch(self, x, t, active, maxiter=CORRECTOR_ITERATIONS):
         """Newton on the columns ``active`` of ``x`` (n, N) at the inputs ``t``; other columns are kept.
 
-        The iteration and stopping rule of :func:`numkin.newton.iterate`, with
-        the block-triangular solve. While most columns are active it works on
-        whole arrays; once few are left, on those columns only (compaction).
-        Returns ``x``, ``converged`` (N,), ``iterations`` (N,), and the
-        residuals (n, N) and (symbolic) Jacobian rows at the returned ``x``.
-        Call it under ``numpy.errstate(all="ignore")``.
+        :func:`numkin.newton.solve_batch` with the fused residual-and-Jacobian
+        rows of :meth:`CompiledMechanism.FJ_rows` (the terms of the input
+        alone computed once) and the block-triangular solve. Returns ``x``,
+        ``converged`` (N,), ``iterations`` (N,), and the residuals (n, N) and
+        Jacobian rows at the returned ``x``. Call it under
+        ``numpy.errstate(all="ignore")``.
         """
-        nn, tol = self.nn, self.tol
-        inv_xs = np.asarray(self.inv_xs)[:, None]
-        unit_scale = bool(np.all(inv_xs == 1.0))
-        xs = self.xs_arr
+        nn = self.nn
         x = np.array(x, dtype=float)
-        N = x.shape[1]
-        sym = self.symbolic
         comp, p = self.comp, self.p
-        newton_step = self.blocks.newton_step
-        floor = residual_floor(np.abs(x).max(axis=1) * inv_xs[:, 0], float(np.abs(t).max(initial=0.0)))
+        floor = self.floor
+        if self.symbolic:
+            fixed_all = comp.fixed_terms(t, p)
 
-        fixed_all = comp.fixed_terms(t, p) if sym else None
+            def evaluate(z, idx):
+                if idx is None:
+                    return self.eval_batch(z, t, fixed_all)
+                return self.eval_batch(z, t.take(idx), [u.take(idx) if np.ndim(u) else u for u in fixed_all])
 
-        def evaluate(z, tz, fixed=None):
-            if sym:
-                return self.eval_batch(z, tz, fixed_all if fixed is None else fixed)
-            return comp.F(z, tz, p), None
-
-        def jacobian(z, tz, fz, jz):
-            if sym:
+            def jacobian(z, idx, fz, jz):
                 return jz
-            return list(fd_jacobian(lambda w: comp.F(w, tz, p), z, fz, self.jacobian, xs).reshape(z.shape[1], nn).T)
 
-        def scaled_max(dx):
-            return _colmax(np.abs(dx) if unit_scale else np.abs(dx) * inv_xs)
+            fd_cost = 0
+        else:
+            xs = self.xs_arr
 
-        f, jac = evaluate(x, t)
-        fmax = _colmax(np.abs(f))
-        converged = np.zeros(N, dtype=bool)
-        iterations = np.zeros(N, dtype=int)
-        act = active & np.isfinite(fmax)
-        prev = np.full(N, np.inf)
-        for _ in range(maxiter):
-            idx = np.flatnonzero(act)
-            M = idx.size
-            if M == 0:
-                break
-            if M * 4 > N or N < COMPACT_MIN:  # whole arrays; the inactive columns do not move
-                dx, bad = newton_step(jacobian(x, t, f, jac), f)
-                upd = act & ~bad
-                if M < N or bad.any():
-                    dx[:, ~upd] = 0.0
-                x = x + dx
-                step = scaled_max(dx)
-                f, jac = evaluate(x, t)
-                fmax = _colmax(np.abs(f))
-            else:  # the active columns only
-                tz = t.take(idx)
-                z, fz = x.take(idx, axis=1), f.take(idx, axis=1)
-                jz = [r.take(idx) if np.ndim(r) else r for r in jac] if sym else None
-                dx, bad_z = newton_step(jacobian(z, tz, fz, jz), fz)
-                if bad_z.any():
-                    dx[:, bad_z] = 0.0
-                z = z + dx
-                fz, jz = evaluate(z, tz, [u.take(idx) if np.ndim(u) else u for u in fixed_all] if sym else None)
-                x[:, idx] = z
-                f[:, idx] = fz
-                if sym:
-                    jac = [_scatter(r, rz, idx, N) for r, rz in zip(jac, jz)]
-                bad = np.zeros(N, dtype=bool)
-                bad[idx] = bad_z
-                upd = act & ~bad
-                step = np.full(N, np.inf)
-                step[idx] = scaled_max(dx)
-                fmax[idx] = _colmax(np.abs(fz))
-            iterations += upd
-            done = upd & has_converged(fmax / self.fscale, step, prev, tol, floor)
-            converged |= done
-            act &= ~(done | bad) & np.isfinite(fmax)
-            prev = np.where(upd, step, prev)
-        if not sym:
-            f, jac = self.eval_batch(x, t)
-        return x, converged, iterations, f, jac
+            def evaluate(z, idx):
+                return comp.F(z, t if idx is None else t.take(idx), p), None
+
+            def jacobian(z, idx, fz, jz):
+                tz = t if idx is None else t.take(idx)
+                return list(fd_jacobian(lambda w: comp.F(w, tz, p), z, fz, self.jacobian, xs).reshape(z.shape[1], nn).T)
+
+            fd_cost = self.n if self.jacobian == "forward" else 2 * self.n
+        step = self.blocks.newton_step
+        N = x.shape[1]
+        out = solve_batch(
+            evaluate, jacobian, lambda jac, f, idx: step(jac, f), x, fscale=self.fscale, xscale=self.xs_arr,
+            tol=self.tol, maxiter=maxiter, active=active, floor=floor, fd_cost=fd_cost, compact_min=COMPACT_MIN,
+            history=False,
+            take=lambda jac, idx: [r.take(idx) if np.ndim(r) else r for r in jac],
+            put=lambda jac, sub, idx: [_scatter(r, rz, idx, N) for r, rz in zip(jac, sub)],
+        )
+        if self.symbolic:
+            return out.x, out.converged, out.iterations, out.f, out.jac
+        f, jac = self.eval_batch(out.x, t)
+        return out.x, out.converged, out.iterations, f, jac
 
     # ------------------------------------------------------------ events
     def record(self, kind, t, loop, message, *, raise_kind=None, cond=None, **extra):
@@ -452,6 +422,7 @@ class _Continuation:
                 break
             remaining = abs(t1 - t)
             dt = step
+            rate = 0.0
             if d is not None:  # no predicted change above MAX_PREDICTION
                 rate = max([abs(a) * w for a, w in zip(d, inv_xs)])
                 if rate * dt > MAX_PREDICTION:
@@ -464,7 +435,7 @@ class _Continuation:
                 t_new = t + direction * dt
             if dt < min_step or t_new == t:
                 self.fail(t0, x0, t, x, t_new, x, "singular", "singular", 0, math.nan)
-            x_pred = _predict(t, x, d, t_prev, x_prev, t_new, inv_xs)
+            x_pred = _predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate)
             x_new, status, it, res, v = self.correct(x_pred, t_new)
             reason = status
             ok = status == "converged"
@@ -481,7 +452,7 @@ class _Continuation:
                     else:
                         self.change_point(t, t_new, self.loop_names[k])
             if ok:
-                if d is not None and is_singular(max(self.blocks.cond1(v[n : n + nn])), COND_TANGENT):
+                if d is not None and not max(self.blocks.cond1(v[n : n + nn])) <= COND_TANGENT:
                     d_new = d  # a tangent solved through a near-singular Jacobian is noise: keep the last good one
                 t_prev, x_prev = t, x
                 t, x, d, o = t_new, x_new, d_new, o_new
@@ -536,14 +507,6 @@ class _Continuation:
                                cause=cause)
 
 
-def _colmax(a):
-    """Largest entry of every column of a small (n, N) array (faster than ``a.max(axis=0)``)."""
-    out = a[0]
-    for row in a[1:]:
-        out = np.maximum(out, row)
-    return out
-
-
 def _scatter(row, sub, idx, N):
     """A Jacobian row (array or number) with the columns ``idx`` replaced by ``sub``."""
     if not np.ndim(row):
@@ -554,14 +517,14 @@ def _scatter(row, sub, idx, N):
     return row
 
 
-def _predict(t, x, d, t_prev, x_prev, t_new, inv_xs):
+def _predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate):
     """Predictor of a continuation step that cannot blow up.
 
     The tangent ``x + d s``; plus the quadratic term through the previous
     point only when that point is at least :data:`SANE_DISTANCE` times the
-    step away and the term is below the step times (tangent + 1) in every
-    unknown. Without a tangent: the secant through a sane previous point, or
-    ``x`` itself.
+    step away and the term (scaled) is below the step times (1 + ``rate``),
+    ``rate`` the largest scaled entry of the tangent. Without a tangent: the
+    secant through a sane previous point, or ``x`` itself.
     """
     s = t_new - t
     if d is None:
@@ -580,10 +543,8 @@ def _predict(t, x, d, t_prev, x_prev, t_new, inv_xs):
         return lin
     s2 = s * s / (h * h)
     quad = [(b - a - da * h) * s2 for a, da, b in zip(x, d, x_prev)]
-    limit = abs(s)
-    for q, da, w in zip(quad, d, inv_xs):
-        if not abs(q) * w <= limit * (abs(da) * w + 1.0):
-            return lin
+    if not max([abs(q) * w for q, w in zip(quad, inv_xs)]) <= abs(s) * (1.0 + rate):
+        return lin
     return [a + q for a, q in zip(lin, quad)]
 
 
@@ -772,6 +733,9 @@ def _fill(ctx, t, X, D, O, iters, nodes):
     h10, h11 = (s3 - 2 * s2 + s) * delta, (s3 - s2) * delta
     xa = X.take(a, axis=1)
     x_pred = xa + h01 * (X.take(b, axis=1) - xa) + h10 * D.take(a, axis=1) + h11 * D.take(b, axis=1)
+    # the round-off floor of the residual: sines of the largest angles and inputs of the sweep
+    big = [float(np.abs(X[k].take(nodes)).max()) * w for k, w in enumerate(ctx.inv_xs)]
+    ctx.floor = residual_floor(big, max(abs(float(t[0])), abs(float(t[-1]))))
     x, converged, it, f, jac = ctx.newton_batch(x_pred, t, fine_mask)
     # accept a point if Newton converged on the turn of its prediction, the correction is
     # small and no loop changed orientation

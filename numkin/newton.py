@@ -47,7 +47,7 @@ import numpy as np
 
 __all__ = [
     "newton", "NewtonResult", "JACOBIANS", "has_converged", "check_tol", "is_singular", "fd_step",
-    "fd_jacobian", "COND_MAX", "COND_WARN", "TOL_MIN",
+    "fd_jacobian", "COND_MAX", "COND_WARN", "TOL_MIN", "solve_batch", "dense_solver", "colmax", "iterate", "residual_floor",
 ]
 
 EPS = np.finfo(float).eps
@@ -72,9 +72,17 @@ def has_converged(res, step, prev_step, tol, floor=0.0):
     residual at the floor whose steps have stopped shrinking has converged
     as far as float64 allows.
     """
+    if isinstance(res, float):  # one point (the continuation's scalar kernel): plain logic, no arrays
+        stuck = step >= 0.9 * prev_step
+        if res <= tol:
+            return step <= tol or (step <= tol ** (2.0 / 3.0) and step <= 0.25 * prev_step) or stuck
+        return stuck and res <= floor
     superlinear = (step <= tol ** (2.0 / 3.0)) & (step <= 0.25 * prev_step)
     stuck = step >= 0.9 * prev_step
-    return ((res <= tol) & ((step <= tol) | superlinear | stuck)) | ((res <= floor) & stuck)
+    done = (res <= tol) & ((step <= tol) | superlinear | stuck)
+    if isinstance(floor, float) and not floor:
+        return done
+    return done | ((res <= floor) & stuck)
 
 
 def residual_floor(x, t=0.0):
@@ -104,6 +112,8 @@ def check_tol(tol, name="tol"):
 
 def is_singular(cond, cond_max=COND_MAX):
     """The conditioning rule every Newton path applies: True (or a mask) where ``cond`` exceeds ``cond_max`` or is NaN."""
+    if isinstance(cond, float):
+        return not cond <= cond_max
     return ~(np.asarray(cond) <= cond_max) if np.ndim(cond) else not cond <= cond_max
 
 
@@ -214,6 +224,7 @@ class BatchResult:
     nfev: np.ndarray = None  # (N,) residual evaluations per system
     njev: np.ndarray = None  # (N,) Jacobian evaluations per system
     x_history: list = field(default_factory=list)  # of (n, N) arrays, with record=True
+    jac: object = None  # the fused Jacobian at x, from solve_batch
 
 
 def fd_jacobian(F, x, f0, method, xscale):
@@ -267,8 +278,158 @@ def _solve(jac, rhs, fscale, xscale, cond_max):
     return dx, bad
 
 
+#: Batches smaller than this iterate on whole arrays to the end (gathering the few active
+#: columns costs more than it saves); larger ones on the active columns once few are left.
+COMPACT_MIN = 2000
+
+
+def colmax(a):
+    """Largest entry of every column of a small (n, N) array (faster than ``a.max(axis=0)``)."""
+    out = a[0]
+    for row in a[1:]:
+        out = np.maximum(out, row)
+    return out
+
+
+def _take_dense(jac, idx):
+    return jac[idx]
+
+
+def _put_dense(jac, sub, idx):
+    jac[idx] = sub
+    return jac
+
+
+def solve_batch(evaluate, jacobian, solve, x0, *, fscale, xscale, tol=1e-12, maxiter=50, active=None, floor=0.0,
+                record=False, history=True, take=_take_dense, put=_put_dense, fd_cost=0, compact_min=COMPACT_MIN):
+    """The one Newton-Raphson iteration of numkin, on a batch of independent systems.
+
+    Every Newton path (:func:`newton`, :meth:`Mechanism.solve`, the
+    complex-step derivatives, the batch of a sweep) is this loop with its own
+    evaluation and linear solve plugged in; the stopping rule is
+    :func:`has_converged`, the conditioning rule the ``solve`` plug's.
+
+    Parameters
+    ----------
+    evaluate : callable
+        ``evaluate(x, idx) -> (f, jac)``: residuals (n, M) at ``x`` (n, M),
+        the columns ``idx`` of the batch (an index array, or None for all),
+        and the Jacobian if it comes with them (fused), else None.
+    jacobian : callable
+        ``jacobian(x, idx, f, jac) -> J``: the Jacobian in the form ``solve``
+        takes (returns ``jac`` itself when it is fused).
+    solve : callable
+        ``solve(J, f, idx) -> (dx, bad)``: the Newton step ``-J^-1 f`` (n, M)
+        and a mask of the systems refused (singular, non-finite, or over the
+        condition-number limit); their ``dx`` is ignored.
+    x0 : ndarray (n, N)
+    fscale : float or ndarray (N,)
+        Residual scale.
+    xscale : ndarray (n,)
+        Unknown scales.
+    active : ndarray of bool (N,), optional
+        Systems to solve; the others are kept as they are.
+    floor : float
+        Round-off floor of the scaled residual (see :func:`has_converged`).
+    record : bool
+        Keep every iterate in ``BatchResult.x_history``.
+    history : bool
+        Keep the residual and step norms of every iteration and count
+        evaluations (``nfev``, ``njev``); a sweep's batch goes without.
+    take, put : callable
+        Gather / scatter the columns ``idx`` of a fused Jacobian (for
+        compaction).
+    fd_cost : int
+        Residual evaluations per Jacobian (finite differences), for ``nfev``.
+
+    Returns
+    -------
+    BatchResult
+        With ``jac``, the fused Jacobian at the returned ``x`` (None if not fused).
+    """
+    x = np.array(x0, copy=True)
+    n, N = x.shape
+    inv_xs = 1.0 / np.asarray(xscale, dtype=float)[:, None]
+    unit = bool(np.all(inv_xs == 1.0))
+    fscale = np.broadcast_to(np.asarray(fscale, dtype=float), (N,))
+    f, jac = evaluate(x, None)
+    fmax = colmax(np.abs(f))
+    converged = np.zeros(N, dtype=bool)
+    singular = np.zeros(N, dtype=bool)
+    iterations = np.zeros(N, dtype=int)
+    nfev = np.ones(N, dtype=int)
+    njev = np.zeros(N, dtype=int)
+    act = np.isfinite(fmax) if active is None else np.asarray(active, dtype=bool) & np.isfinite(fmax)
+    res_hist = [fmax / fscale]
+    step_hist = []
+    x_hist = [x.copy()] if record else []
+    prev = np.full(N, np.inf)
+    for _ in range(maxiter):
+        idx = np.flatnonzero(act)
+        M = idx.size
+        if M == 0:
+            break
+        if M * 4 > N or N < compact_min:  # whole arrays; the inactive columns do not move
+            dx, bad = solve(jacobian(x, None, f, jac), f, None)
+            bad = bad & act
+            upd = act & ~bad
+            if M < N or bad.any():
+                dx[:, ~upd] = 0.0
+            x = x + dx
+            step = colmax(np.abs(dx) if unit else np.abs(dx) * inv_xs)
+            f, jac = evaluate(x, None)
+            fmax = colmax(np.abs(f))
+        else:  # the active columns only
+            z, fz = x.take(idx, axis=1), f.take(idx, axis=1)
+            dx, bad_z = solve(jacobian(z, idx, fz, None if jac is None else take(jac, idx)), fz, idx)
+            if bad_z.any():
+                dx[:, bad_z] = 0.0
+            z = z + dx
+            fz, jz = evaluate(z, idx)
+            x[:, idx] = z
+            f[:, idx] = fz
+            if jac is not None:
+                jac = put(jac, jz, idx)
+            bad = np.zeros(N, dtype=bool)
+            bad[idx] = bad_z
+            upd = act & ~bad
+            step = np.full(N, np.inf)
+            step[idx] = colmax(np.abs(dx) if unit else np.abs(dx) * inv_xs)
+            fmax[idx] = colmax(np.abs(fz))
+        iterations += upd
+        singular |= bad
+        res = fmax / fscale
+        done = upd & has_converged(res, step, prev, tol, floor)
+        if history:
+            njev += act
+            nfev += act * fd_cost + upd
+            step_hist.append(np.where(upd, step, np.nan))
+            res_hist.append(res)
+        if record:
+            x_hist.append(x.copy())
+        converged |= done
+        act &= ~(done | bad) & np.isfinite(fmax)
+        prev = np.where(upd, step, prev)
+    return BatchResult(x, converged, singular, iterations, fmax / fscale, res_hist, step_hist, f, nfev, njev, x_hist,
+                       jac)
+
+
+def dense_solver(fscale, xscale, cond_max=COND_MAX):
+    """The ``solve`` plug for (M, n, n) Jacobians: LU with the conditioning rule (``cond_max=None``:
+    only exactly singular or non-finite solves are refused)."""
+    fscale = np.broadcast_to(np.asarray(fscale, dtype=float), (np.size(fscale),)) if np.ndim(fscale) else fscale
+    xscale = np.asarray(xscale, dtype=float)
+
+    def solve(jac, f, idx):
+        fs = fscale if not np.ndim(fscale) else (fscale if idx is None else fscale[idx])
+        dx, bad = _solve(jac, -f.T, np.broadcast_to(fs, (jac.shape[0],)), xscale, cond_max)
+        return dx.T, bad
+
+    return solve
+
+
 def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=COND_MAX, check_cond=True, record=False):
-    """Newton-Raphson on a batch of independent systems.
+    """Newton-Raphson on a batch of independent systems, dense linear solves (:func:`solve_batch`).
 
     Parameters
     ----------
@@ -296,57 +457,31 @@ def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=COND_MA
     -------
     BatchResult
     """
-    x = np.array(x0, copy=True)
-    n, N = x.shape
+    x0 = np.asarray(x0)
+    n, N = x0.shape
     xscale = np.asarray(xscale, dtype=float)
-    fscale_arr = np.broadcast_to(np.asarray(fscale, dtype=float), (N,))
-    f = F(x, np.arange(N))
-    res = np.max(np.abs(f), axis=0) / fscale_arr
-    converged = np.zeros(N, dtype=bool)
-    singular = np.zeros(N, dtype=bool)
-    iterations = np.zeros(N, dtype=int)
-    active = np.isfinite(res)
-    res_hist = [res.copy()]
-    step_hist = []
-    x_hist = [x.copy()] if record else []
-    nfev = np.ones(N, dtype=int)
-    njev = np.zeros(N, dtype=int)
-    fd_cost = 0 if not isinstance(J, str) else (n if J == "forward" else 2 * n)
-    prev_step = np.full(N, np.inf)
-    for _ in range(maxiter):
-        if not active.any():
-            break
-        idx = np.flatnonzero(active)
-        xa = x[:, idx]
-        fa = f[:, idx]
-        if isinstance(J, str):
-            ja = fd_jacobian(lambda z: F(z, idx), xa, fa, J, xscale)
-        else:
-            ja = J(xa, idx)
-        njev[idx] += 1
-        nfev[idx] += fd_cost
-        dx, bad = _solve(ja, -fa.T, fscale_arr[idx], xscale, cond_max if check_cond else None)
-        singular[idx[bad]] = True
-        good = idx[~bad]
-        step = np.full(N, np.nan)
-        if good.size:
-            x[:, good] += dx[~bad].T
-            iterations[good] += 1
-            step[good] = np.max(np.abs(dx[~bad].T / xscale[:, None]), axis=0)
-            f_new = F(x[:, good], good)
-            nfev[good] += 1
-            f[:, good] = f_new
-            res[good] = np.max(np.abs(f_new), axis=0) / fscale_arr[good]
-        step_hist.append(step)
-        res_hist.append(res.copy())
-        if record:
-            x_hist.append(x.copy())
-        done = has_converged(res, step, prev_step, tol)
-        converged |= done & active
-        diverged = ~np.isfinite(res) | ~np.all(np.isfinite(x), axis=0)
-        active &= ~(converged | singular | diverged)
-        prev_step = np.where(np.isnan(step), prev_step, step)
-    return BatchResult(x, converged, singular, iterations, res, res_hist, step_hist, f, nfev, njev, x_hist)
+    every = np.arange(N)
+
+    def evaluate(x, idx):
+        return F(x, every if idx is None else idx), None
+
+    if isinstance(J, str):
+        method = J
+
+        def jacobian(x, idx, f, _):
+            i = every if idx is None else idx
+            return fd_jacobian(lambda z: F(z, i), x, f, method, xscale)
+
+        fd_cost = n if method == "forward" else 2 * n
+    else:
+
+        def jacobian(x, idx, f, _):
+            return J(x, every if idx is None else idx)
+
+        fd_cost = 0
+    solve = dense_solver(fscale, xscale, cond_max if check_cond else None)
+    return solve_batch(evaluate, jacobian, solve, x0, fscale=fscale, xscale=xscale, tol=tol, maxiter=maxiter,
+                       record=record, fd_cost=fd_cost, compact_min=0)
 
 
 def _sympy_system(exprs, unknowns):
