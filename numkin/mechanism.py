@@ -16,9 +16,9 @@ import numpy as np
 import sympy as sp
 
 from .compiled import BlockStructure, CompiledMechanism
-from .errors import AssemblyError
+from .errors import AssemblyError, ConvergenceError
 from .loops import Loop, as_symbol
-from .newton import JACOBIANS, NewtonResult, check_tol, iterate, scaled_cond
+from .newton import JACOBIANS, TOL_MIN, NewtonResult, check_tol, iterate, residual_floor, scaled_cond
 
 __all__ = ["Mechanism", "LENGTH_SCALE_RANGE"]
 
@@ -344,6 +344,54 @@ class Mechanism:
             worst = max(self.loop_residuals(out.x, t).items(), key=lambda kv: np.nan_to_num(kv[1][0], nan=np.inf))
             msg = f"did not converge: loop '{worst[0]}' residual {worst[1][0]:.3g} after {out.iterations[0]} iterations"
         return NewtonResult.from_batch(out, 0, cond, msg)
+
+    def polish(self, x, inputs, *, maxiter: int = 30) -> np.ndarray:
+        """Positions refined by Newton to the round-off floor, with numkin's one stopping and conditioning rule.
+
+        Parameters
+        ----------
+        x : array_like (n, M)
+            Solved (or nearly solved) positions, real or complex, at ``inputs``.
+        inputs : array_like (M,)
+            Input values (rad), real or complex.
+
+        Returns
+        -------
+        ndarray (n, M)
+
+        Raises
+        ------
+        ConvergenceError
+            If a position does not reach the floor (names the input and the loop).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from numkin import linkages
+        >>> m = linkages.four_bar(4, 1, 3, 3)
+        >>> x = m.polish(np.array([[0.5682], [2.0834]]), np.radians([90.0]))
+        >>> np.round(np.degrees(x[:, 0]), 8)
+        array([ 32.5561258 , 119.37138726])
+        """
+        t = np.asarray(inputs)
+        x = np.asarray(x)
+        scaled = np.abs(x).max(axis=1, initial=0.0) / self.xscale if x.size else np.zeros(0)
+        floor = residual_floor(scaled, float(np.abs(t).max(initial=0.0)))
+        out = iterate(self.residual_function(t), self.jacobian_function(t), x, fscale=self.length_scale,
+                      xscale=self.xscale, tol=TOL_MIN, maxiter=maxiter, floor=floor)
+        bad = np.flatnonzero(~out.converged)
+        if bad.size:
+            k = int(bad[0])
+            worst = max(self.loop_residuals(out.x[:, k : k + 1].real, t[k : k + 1].real).items(),
+                        key=lambda kv: np.nan_to_num(kv[1][0], nan=np.inf))
+            raise ConvergenceError(
+                f"{self.name}: position at input {math.degrees(float(np.real(t[k]))):.3f}° not refined to "
+                f"round-off: loop '{worst[0]}' residual {worst[1][0]:.3g} after {int(out.iterations[k])} iterations"
+                + (" (singular Jacobian)" if out.singular[k] else ""),
+                input_value=float(np.real(t[k])), loop=worst[0], residual=float(worst[1][0]),
+                iterations=int(out.iterations[k]), cause="singular" if out.singular[k] else "no convergence",
+            )
+        return out.x
 
     def sweep(
         self,

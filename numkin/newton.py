@@ -428,7 +428,8 @@ def dense_solver(fscale, xscale, cond_max=COND_MAX):
     return solve
 
 
-def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=COND_MAX, check_cond=True, record=False):
+def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=COND_MAX, check_cond=True, record=False,
+            floor=0.0):
     """Newton-Raphson on a batch of independent systems, dense linear solves (:func:`solve_batch`).
 
     Parameters
@@ -452,6 +453,8 @@ def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=COND_MA
         or non-finite solve is refused.
     record : bool
         Keep every iterate in ``BatchResult.x_history``.
+    floor : float
+        Round-off floor of the scaled residual (see :func:`has_converged`).
 
     Returns
     -------
@@ -481,7 +484,7 @@ def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=COND_MA
         fd_cost = 0
     solve = dense_solver(fscale, xscale, cond_max if check_cond else None)
     return solve_batch(evaluate, jacobian, solve, x0, fscale=fscale, xscale=xscale, tol=tol, maxiter=maxiter,
-                       record=record, fd_cost=fd_cost, compact_min=0)
+                       record=record, fd_cost=fd_cost, compact_min=0, floor=floor)
 
 
 def _sympy_system(exprs, unknowns):
