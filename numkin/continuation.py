@@ -81,6 +81,8 @@ SANE_DISTANCE = 0.2
 #: Condition number above which a solved point's tangent is not used to predict (it carries
 #: the position's error times the condition number: noise next to a change point).
 COND_TANGENT = 1e6
+#: Steps (rad) below which that check is made: steps shrink so only next to a singular position.
+TANGENT_CHECK_STEP = 1e-3
 #: Newton steps allowed for a continuation corrector.
 CORRECTOR_ITERATIONS = 12
 #: Trial steps allowed for one march between nodes (accepted or refused).
@@ -452,7 +454,7 @@ class _Continuation:
                     else:
                         self.change_point(t, t_new, self.loop_names[k])
             if ok:
-                if d is not None and not max(self.blocks.cond1(v[n : n + nn])) <= COND_TANGENT:
+                if dt < TANGENT_CHECK_STEP and d is not None and not max(self.blocks.cond1(v[n : n + nn])) <= COND_TANGENT:
                     d_new = d  # a tangent solved through a near-singular Jacobian is noise: keep the last good one
                 t_prev, x_prev = t, x
                 t, x, d, o = t_new, x_new, d_new, o_new
@@ -635,6 +637,16 @@ def _solve_first(ctx, t0, x_guess, maxiter, note=""):
     if moved:  # reduced to the guess's turn, then polished there
         x, status, it2, _, v = ctx.newton1(x, t0, maxiter, cond_max=COND_MAX)
         it += it2
+    far = [k for k in ctx.angle_idx if abs(guess[k]) > TWO_PI and abs(x[k] - guess[k]) > 1.0]
+    if far:
+        k = far[0]
+        name = mech.unknowns[k]
+        warnings.warn(
+            f"{mech.name}: the guess {name} = {guess[k]:g} is more than a turn from zero and the solution "
+            f"at {where} is {abs(x[k] - guess[k]):.3g} rad away from it: angles are in rad (was the guess "
+            f"in degrees?); the sweep keeps the guess's turn ({name} starts at {math.degrees(x[k]):.6g}°)",
+            UserWarning, stacklevel=4,
+        )
     return x, it, v
 
 

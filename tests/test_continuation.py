@@ -382,3 +382,15 @@ def test_slider_crank_sweeps_match_the_closed_form_or_are_refused(r, rod, e, inp
     np.testing.assert_allclose(sweep["theta3"], t3, rtol=0, atol=1e-8)
     np.testing.assert_allclose(sweep["x"], x, rtol=0, atol=1e-8 * max(r, l))
     assert_continuous(sweep)
+
+
+def test_guess_in_degrees_is_warned_about():
+    m = linkages.four_bar(4, 1, 3, 3)
+    with pytest.warns(UserWarning, match="in degrees"):
+        sweep = m.sweep(np.radians(np.arange(0.0, 31.0)), guess=(30.0, 120.0))
+    # still the guess's turn, on a continuous branch
+    ref, rate = four_bar_on_branch(sweep.inputs, (4, 1, 3, 3), side_of(sweep, (4, 1, 3, 3)))
+    same_branch_continuous(sweep, ref, rate)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        m.sweep(np.radians(np.arange(0.0, 31.0)), guess=(0.5, 2.1))  # a guess in rad: no warning
