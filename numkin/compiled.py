@@ -23,7 +23,7 @@ from functools import cached_property, lru_cache
 import numpy as np
 import sympy as sp
 
-__all__ = ["vector_function", "scalar_function", "CompiledMechanism", "BlockStructure"]
+__all__ = ["vector_function", "scalar_function", "CompiledMechanism", "BlockStructure", "stack_rows", "MATH_ERRORS"]
 
 #: Errors the ``math`` module raises where numpy returns NaN or inf.
 MATH_ERRORS = (ValueError, ZeroDivisionError, OverflowError)
@@ -211,7 +211,7 @@ class BlockStructure:
         for r in rows[1:]:
             total = total + r
         bad = ~np.isfinite(total)
-        dx = _stack(rows, f.shape[1])
+        dx = stack_rows(rows, f.shape[1])
         if bad.any():
             dx[:, bad] = np.nan
         return dx, bad
@@ -302,7 +302,7 @@ class BlockStructure:
                     det = J[a * n + a]
                     dx[a] = r[0] / det
                 else:
-                    m = np.moveaxis(_stack([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0)
+                    m = np.moveaxis(stack_rows([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0)
                     det = np.linalg.det(m)
                     ok = np.isfinite(det) & (det != 0)
                     sol = np.full((size, N), np.nan, dtype=np.result_type(m, rhs))
@@ -312,7 +312,7 @@ class BlockStructure:
                 det = np.real(det)
                 signs[k] = np.sign(det)
                 bad |= ~(det != 0)
-            out = _stack(dx, N)
+            out = stack_rows(dx, N)
             bad |= ~np.isfinite(out.sum(axis=0))
         out[:, bad] = np.nan
         return out, signs, bad
@@ -329,7 +329,7 @@ class BlockStructure:
             elif size == 1:
                 det = J[a * n + a]
             else:
-                det = np.linalg.det(np.moveaxis(_stack([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0))
+                det = np.linalg.det(np.moveaxis(stack_rows([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0))
             out[k] = np.sign(np.real(det))
         return out
 
@@ -370,7 +370,7 @@ class BlockStructure:
                     e = np.real(J[a * n + a])
                     out[k] = np.where(np.isfinite(e) & (e != 0), 1.0, np.inf)
                 else:
-                    m = np.moveaxis(_stack([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0)
+                    m = np.moveaxis(stack_rows([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0)
                     m = np.real(m) * (np.asarray(self._col[a:b])[None, None, :])
                     c = np.full(N, np.inf)
                     ok = np.all(np.isfinite(m), axis=(1, 2))
@@ -380,7 +380,7 @@ class BlockStructure:
         return out
 
 
-def _stack(rows, N):
+def stack_rows(rows, N):
     """Rows that are (N,) arrays or numbers, as one (len(rows), N) array."""
     if all(np.ndim(r) for r in rows):
         return np.array(rows)
@@ -389,6 +389,9 @@ def _stack(rows, N):
     for i, r in enumerate(rows):
         out[i] = r
     return out
+
+
+_stack = stack_rows  # the former name
 
 
 def _cond2(p, q, r, s):

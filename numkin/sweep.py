@@ -192,10 +192,13 @@ class Sweep:
 
 
 
-def __getattr__(name):
-    # The algorithm imports this module; it is loaded on first use of ``run_sweep``.
-    if name == "run_sweep":
-        from .continuation import run_sweep
+_MOVED = ("run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "CORRECTOR_ITERATIONS", "TOGGLE_COND", "TOGGLE_GROWTH")
 
-        return run_sweep
+
+def __getattr__(name):
+    # The algorithm (which imports this module) is loaded on first use of its names here.
+    if name in _MOVED:
+        from . import continuation, march
+
+        return getattr(continuation, name, None) or getattr(march, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
