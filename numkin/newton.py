@@ -228,7 +228,7 @@ def solve_batch(evaluate, jacobian, solve, x0, *, fscale, xscale, tol=1e-12, max
     n, N = x.shape
     inv_xs = 1.0 / np.asarray(xscale, dtype=float)[:, None]
     unit = bool(np.all(inv_xs == 1.0))
-    fscale = np.broadcast_to(np.asarray(fscale, dtype=float), (N,))
+    fscale = float(fscale) if not np.ndim(fscale) else np.broadcast_to(np.asarray(fscale, dtype=float), (N,))
     f, jac = evaluate(x, None)
     fmax = colmax(np.abs(f))
     converged = np.zeros(N, dtype=bool)

@@ -87,7 +87,7 @@ def has_converged(res, step, prev_step, tol, floor=0.0):
     superlinear = (step <= tol ** (2.0 / 3.0)) & (step <= 0.25 * prev_step)
     stuck = step >= 0.9 * prev_step
     done = (res <= tol) & ((step <= tol) | superlinear | stuck)
-    if isinstance(floor, float) and not floor:
+    if isinstance(floor, float) and floor <= tol:  # the floor clause adds nothing then
         return done
     return done | ((res <= floor) & stuck)
 
