@@ -34,9 +34,12 @@ def _lambdify(exprs: tuple, args: tuple, modules: str, cse: bool):
     """``sympy.lambdify`` once per (expressions, arguments): mechanisms of one shape share code.
 
     Parameters enter as symbols, so e.g. every four-bar compiles to the same
-    functions; building another one costs no new compilation.
+    functions; building another one costs no new compilation. The generated
+    code is also kept on disk between runs (:mod:`numkin.kernel_cache`).
     """
-    return sp.lambdify(args, list(exprs), modules=modules, cse=cse)
+    from .kernel_cache import cached_lambdify
+
+    return cached_lambdify(exprs, args, modules, cse)
 
 
 def vector_function(exprs, args, varying=None):
