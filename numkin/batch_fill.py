@@ -57,8 +57,8 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
     xa = X.take(a, axis=1)
     x_pred = xa + h01 * (X.take(b, axis=1) - xa) + h10 * D.take(a, axis=1) + h11 * D.take(b, axis=1)
     # the round-off floor of the residual: sines of the largest angles and inputs of the sweep
-    big = [float(np.abs(X[k].take(nodes)).max()) * w for k, w in enumerate(ctx.inv_xs)]
-    ctx.floor = residual_floor(big, max(abs(float(t[0])), abs(float(t[-1]))))
+    big = float(np.abs(X.take(nodes, axis=1)).max() * max(ctx.inv_xs))
+    ctx.floor = residual_floor([big], max(abs(float(t[0])), abs(float(t[-1]))))
     x, converged, it, f, jac = ctx.newton_batch(x_pred, t, fine_mask)
     # accept a point if Newton converged on the turn of its prediction, the correction is
     # small and no loop changed orientation
@@ -80,7 +80,8 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
     if ctx.angle_idx:
         # Both nodes of a segment are right (marched), so a run of batch points on another turn
         # shows as a neighbour step of half a turn or more: march that whole segment.
-        jump = np.flatnonzero(_colmax(np.abs(np.diff(X[ctx.angle_idx], axis=1))) >= math.pi)
+        ang = X if len(ctx.angle_idx) == X.shape[0] else X[ctx.angle_idx]
+        jump = np.flatnonzero(_colmax(np.abs(np.diff(ang, axis=1))) >= math.pi)
         if jump.size:
             ok &= ~(fine_mask & np.isin(k, k.take(jump)))
     O[...] = np.where(fine_mask, o, O)

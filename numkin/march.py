@@ -93,6 +93,7 @@ class Continuation:
         self.xs_arr = np.asarray(mech.xscale, dtype=float)
         self.blocks = mech.block_structure
         self.inv_xs = self.blocks.inv_xscale
+        self.unit_scale = all(w == 1.0 for w in self.inv_xs)  # angles only: no scaling in the step tests
         self.loop_names = [lp.name for lp in mech.loops]
         self.angle_idx = [k for k, u in enumerate(mech.unknowns) if u in mech.angles]
         self._fjt = comp.scalar_FJT
@@ -204,6 +205,8 @@ class Continuation:
         return self.blocks.solve1(v[n : n + nn], [-a for a in v[n + nn :]])
 
     def small_correction(self, x, x_pred) -> bool:
+        if self.unit_scale:
+            return max([abs(a - b) for a, b in zip(x, x_pred)]) <= MAX_CORRECTION
         return max([abs(a - b) * w for a, b, w in zip(x, x_pred, self.inv_xs)]) <= MAX_CORRECTION
 
     def worst1(self, x, t, which="residual"):
@@ -379,6 +382,7 @@ class Continuation:
         iters = 0
         inv_xs = self.inv_xs
         n, nn = self.n, self.nn
+        unit = self.unit_scale
         for _ in range(MAX_TRIALS):
             if t == t1:
                 break
@@ -386,7 +390,7 @@ class Continuation:
             dt = step
             rate = 0.0
             if d is not None:  # no predicted change above MAX_PREDICTION
-                rate = max([abs(a) * w for a, w in zip(d, inv_xs)])
+                rate = max(map(abs, d)) if unit else max([abs(a) * w for a, w in zip(d, inv_xs)])
                 if rate * dt > MAX_PREDICTION:
                     dt = MAX_PREDICTION / rate
             if remaining <= dt * (1.0 + 1e-9):
@@ -397,7 +401,7 @@ class Continuation:
                 t_new = t + direction * dt
             if dt < min_step or t_new == t:
                 self.fail(t0, x0, t, x, t_new, x, "singular", "singular", 0, math.nan)
-            x_pred = predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate)
+            x_pred = predict(t, x, d, t_prev, x_prev, t_new, None if unit else inv_xs, rate)
             x_new, status, it, res, v = self.correct(x_pred, t_new)
             reason = status
             ok = status == "converged"
@@ -485,7 +489,8 @@ def predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate):
     point only when that point is at least :data:`SANE_DISTANCE` times the
     step away and the term (scaled) is below the step times (1 + ``rate``),
     ``rate`` the largest scaled entry of the tangent. Without a tangent: the
-    secant through a sane previous point, or ``x`` itself.
+    secant through a sane previous point, or ``x`` itself. ``inv_xs`` are the
+    unknowns' inverse scales (None: all one).
     """
     s = t_new - t
     if d is None:
@@ -493,7 +498,7 @@ def predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate):
             return list(x)
         r = s / (t - t_prev)
         lin = [a + (a - b) * r for a, b in zip(x, x_prev)]
-        if max([abs(a - b) * w for a, b, w in zip(lin, x, inv_xs)]) <= MAX_PREDICTION:
+        if max([abs(a - b) * w for a, b, w in zip(lin, x, inv_xs or [1.0] * len(x))]) <= MAX_PREDICTION:
             return lin
         return list(x)
     lin = [a + da * s for a, da in zip(x, d)]
@@ -504,6 +509,6 @@ def predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate):
         return lin
     s2 = s * s / (h * h)
     quad = [(b - a - da * h) * s2 for a, da, b in zip(x, d, x_prev)]
-    if not max([abs(q) * w for q, w in zip(quad, inv_xs)]) <= abs(s) * (1.0 + rate):
+    if not max([abs(q) * w for q, w in zip(quad, inv_xs)] if inv_xs else map(abs, quad)) <= abs(s) * (1.0 + rate):
         return lin
     return [a + q for a, q in zip(lin, quad)]
