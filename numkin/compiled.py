@@ -23,7 +23,7 @@ from functools import cached_property, lru_cache
 import numpy as np
 import sympy as sp
 
-__all__ = ["vector_function", "scalar_function", "CompiledMechanism", "BlockStructure"]
+__all__ = ["vector_function", "scalar_function", "CompiledMechanism", "BlockStructure", "stack_rows", "MATH_ERRORS"]
 
 #: Errors the ``math`` module raises where numpy returns NaN or inf.
 MATH_ERRORS = (ValueError, ZeroDivisionError, OverflowError)
@@ -34,9 +34,12 @@ def _lambdify(exprs: tuple, args: tuple, modules: str, cse: bool):
     """``sympy.lambdify`` once per (expressions, arguments): mechanisms of one shape share code.
 
     Parameters enter as symbols, so e.g. every four-bar compiles to the same
-    functions; building another one costs no new compilation.
+    functions; building another one costs no new compilation. The generated
+    code is also kept on disk between runs (:mod:`numkin.kernel_cache`).
     """
-    return sp.lambdify(args, list(exprs), modules=modules, cse=cse)
+    from .kernel_cache import cached_lambdify
+
+    return cached_lambdify(exprs, args, modules, cse)
 
 
 def vector_function(exprs, args, varying=None):
@@ -185,6 +188,8 @@ class BlockStructure:
         self.inv_xscale = [1.0 / v for v in self.xscale.tolist()]
         # scale of entry (i, j) of a scaled block: xscale_j / fscale
         self._col = [v / self.fscale for v in self.xscale.tolist()]
+        # squares of unscaled entries would leave the normal float64 range
+        self._extreme = not all(1e-30 <= c <= 1e30 for c in self._col)
         self._rows = {(a, b): [i * n + j for i in range(a, b) for j in range(a, b)] for a, b in self.blocks}
         self._small = all(b - a <= 2 for a, b in self.blocks)
         self._step = None
@@ -209,7 +214,7 @@ class BlockStructure:
         for r in rows[1:]:
             total = total + r
         bad = ~np.isfinite(total)
-        dx = _stack(rows, f.shape[1])
+        dx = stack_rows(rows, f.shape[1])
         if bad.any():
             dx[:, bad] = np.nan
         return dx, bad
@@ -300,7 +305,7 @@ class BlockStructure:
                     det = J[a * n + a]
                     dx[a] = r[0] / det
                 else:
-                    m = np.moveaxis(_stack([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0)
+                    m = np.moveaxis(stack_rows([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0)
                     det = np.linalg.det(m)
                     ok = np.isfinite(det) & (det != 0)
                     sol = np.full((size, N), np.nan, dtype=np.result_type(m, rhs))
@@ -310,7 +315,7 @@ class BlockStructure:
                 det = np.real(det)
                 signs[k] = np.sign(det)
                 bad |= ~(det != 0)
-            out = _stack(dx, N)
+            out = stack_rows(dx, N)
             bad |= ~np.isfinite(out.sum(axis=0))
         out[:, bad] = np.nan
         return out, signs, bad
@@ -327,7 +332,7 @@ class BlockStructure:
             elif size == 1:
                 det = J[a * n + a]
             else:
-                det = np.linalg.det(np.moveaxis(_stack([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0))
+                det = np.linalg.det(np.moveaxis(stack_rows([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0))
             out[k] = np.sign(np.real(det))
         return out
 
@@ -350,7 +355,9 @@ class BlockStructure:
                     i0 = a * n + a
                     p, q, r, s = (np.real(J[i]) for i in (i0, i0 + 1, i0 + n, i0 + n + 1))
                     ca, cb = self._col[a], self._col[a + 1]
-                    if ca != cb:  # scaling all entries alike leaves the condition number alone
+                    if self._extreme:  # entries of order one whatever the length scale: no overflow in the squares
+                        p, q, r, s = p * ca, q * cb, r * ca, s * cb
+                    elif ca != cb:  # scaling all entries alike leaves the condition number alone
                         p, q, r, s = p * (ca / cb), q, r * (ca / cb), s
                     det = p * s - q * r
                     fro = p * p + q * q + r * r + s * s
@@ -366,7 +373,7 @@ class BlockStructure:
                     e = np.real(J[a * n + a])
                     out[k] = np.where(np.isfinite(e) & (e != 0), 1.0, np.inf)
                 else:
-                    m = np.moveaxis(_stack([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0)
+                    m = np.moveaxis(stack_rows([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0)
                     m = np.real(m) * (np.asarray(self._col[a:b])[None, None, :])
                     c = np.full(N, np.inf)
                     ok = np.all(np.isfinite(m), axis=(1, 2))
@@ -376,7 +383,7 @@ class BlockStructure:
         return out
 
 
-def _stack(rows, N):
+def stack_rows(rows, N):
     """Rows that are (N,) arrays or numbers, as one (len(rows), N) array."""
     if all(np.ndim(r) for r in rows):
         return np.array(rows)
@@ -385,6 +392,9 @@ def _stack(rows, N):
     for i, r in enumerate(rows):
         out[i] = r
     return out
+
+
+_stack = stack_rows  # the former name
 
 
 def _cond2(p, q, r, s):

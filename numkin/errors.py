@@ -1,7 +1,10 @@
 """Exceptions raised by numkin.
 
 Every error names what is wrong and where: the parameter, the loop, the input
-angle. Nothing that failed is ever returned as if it were valid.
+angle. Nothing that failed is ever returned as if it were valid. The same
+facts travel as attributes, so that a caller (the ``numkin`` command, a
+notebook) can say them in its own words or prefix where the linkage came
+from (a scene file) without parsing the message.
 """
 
 from __future__ import annotations
@@ -10,7 +13,29 @@ __all__ = ["NumkinError", "AssemblyError", "ConvergenceError", "BranchError"]
 
 
 class NumkinError(Exception):
-    """Base class of the errors numkin raises on purpose."""
+    """Base class of the errors numkin raises on purpose.
+
+    Attributes
+    ----------
+    input_value : float or None
+        Input (driver) value where it happened, rad for angular inputs.
+    loop : str or None
+        Name of the loop concerned.
+    cause : str or None
+        The cause in one word or phrase, e.g. ``"bad guess"``,
+        ``"dependent equations"``, ``"change point"``, ``"toggle"``.
+    """
+
+    def __init__(self, message="", *, input_value=None, loop=None, cause=None):
+        super().__init__(message)
+        self.input_value = input_value
+        self.loop = loop
+        self.cause = cause
+
+    @property
+    def message(self) -> str:
+        """The message alone (``str(error)``)."""
+        return str(self.args[0]) if self.args else ""
 
 
 class AssemblyError(NumkinError, ValueError):
@@ -18,8 +43,22 @@ class AssemblyError(NumkinError, ValueError):
 
     Raised before or at the first Newton solve of a sweep. For ready-made
     four-bars the message names the Grashof class and the reachable input
-    range.
+    range. ``cause`` is ``"bad guess"`` when Newton from the guess wandered
+    off, ``"dependent equations"`` when the loop equations do not fix the
+    unknowns, ``"not assemblable"`` otherwise.
+
+    Attributes
+    ----------
+    residual : float or None
+        Scaled residual norm at the last iterate.
+    iterations : int or None
+        Newton iterations spent.
     """
+
+    def __init__(self, message="", *, input_value=None, loop=None, cause=None, residual=None, iterations=None):
+        super().__init__(message, input_value=input_value, loop=loop, cause=cause)
+        self.residual = residual
+        self.iterations = iterations
 
 
 class ConvergenceError(NumkinError, RuntimeError):
@@ -37,10 +76,8 @@ class ConvergenceError(NumkinError, RuntimeError):
         Iterations spent.
     """
 
-    def __init__(self, message, *, input_value=None, loop=None, residual=None, iterations=None):
-        super().__init__(message)
-        self.input_value = input_value
-        self.loop = loop
+    def __init__(self, message="", *, input_value=None, loop=None, residual=None, iterations=None, cause=None):
+        super().__init__(message, input_value=input_value, loop=loop, cause=cause)
         self.residual = residual
         self.iterations = iterations
 
@@ -60,10 +97,11 @@ class BranchError(NumkinError):
         Input value (rad) where it happens.
     loop : str
         Name of the loop concerned.
+    cond : float or None
+        Condition number of the loop's scaled Jacobian block there.
     """
 
-    def __init__(self, message, *, kind, input_value=None, loop=None):
-        super().__init__(message)
+    def __init__(self, message="", *, kind, input_value=None, loop=None, cond=None, cause=None):
+        super().__init__(message, input_value=input_value, loop=loop, cause=cause or kind)
         self.kind = kind
-        self.input_value = input_value
-        self.loop = loop
+        self.cond = cond

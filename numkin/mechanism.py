@@ -16,11 +16,16 @@ import numpy as np
 import sympy as sp
 
 from .compiled import BlockStructure, CompiledMechanism
-from .errors import AssemblyError
+from .errors import AssemblyError, ConvergenceError
 from .loops import Loop, as_symbol
-from .newton import JACOBIANS, NewtonResult, iterate, scaled_cond
+from .newton import JACOBIANS, TOL_MIN, NewtonResult, check_tol, iterate, residual_floor, scaled_cond
 
-__all__ = ["Mechanism"]
+__all__ = ["Mechanism", "LENGTH_SCALE_RANGE"]
+
+#: Length scales (in any unit) a mechanism may have: products of two lengths (a loop
+#: Jacobian's determinant) stay normal float64 numbers, so every length scale in this
+#: range solves alike, in the same iterations to the same relative accuracy.
+LENGTH_SCALE_RANGE = (1e-150, 1e150)
 
 
 class Mechanism:
@@ -54,11 +59,18 @@ class Mechanism:
         Unit of the lengths (labels only; no conversion), default ``"mm"``.
     length_scale : float, optional
         Characteristic length for the stopping rule; default the largest
-        parameter that appears as a vector length.
+        parameter that appears as a vector length. It must lie in
+        :data:`LENGTH_SCALE_RANGE` (1e-150 to 1e150); within it, a linkage
+        scaled by any factor solves in the same iterations to the same
+        relative accuracy.
     assembly_check : callable, optional
         ``assembly_check(inputs) -> str | None`` returns why some of the
         requested inputs cannot be assembled (or None); used by the
         ready-made linkages to name the Grashof class and reachable range.
+    branch : str, optional
+        Name of the assembly branch the default guess picks (e.g.
+        ``"crossed"``): a sweep from it that passes a change point says
+        "kept the crossed branch".
 
     Examples
     --------
@@ -87,6 +99,7 @@ class Mechanism:
         length_unit: str = "mm",
         length_scale: float | None = None,
         assembly_check: Callable | None = None,
+        branch: str | None = None,
     ):
         if isinstance(loops, Loop):
             loops = [loops]
@@ -104,8 +117,11 @@ class Mechanism:
                 raise ValueError(f"parameter {sym} = {value!r} is not a number") from None
             if not math.isfinite(value):
                 raise ValueError(f"parameter {sym} = {value} is not finite")
+            if value < 0 and (sym.is_positive or sym.is_nonnegative):
+                raise ValueError(f"parameter {sym} = {value:g} is negative, but {sym} is declared non-negative")
             self.parameters[sym] = value
         self._check_symbols()
+        self._check_lengths()
         self.unknown_symbols = [u for lp in self.loops for u in lp.unknowns]
         self.unknowns = tuple(str(u) for u in self.unknown_symbols)
         self.angles = tuple(str(u) for lp in self.loops for u in lp.unknowns if u in lp.angles)
@@ -118,6 +134,13 @@ class Mechanism:
         self.length_scale = float(length_scale) if length_scale is not None else self._default_length_scale()
         if not (math.isfinite(self.length_scale) and self.length_scale > 0):
             raise ValueError(f"length_scale must be a positive number, got {self.length_scale}")
+        lo, hi = LENGTH_SCALE_RANGE
+        if not lo <= self.length_scale <= hi:
+            raise ValueError(
+                f"{name}: length scale {self.length_scale:.3g} is outside the range numkin solves, "
+                f"{lo:.0e} to {hi:.0e} (products of two lengths must stay normal float64 numbers): "
+                "give the lengths in another unit"
+            )
         self.xscale = np.array([1.0 if u in self.angles else self.length_scale for u in self.unknowns])
         self.points = {k: tuple(sp.sympify(c) for c in v) for k, v in (points or {}).items()}
         self.links = [tuple(link) for link in (links or [])]
@@ -127,6 +150,7 @@ class Mechanism:
         if missing:
             raise ValueError(f"links or ground name undefined point(s) {missing}")
         self.assembly_check = assembly_check
+        self.branch = branch
         self._guess = guess
         self.guess_input = guess_input
         self.compiled = CompiledMechanism(
@@ -155,6 +179,23 @@ class Mechanism:
                     "its unknowns, earlier unknowns, the input nor a parameter with a value"
                 )
             known |= set(lp.unknowns)
+
+    def _check_lengths(self):
+        """A parameter that is the length of a vector of a loop must not be negative.
+
+        A subtracted vector is written ``(-r4, theta4)``: the sign belongs in
+        the loop, not in the value. A signed distance (an offset that may be
+        negative) is declared so: ``sympy.Symbol("e", real=True)``.
+        """
+        for lp in self.loops:
+            for sym in lp.length_symbols:
+                value = self.parameters.get(sym)
+                if value is not None and value < 0 and sym.is_real is None:
+                    raise ValueError(
+                        f"loop '{lp.name}': length {sym} = {value:g} is negative (a negative length mirrors "
+                        f"the linkage); write the vector as (-{sym}, angle) in the loop, or declare {sym} "
+                        f"real (sympy.Symbol('{sym}', real=True)) if it is a signed offset"
+                    )
 
     def _default_length_scale(self) -> float:
         lengths = set().union(*(lp.length_symbols for lp in self.loops))
@@ -280,16 +321,15 @@ class Mechanism:
             raise ValueError(f"input_value must be a number (rad), got {input_value!r}") from None
         if not math.isfinite(input_value):
             raise ValueError(f"input_value must be finite, got {input_value}")
-        if not (isinstance(tol, (int, float, np.number)) and tol > 0 and math.isfinite(tol)):
-            raise ValueError(f"tol must be a positive number, got {tol!r}")
+        tol = check_tol(tol)
         if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
             raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")
         t = np.array([input_value])
         x0 = self.guess_vector(self._guess if guess is None else guess, input_value)
         F = self.residual_function(t)
         J = self.jacobian_function(t, jacobian)
-        out = iterate(F, J, x0[:, None], fscale=self.length_scale, xscale=self.xscale, tol=tol, maxiter=maxiter)
-        x = out.x[:, 0]
+        out = iterate(F, J, x0[:, None], fscale=self.length_scale, xscale=self.xscale, tol=tol, maxiter=maxiter,
+                      record=True)
         cond = float(scaled_cond(self.compiled.J(out.x, t, self.parameter_values), self.length_scale, self.xscale)[0])
         if out.converged[0]:
             msg = f"converged in {out.iterations[0]} iterations"
@@ -303,16 +343,55 @@ class Mechanism:
         else:
             worst = max(self.loop_residuals(out.x, t).items(), key=lambda kv: np.nan_to_num(kv[1][0], nan=np.inf))
             msg = f"did not converge: loop '{worst[0]}' residual {worst[1][0]:.3g} after {out.iterations[0]} iterations"
-        return NewtonResult(
-            x=x,
-            converged=bool(out.converged[0]),
-            iterations=int(out.iterations[0]),
-            residual_norms=np.array([h[0] for h in out.residual_history])[: out.iterations[0] + 1],
-            step_norms=np.array([s[0] for s in out.step_history if np.isfinite(s[0])]),
-            cond=cond,
-            message=msg,
-            residual=out.f[:, 0],
-        )
+        return NewtonResult.from_batch(out, 0, cond, msg)
+
+    def polish(self, x, inputs, *, maxiter: int = 30) -> np.ndarray:
+        """Positions refined by Newton to the round-off floor, with numkin's one stopping and conditioning rule.
+
+        Parameters
+        ----------
+        x : array_like (n, M)
+            Solved (or nearly solved) positions, real or complex, at ``inputs``.
+        inputs : array_like (M,)
+            Input values (rad), real or complex.
+
+        Returns
+        -------
+        ndarray (n, M)
+
+        Raises
+        ------
+        ConvergenceError
+            If a position does not reach the floor (names the input and the loop).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from numkin import linkages
+        >>> m = linkages.four_bar(4, 1, 3, 3)
+        >>> x = m.polish(np.array([[0.5682], [2.0834]]), np.radians([90.0]))
+        >>> np.round(np.degrees(x[:, 0]), 8)
+        array([ 32.5561258 , 119.37138726])
+        """
+        t = np.asarray(inputs)
+        x = np.asarray(x)
+        scaled = np.abs(x).max(axis=1, initial=0.0) / self.xscale if x.size else np.zeros(0)
+        floor = residual_floor(scaled, float(np.abs(t).max(initial=0.0)))
+        out = iterate(self.residual_function(t), self.jacobian_function(t), x, fscale=self.length_scale,
+                      xscale=self.xscale, tol=TOL_MIN, maxiter=maxiter, floor=floor)
+        bad = np.flatnonzero(~out.converged)
+        if bad.size:
+            k = int(bad[0])
+            worst = max(self.loop_residuals(out.x[:, k : k + 1].real, t[k : k + 1].real).items(),
+                        key=lambda kv: np.nan_to_num(kv[1][0], nan=np.inf))
+            raise ConvergenceError(
+                f"{self.name}: position at input {math.degrees(float(np.real(t[k]))):.3f}° not refined to "
+                f"round-off: loop '{worst[0]}' residual {worst[1][0]:.3g} after {int(out.iterations[k])} iterations"
+                + (" (singular Jacobian)" if out.singular[k] else ""),
+                input_value=float(np.real(t[k])), loop=worst[0], residual=float(worst[1][0]),
+                iterations=int(out.iterations[k]), cause="singular" if out.singular[k] else "no convergence",
+            )
+        return out.x
 
     def sweep(
         self,
@@ -350,13 +429,15 @@ class Mechanism:
         on_singular : {"raise", "report"}
             What to do at a toggle or change point: raise
             :class:`~numkin.BranchError`, or record it in ``Sweep.events``,
-            warn, and go on along the smooth continuation.
+            warn, and go on along the branch whose tangent is continuous.
+        progress : bool
+            Show a progress bar (tqdm) over the sequentially solved steps.
 
         Returns
         -------
         Sweep
         """
-        from .sweep import run_sweep
+        from .continuation import run_sweep
 
         return run_sweep(
             self,
@@ -367,6 +448,7 @@ class Mechanism:
             maxiter=maxiter,
             max_step=max_step,
             on_singular=on_singular,
+            progress=progress,
         )
 
     # ----------------------------------------------------------------- points

@@ -6,62 +6,38 @@ batch of one. Each step solves ``J(x) dx = -F(x)``; a Jacobian whose
 condition number exceeds ``cond_max`` is reported as singular and never
 divided through.
 
-Stopping rule
--------------
-A system has converged when, after a step,
-
-* the scaled residual ``max|F| / fscale`` is at most ``tol`` **and**
-* the scaled step ``max|dx / xscale|`` that led there is either at most
-  ``tol``, or at most ``tol**(2/3)`` *and* at most a quarter of the step
-  before it (convergence is superlinear, so the error left is of order
-  ``step**2 <= tol**(4/3)``, well below ``tol``), or no smaller than 0.9
-  times the step before it (it is stuck at the round-off floor
-  ``~eps * cond(J)``).
-
-Linear convergence, the signature of a singular Jacobian at the root (steps
-that halve at a double root), meets none of these until the error itself is
-below ``tol`` or at the round-off floor, where the condition number reported
-with the result tells how many digits are left.
-
-``fscale`` is the mechanism's characteristic length (residuals of vector
-loops are lengths); ``xscale`` is 1 rad for angles and the characteristic
-length for lengths. Both tests are relative, so a linkage scaled by 1e-6 or
-1e3 converges in the same iterations to the same relative accuracy.
-
-Finite-difference Jacobian step rule
-------------------------------------
-Column ``j`` is differenced with ``h_j = c * max(|x_j|, xscale_j)`` where
-``c = sqrt(eps) ~ 1.5e-8`` for ``"forward"`` and ``c = eps**(1/3) ~ 6.1e-6``
-for ``"central"``; ``h_j`` is then rounded so that ``x_j + h_j`` is exactly
-representable.
+The stopping, conditioning and finite-difference rules are in
+:mod:`numkin.newton_rules` (their names are importable from here too).
 """
 
 from __future__ import annotations
-
-import math
 
 from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
 import numpy as np
 
-__all__ = ["newton", "NewtonResult", "JACOBIANS", "has_converged"]
+from .newton_rules import (  # noqa: F401  (re-exported: one place for the rules, importable from here)
+    COND_MAX,
+    COND_WARN,
+    EPS,
+    JACOBIANS,
+    TOL_MIN,
+    check_tol,
+    colmax,
+    fd_jacobian,
+    fd_step,
+    has_converged,
+    is_singular,
+    residual_floor,
+    scaled_cond,
+)
 
-EPS = np.finfo(float).eps
-#: Jacobian choices accepted by :func:`newton` and :meth:`Mechanism.sweep`.
-JACOBIANS = ("symbolic", "forward", "central")
-_FD_STEP = {"forward": np.sqrt(EPS), "central": EPS ** (1.0 / 3.0)}
-
-
-def has_converged(res, step, prev_step, tol):
-    """The stopping rule of the module docstring, for floats or arrays.
-
-    ``res`` is the scaled residual after a step, ``step`` the scaled step
-    that led to it and ``prev_step`` the one before (``inf`` at the first).
-    """
-    superlinear = (step <= tol ** (2.0 / 3.0)) & (step <= 0.25 * prev_step)
-    return (res <= tol) & ((step <= tol) | superlinear | (step >= 0.9 * prev_step))
-
+__all__ = [
+    "newton", "NewtonResult", "JACOBIANS", "has_converged", "check_tol", "is_singular", "fd_step",
+    "fd_jacobian", "COND_MAX", "COND_WARN", "TOL_MIN", "solve_batch", "dense_solver", "colmax", "iterate",
+    "residual_floor", "scaled_cond", "BatchResult", "COMPACT_MIN",
+]
 
 @dataclass(frozen=True, repr=False)
 class NewtonResult:
@@ -86,6 +62,13 @@ class NewtonResult:
         What happened, in words.
     residual : ndarray
         Residual vector at ``x``.
+    iterates : ndarray, shape (iterations + 1, n)
+        The starting point and every iterate, in order (the last is ``x``).
+    nfev : int
+        Evaluations of the residual function (finite-difference columns
+        included), as scipy counts them.
+    njev : int
+        Evaluations of the Jacobian (symbolic or by finite differences).
     """
 
     x: np.ndarray
@@ -96,6 +79,28 @@ class NewtonResult:
     cond: float
     message: str
     residual: np.ndarray = field(default_factory=lambda: np.empty(0))
+    iterates: np.ndarray = field(default_factory=lambda: np.empty((0, 0)))
+    nfev: int = 0
+    njev: int = 0
+
+    @classmethod
+    def from_batch(cls, out, k, cond, message):
+        """The result of column ``k`` of a :class:`BatchResult` (recorded with ``record=True``)."""
+        it = int(out.iterations[k])
+        iterates = np.array([h[:, k] for h in out.x_history])[: it + 1] if out.x_history else np.empty((0, 0))
+        return cls(
+            x=out.x[:, k],
+            converged=bool(out.converged[k]),
+            iterations=it,
+            residual_norms=np.array([h[k] for h in out.residual_history])[: it + 1],
+            step_norms=np.array([s[k] for s in out.step_history if np.isfinite(s[k])]),
+            cond=float(cond),
+            message=message,
+            residual=out.f[:, k],
+            iterates=iterates,
+            nfev=int(out.nfev[k]),
+            njev=int(out.njev[k]),
+        )
 
     def __repr__(self) -> str:
         return (
@@ -130,38 +135,10 @@ class BatchResult:
     residual_history: list  # of (N,) arrays
     step_history: list  # of (N,) arrays
     f: np.ndarray  # (n, N) residual vectors
-
-
-def fd_jacobian(F, x, f0, method, xscale):
-    """Finite-difference Jacobian of ``F`` at a batch ``x`` of shape (n, N) -> (N, n, n)."""
-    n, N = x.shape
-    c = _FD_STEP[method]
-    jac = np.empty((N, f0.shape[0], n), dtype=np.result_type(x, f0))
-    for j in range(n):
-        h = c * np.maximum(np.abs(x[j]), xscale[j])
-        xp = x.copy()
-        xp[j] = x[j] + h
-        h = xp[j] - x[j]
-        if method == "forward":
-            col = (F(xp) - f0) / h
-        else:
-            xm = x.copy()
-            xm[j] = x[j] - h
-            col = (F(xp) - F(xm)) / (2.0 * h)
-        jac[:, :, j] = col.T
-    return jac
-
-
-def scaled_cond(jac, fscale, xscale):
-    """2-norm condition numbers of a batch of Jacobians, rows / fscale and columns * xscale."""
-    js = jac * (xscale[None, None, :] / np.asarray(fscale).reshape(-1, 1, 1))
-    if not np.all(np.isfinite(js)):
-        out = np.full(js.shape[0], np.inf)
-        ok = np.all(np.isfinite(js), axis=(1, 2))
-        if ok.any():
-            out[ok] = np.linalg.cond(js[ok])
-        return out
-    return np.linalg.cond(js)
+    nfev: np.ndarray = None  # (N,) residual evaluations per system
+    njev: np.ndarray = None  # (N,) Jacobian evaluations per system
+    x_history: list = field(default_factory=list)  # of (n, N) arrays, with record=True
+    jac: object = None  # the fused Jacobian at x, from solve_batch
 
 
 def _solve(jac, rhs, fscale, xscale, cond_max):
@@ -186,8 +163,151 @@ def _solve(jac, rhs, fscale, xscale, cond_max):
     return dx, bad
 
 
-def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=1e12, check_cond=True):
-    """Newton-Raphson on a batch of independent systems.
+#: Batches smaller than this iterate on whole arrays to the end (gathering the few active
+#: columns costs more than it saves); larger ones on the active columns once few are left.
+COMPACT_MIN = 2000
+
+
+def _take_dense(jac, idx):
+    return jac[idx]
+
+
+def _put_dense(jac, sub, idx):
+    jac[idx] = sub
+    return jac
+
+
+def solve_batch(evaluate, jacobian, solve, x0, *, fscale, xscale, tol=1e-12, maxiter=50, active=None, floor=0.0,
+                record=False, history=True, take=_take_dense, put=_put_dense, fd_cost=0, compact_min=COMPACT_MIN):
+    """The one Newton-Raphson iteration of numkin, on a batch of independent systems.
+
+    Every Newton path (:func:`newton`, :meth:`Mechanism.solve`, the
+    complex-step derivatives, the batch of a sweep) is this loop with its own
+    evaluation and linear solve plugged in; the stopping rule is
+    :func:`has_converged`, the conditioning rule the ``solve`` plug's.
+
+    Parameters
+    ----------
+    evaluate : callable
+        ``evaluate(x, idx) -> (f, jac)``: residuals (n, M) at ``x`` (n, M),
+        the columns ``idx`` of the batch (an index array, or None for all),
+        and the Jacobian if it comes with them (fused), else None.
+    jacobian : callable
+        ``jacobian(x, idx, f, jac) -> J``: the Jacobian in the form ``solve``
+        takes (returns ``jac`` itself when it is fused).
+    solve : callable
+        ``solve(J, f, idx) -> (dx, bad)``: the Newton step ``-J^-1 f`` (n, M)
+        and a mask of the systems refused (singular, non-finite, or over the
+        condition-number limit); their ``dx`` is ignored.
+    x0 : ndarray (n, N)
+    fscale : float or ndarray (N,)
+        Residual scale.
+    xscale : ndarray (n,)
+        Unknown scales.
+    active : ndarray of bool (N,), optional
+        Systems to solve; the others are kept as they are.
+    floor : float
+        Round-off floor of the scaled residual (see :func:`has_converged`).
+    record : bool
+        Keep every iterate in ``BatchResult.x_history``.
+    history : bool
+        Keep the residual and step norms of every iteration and count
+        evaluations (``nfev``, ``njev``); a sweep's batch goes without.
+    take, put : callable
+        Gather / scatter the columns ``idx`` of a fused Jacobian (for
+        compaction).
+    fd_cost : int
+        Residual evaluations per Jacobian (finite differences), for ``nfev``.
+
+    Returns
+    -------
+    BatchResult
+        With ``jac``, the fused Jacobian at the returned ``x`` (None if not fused).
+    """
+    x = np.array(x0, copy=True)
+    n, N = x.shape
+    inv_xs = 1.0 / np.asarray(xscale, dtype=float)[:, None]
+    unit = bool(np.all(inv_xs == 1.0))
+    fscale = float(fscale) if not np.ndim(fscale) else np.broadcast_to(np.asarray(fscale, dtype=float), (N,))
+    f, jac = evaluate(x, None)
+    fmax = colmax(np.abs(f))
+    converged = np.zeros(N, dtype=bool)
+    singular = np.zeros(N, dtype=bool)
+    iterations = np.zeros(N, dtype=int)
+    nfev = np.ones(N, dtype=int)
+    njev = np.zeros(N, dtype=int)
+    act = np.isfinite(fmax) if active is None else np.asarray(active, dtype=bool) & np.isfinite(fmax)
+    res_hist = [fmax / fscale]
+    step_hist = []
+    x_hist = [x.copy()] if record else []
+    prev = np.full(N, np.inf)
+    for _ in range(maxiter):
+        idx = np.flatnonzero(act)
+        M = idx.size
+        if M == 0:
+            break
+        if M * 4 > N or N < compact_min:  # whole arrays; the inactive columns do not move
+            dx, bad = solve(jacobian(x, None, f, jac), f, None)
+            bad = bad & act
+            upd = act & ~bad
+            if M < N or bad.any():
+                dx[:, ~upd] = 0.0
+            x = x + dx
+            step = colmax(np.abs(dx) if unit else np.abs(dx) * inv_xs)
+            f, jac = evaluate(x, None)
+            fmax = colmax(np.abs(f))
+        else:  # the active columns only
+            z, fz = x.take(idx, axis=1), f.take(idx, axis=1)
+            dx, bad_z = solve(jacobian(z, idx, fz, None if jac is None else take(jac, idx)), fz, idx)
+            if bad_z.any():
+                dx[:, bad_z] = 0.0
+            z = z + dx
+            fz, jz = evaluate(z, idx)
+            x[:, idx] = z
+            f[:, idx] = fz
+            if jac is not None:
+                jac = put(jac, jz, idx)
+            bad = np.zeros(N, dtype=bool)
+            bad[idx] = bad_z
+            upd = act & ~bad
+            step = np.full(N, np.inf)
+            step[idx] = colmax(np.abs(dx) if unit else np.abs(dx) * inv_xs)
+            fmax[idx] = colmax(np.abs(fz))
+        iterations += upd
+        singular |= bad
+        res = fmax / fscale
+        done = upd & has_converged(res, step, prev, tol, floor)
+        if history:
+            njev += act
+            nfev += act * fd_cost + upd
+            step_hist.append(np.where(upd, step, np.nan))
+            res_hist.append(res)
+        if record:
+            x_hist.append(x.copy())
+        converged |= done
+        act &= ~(done | bad) & np.isfinite(fmax)
+        prev = np.where(upd, step, prev)
+    return BatchResult(x, converged, singular, iterations, fmax / fscale, res_hist, step_hist, f, nfev, njev, x_hist,
+                       jac)
+
+
+def dense_solver(fscale, xscale, cond_max=COND_MAX):
+    """The ``solve`` plug for (M, n, n) Jacobians: LU with the conditioning rule (``cond_max=None``:
+    only exactly singular or non-finite solves are refused)."""
+    fscale = np.broadcast_to(np.asarray(fscale, dtype=float), (np.size(fscale),)) if np.ndim(fscale) else fscale
+    xscale = np.asarray(xscale, dtype=float)
+
+    def solve(jac, f, idx):
+        fs = fscale if not np.ndim(fscale) else (fscale if idx is None else fscale[idx])
+        dx, bad = _solve(jac, -f.T, np.broadcast_to(fs, (jac.shape[0],)), xscale, cond_max)
+        return dx.T, bad
+
+    return solve
+
+
+def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=COND_MAX, check_cond=True, record=False,
+            floor=0.0):
+    """Newton-Raphson on a batch of independent systems, dense linear solves (:func:`solve_batch`).
 
     Parameters
     ----------
@@ -208,53 +328,40 @@ def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=1e12, c
         Compute condition numbers at every step to refuse near-singular
         solves (``cond > cond_max``). With ``False`` only an exactly singular
         or non-finite solve is refused.
+    record : bool
+        Keep every iterate in ``BatchResult.x_history``.
+    floor : float
+        Round-off floor of the scaled residual (see :func:`has_converged`).
 
     Returns
     -------
     BatchResult
     """
-    x = np.array(x0, copy=True)
-    n, N = x.shape
+    x0 = np.asarray(x0)
+    n, N = x0.shape
     xscale = np.asarray(xscale, dtype=float)
-    fscale_arr = np.broadcast_to(np.asarray(fscale, dtype=float), (N,))
-    f = F(x, np.arange(N))
-    res = np.max(np.abs(f), axis=0) / fscale_arr
-    converged = np.zeros(N, dtype=bool)
-    singular = np.zeros(N, dtype=bool)
-    iterations = np.zeros(N, dtype=int)
-    active = np.isfinite(res)
-    res_hist = [res.copy()]
-    step_hist = []
-    prev_step = np.full(N, np.inf)
-    for _ in range(maxiter):
-        if not active.any():
-            break
-        idx = np.flatnonzero(active)
-        xa = x[:, idx]
-        fa = f[:, idx]
-        if isinstance(J, str):
-            ja = fd_jacobian(lambda z: F(z, idx), xa, fa, J, xscale)
-        else:
-            ja = J(xa, idx)
-        dx, bad = _solve(ja, -fa.T, fscale_arr[idx], xscale, cond_max if check_cond else None)
-        singular[idx[bad]] = True
-        good = idx[~bad]
-        step = np.full(N, np.nan)
-        if good.size:
-            x[:, good] += dx[~bad].T
-            iterations[good] += 1
-            step[good] = np.max(np.abs(dx[~bad].T / xscale[:, None]), axis=0)
-            f_new = F(x[:, good], good)
-            f[:, good] = f_new
-            res[good] = np.max(np.abs(f_new), axis=0) / fscale_arr[good]
-        step_hist.append(step)
-        res_hist.append(res.copy())
-        done = has_converged(res, step, prev_step, tol)
-        converged |= done & active
-        diverged = ~np.isfinite(res) | ~np.all(np.isfinite(x), axis=0)
-        active &= ~(converged | singular | diverged)
-        prev_step = np.where(np.isnan(step), prev_step, step)
-    return BatchResult(x, converged, singular, iterations, res, res_hist, step_hist, f)
+    every = np.arange(N)
+
+    def evaluate(x, idx):
+        return F(x, every if idx is None else idx), None
+
+    if isinstance(J, str):
+        method = J
+
+        def jacobian(x, idx, f, _):
+            i = every if idx is None else idx
+            return fd_jacobian(lambda z: F(z, i), x, f, method, xscale)
+
+        fd_cost = n if method == "forward" else 2 * n
+    else:
+
+        def jacobian(x, idx, f, _):
+            return J(x, every if idx is None else idx)
+
+        fd_cost = 0
+    solve = dense_solver(fscale, xscale, cond_max if check_cond else None)
+    return solve_batch(evaluate, jacobian, solve, x0, fscale=fscale, xscale=xscale, tol=tol, maxiter=maxiter,
+                       record=record, fd_cost=fd_cost, compact_min=0, floor=floor)
 
 
 def _sympy_system(exprs, unknowns):
@@ -349,8 +456,7 @@ def newton(
         raise ValueError(f"x0 must be a 1-D guess, got shape {x0.shape}")
     if not np.all(np.isfinite(x0)):
         raise ValueError(f"x0 has a non-finite entry at index {int(np.flatnonzero(~np.isfinite(x0))[0])}")
-    if not (np.isfinite(tol) and tol > 0):
-        raise ValueError(f"tol must be a positive number, got {tol!r}")
+    tol = check_tol(tol)
     if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
         raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")
     n = x0.size
@@ -397,13 +503,10 @@ def newton(
             "the system must be square"
         )
     xs = np.broadcast_to(np.asarray(xscale, dtype=float), (n,))
-    out = iterate(F, J, x0[:, None], fscale=fscale, xscale=xs, tol=tol, maxiter=maxiter, cond_max=cond_max)
-    x = out.x[:, 0]
+    out = iterate(F, J, x0[:, None], fscale=fscale, xscale=xs, tol=tol, maxiter=maxiter, cond_max=cond_max,
+                  record=True)
     jac_end = J(out.x) if not isinstance(J, str) else fd_jacobian(F, out.x, out.f, J, xs)
     cond = float(scaled_cond(jac_end, np.array([fscale]), xs)[0])
-    res_norms = np.array([h[0] for h in out.residual_history])
-    steps = np.array([s[0] for s in out.step_history if np.isfinite(s[0])])
-    res_norms = res_norms[: out.iterations[0] + 1]
     if out.converged[0]:
         msg = f"converged in {out.iterations[0]} iterations"
     elif out.singular[0]:
@@ -415,13 +518,4 @@ def newton(
         msg = f"diverged after {out.iterations[0]} iterations"
     else:
         msg = f"did not converge in {maxiter} iterations (scaled residual {out.residual[0]:.3g})"
-    return NewtonResult(
-        x=x,
-        converged=bool(out.converged[0]),
-        iterations=int(out.iterations[0]),
-        residual_norms=res_norms,
-        step_norms=steps,
-        cond=cond,
-        message=msg,
-        residual=out.f[:, 0],
-    )
+    return NewtonResult.from_batch(out, 0, cond, msg)

@@ -246,3 +246,20 @@ def test_functions_outside_the_math_module():
     )
     sweep = m.sweep(np.linspace(0.0, 3.0, 31))
     np.testing.assert_allclose(sweep["x"], 2 + np.sin(np.linspace(0.0, 3.0, 31)) / 4, atol=1e-12)
+
+
+def test_polish_reaches_the_circle_intersection_to_round_off():
+    # closed form of the 4/1/3/3 four-bar at 90°: A = (0, 1), |AB| = 3, |O4 B| = 3, O4 = (4, 0)
+    from numkin import ConvergenceError, linkages
+
+    m = linkages.four_bar(4, 1, 3, 3)
+    ax, ay, ox = 0.0, 1.0, 4.0
+    dx, dy = ox - ax, -ay
+    dist = math.hypot(dx, dy)
+    h = math.sqrt(9.0 - (dist / 2) ** 2)
+    bx, by = ax + dx / 2 - h * dy / dist, ay + dy / 2 + h * dx / dist
+    exact = [math.atan2(by - ay, bx - ax), math.atan2(by, bx - ox)]
+    x = m.polish(np.array([[0.56], [2.08]]), np.radians([90.0]))
+    np.testing.assert_allclose(x[:, 0], exact, rtol=0, atol=4e-15)
+    with pytest.raises(ConvergenceError, match="round-off"):
+        m.polish(np.array([[0.5], [0.5]]), np.radians([90.0]), maxiter=1)

@@ -9,6 +9,7 @@ import pytest
 import sympy as sp
 
 from numkin import linkages, newton
+from numkin.newton import has_converged
 from numkin.newton import NewtonResult
 
 X, Y = sp.symbols("x y", real=True)
@@ -239,3 +240,50 @@ def test_mechanism_solve_matches_circle_intersection(jacobian):
         res = linkages.four_bar(4, 1, 3, 3).solve(math.radians(deg), jacobian=jacobian)
         assert res.converged
         np.testing.assert_allclose(res.x, open_four_bar(math.radians(deg), 4, 1, 3, 3), rtol=0, atol=1e-12)
+
+
+# --------------------------------------------------------------- iterates and counts
+def test_iterates_follow_newtons_recurrence_by_hand():
+    # x^2 - 2 from 1: x_{k+1} = x_k - (x_k^2 - 2) / (2 x_k), written out here
+    res = newton([X**2 - 2], [1.0], unknowns=[X])
+    expected = [1.0]
+    for _ in range(res.iterations):
+        x = expected[-1]
+        expected.append(x - (x * x - 2) / (2 * x))
+    np.testing.assert_allclose(res.iterates[:, 0], expected, rtol=1e-15)
+    assert res.iterates.shape == (res.iterations + 1, 1)
+    assert res.iterates[-1, 0] == res.x[0] and res.converged
+
+
+@pytest.mark.parametrize("jacobian, per_jacobian", [("symbolic", 0), ("forward", 2), ("central", 4)])
+def test_nfev_and_njev_count_as_scipy_does(jacobian, per_jacobian):
+    # one residual evaluation at the start and after every step; one Jacobian per step, a
+    # finite-difference Jacobian costing n (forward) or 2n (central) residual evaluations (n = 2)
+    fun = [X**2 + Y**2 - 4, X - Y]
+    if jacobian == "symbolic":
+        res = newton(fun, [1.0, 0.5], unknowns=[X, Y])
+    else:
+        f = sp.lambdify([X, Y], fun)
+        res = newton(lambda v: np.array(f(*v)), [1.0, 0.5], jacobian=jacobian)
+    assert res.converged
+    assert res.njev == res.iterations
+    assert res.nfev == 1 + res.iterations * (1 + per_jacobian)
+
+
+def test_mechanism_solve_keeps_its_iterates():
+    m = linkages.four_bar(4, 1, 3, 3)
+    res = m.solve(math.radians(90), {"theta3": 0.5, "theta4": 2.0})
+    assert res.converged and res.iterates.shape == (res.iterations + 1, 2)
+    np.testing.assert_array_equal(res.iterates[0], [0.5, 2.0])
+    np.testing.assert_array_equal(res.iterates[-1], res.x)
+    assert res.njev == res.iterations and res.nfev == res.iterations + 1
+
+
+def test_one_stopping_rule_at_the_round_off_floor():
+    # a residual stuck above tol at the floor of huge angles, its steps no longer shrinking, has converged
+    assert has_converged(3e-12, 1e-13, 1e-13, 1e-12, floor=4e-12)
+    assert not has_converged(3e-12, 1e-13, 1e-13, 1e-12)
+    assert not has_converged(3e-12, 1e-14, 1e-12, 1e-12, floor=4e-12)  # still shrinking
+    arr = has_converged(np.array([3e-12, 5e-12]), np.array([1e-13, 1e-13]),
+                                      np.array([1e-13, 1e-13]), 1e-12, 4e-12)
+    assert arr.tolist() == [True, False]

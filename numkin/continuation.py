@@ -1,0 +1,134 @@
+"""Position sweeps by continuation, on one assembly branch.
+
+Algorithm
+---------
+1. Solve at the first input from the guess (Newton, up to ``maxiter`` steps,
+   refusing near-singular Jacobians); the angles are then reduced to the
+   guess's turn and polished by further Newton steps, so the first point is
+   as accurate as every other.
+2. March sequentially to *nodes*, grid points about ``max_step`` apart (30°
+   by default): each step predicts with the tangent ``q' = -J^-1 dF/dt``
+   (and the previous point, a quadratic, only when that point is a sane
+   distance away and the quadratic term stays below the step times the
+   tangent) and corrects with Newton. The predicted change of every unknown
+   is at most :data:`MAX_PREDICTION` (scaled), so no prediction can reach
+   another turn. The corrected angles are taken nearest the prediction.
+   A step is accepted only if Newton converges, the correction is small
+   (:data:`MAX_CORRECTION`) and the sign of every loop's Jacobian
+   determinant (its *orientation*, constant along a branch) is unchanged;
+   otherwise the step is halved, so a large ``max_step`` costs no safety and
+   a small one loses none.
+3. Fill the grid points between nodes in one batch: a cubic Hermite predictor
+   from the nodes' values and tangents, then Newton on all points at once.
+   A point that fails the same acceptance tests (converged, small
+   correction, the orientation of its nodes) is re-solved sequentially from
+   its neighbour; a segment between two nodes where neighbouring batch
+   points differ by half a turn or more (a run of points on another turn)
+   is marched sequentially point by point.
+
+The sequential steps work on plain floats (``math``-module functions, the
+Jacobian's block-triangular shape solved by Cramer's rule per loop), the
+batch on numpy arrays; both apply the stopping rule and the conditioning
+rule of :mod:`numkin.newton`. Every loop is bounded.
+
+A change of orientation between two accepted points means the linkage passed
+a singular position (a change point, where branches meet); a step that
+shrinks to nothing where the Jacobian is ill-conditioned (or has become so
+along the step) is a limit (toggle) position. Both raise
+:class:`~numkin.BranchError` (or, with ``on_singular="report"``, a change
+point is recorded in :attr:`Sweep.events` with a warning naming the branch
+kept, the one whose tangent is continuous, and the sweep goes on; a toggle
+cannot be passed). A Newton that fails elsewhere raises
+:class:`~numkin.ConvergenceError`; a linkage that cannot be assembled at the
+start raises :class:`~numkin.AssemblyError` (``cause`` says whether the
+guess was poor or the equations dependent).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .batch_fill import fill, nodes_of, report_near_singular
+from .first_point import solve_start
+from .march import DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_PREDICTION, Continuation
+from .newton import JACOBIANS, check_tol, colmax as _colmax
+from .sweep import Sweep
+
+__all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION"]
+
+
+def _validate_inputs(inputs) -> np.ndarray:
+    t = np.asarray(inputs, dtype=float)
+    if t.ndim == 0:
+        t = t.reshape(1)
+    if t.ndim != 1 or t.size == 0:
+        raise ValueError(f"inputs must be a non-empty 1-D array of input values (rad), got shape {t.shape}")
+    if not math.isfinite(t.sum()):
+        raise ValueError(f"inputs[{int(np.flatnonzero(~np.isfinite(t))[0])}] is not finite")
+    if t.size > 1:
+        d = t[1:] - t[:-1]
+        if not ((d > 0).all() or (d < 0).all()):
+            k = int(np.flatnonzero(np.sign(d) != np.sign(d[0]))[0]) if np.any(d != 0) else 0
+            raise ValueError(f"inputs must be strictly monotonic for continuation (check inputs[{k}:{k + 2}])")
+    return t
+
+
+def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxiter=50,
+              max_step=DEFAULT_MAX_STEP, on_singular="raise", progress=False):
+    """Solve ``mech`` over ``inputs`` by continuation; see :meth:`Mechanism.sweep`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> s = run_sweep(linkages.four_bar(4, 1, 3, 3), np.radians([0.0, 90.0]))
+    >>> np.round(np.degrees(s["theta4"]), 4)
+    array([120.    , 119.3714])
+    """
+    if on_singular not in ("raise", "report"):
+        raise ValueError(f"on_singular must be 'raise' or 'report', got {on_singular!r}")
+    if max_step is None:
+        max_step = DEFAULT_MAX_STEP
+    if not (isinstance(max_step, (int, float, np.number)) and max_step > 0 and math.isfinite(max_step)):
+        raise ValueError(f"max_step must be a positive angle in rad, got {max_step!r}")
+    tol = check_tol(tol)
+    if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
+        raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")
+    if jacobian not in JACOBIANS:
+        raise ValueError(f"jacobian must be one of {JACOBIANS}, got {jacobian!r}")
+    t = _validate_inputs(inputs)
+    mech.check_assembly(t)
+    ctx = Continuation(mech, jacobian, tol, float(max_step), on_singular)
+    n, N = ctx.n, t.size
+    tl = t.tolist()
+    X = np.empty((n, N))
+    D = np.full((n, N), np.nan)
+    O = np.zeros((len(mech.loops), N))
+    iters = np.zeros(N, dtype=int)
+
+    with np.errstate(all="ignore"):
+        x0, iters[0], v0 = solve_start(ctx, tl[0], guess, maxiter)
+        d0, o0 = ctx.local1(v0)
+        X[:, 0], D[:, 0], O[:, 0] = x0, d0, o0
+
+        nodes = nodes_of(t, max_step)
+        x, d, o = x0, d0, o0
+        ctx.last_previous = None
+        pairs = zip(nodes[:-1].tolist(), nodes[1:].tolist())
+        if progress:
+            from tqdm.auto import tqdm
+
+            pairs = tqdm(pairs, total=nodes.size - 1, desc=mech.name, unit="node")
+        for a, b in pairs:
+            x, d, o, iters[b] = ctx.march(tl[a], x, d, o, tl[b], ctx.last_previous)
+            X[:, b], D[:, b], O[:, b] = x, d, o
+
+        f, jac = fill(ctx, t, X, D, O, iters, nodes)
+        residual = _colmax(np.abs(f)) / ctx.fscale
+        cond = _colmax(ctx.blocks.cond(jac, N))
+        if ctx.crossings:
+            ctx.describe_crossings(t, X, O, cond)
+    report_near_singular(ctx, t, X, cond)
+    return Sweep(mech, t, X, iters, residual, cond, ctx.events, jacobian, tol)

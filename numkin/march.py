@@ -1,0 +1,514 @@
+"""The steps of a continuation: Newton kernels, the predictor and the march between nodes.
+
+:class:`Continuation` holds what the steps of one sweep share: the scalar
+Newton kernel (plain floats, ``math``-module functions and the loops'
+block-triangular solve; the symbolic or finite-difference Jacobian plugged
+in), the batched one (:func:`numkin.newton.solve_batch` with the fused
+residual-and-Jacobian rows), the march from one node to the next with its
+acceptance tests, and the description of the change points passed. See
+:mod:`numkin.continuation` for the algorithm as a whole.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+
+from .compiled import MATH_ERRORS, stack_rows
+from .errors import BranchError, ConvergenceError
+from .newton import (
+    COMPACT_MIN,
+    fd_jacobian,
+    has_converged,
+    is_singular,
+    residual_floor,
+    solve_batch,
+)
+from .sweep import SweepEvent, SingularityWarning
+
+__all__ = ["Continuation", "predict", "deg_text", "MAX_CORRECTION", "MAX_PREDICTION", "CORRECTOR_ITERATIONS",
+           "DEFAULT_MAX_STEP", "FAR", "TWO_PI"]
+
+#: Correction (scaled: rad, or lengths / length_scale) above which a continuation step is refused.
+MAX_CORRECTION = 0.3
+#: Largest predicted change of an unknown in one step (scaled): with MAX_CORRECTION well below
+#: pi, an accepted point is never a whole turn away from its predecessor.
+MAX_PREDICTION = 1.0
+#: The quadratic predictor uses the previous point only if it is at least this fraction of
+#: the step away (closer points make the quadratic term blow up).
+SANE_DISTANCE = 0.2
+#: Condition number above which a solved point's tangent is not used to predict (it carries
+#: the position's error times the condition number: noise next to a change point).
+COND_TANGENT = 1e6
+#: Steps (rad) below which that check is made: steps shrink so only next to a singular position.
+TANGENT_CHECK_STEP = 1e-3
+#: Newton steps allowed for a continuation corrector.
+CORRECTOR_ITERATIONS = 12
+#: Trial steps allowed for one march between nodes (accepted or refused).
+MAX_TRIALS = 100_000
+#: Default largest input step (rad) between the sequentially solved nodes of a sweep.
+DEFAULT_MAX_STEP = math.radians(30.0)
+#: A step that shrinks to nothing where the condition number exceeds this (or has grown
+#: TOGGLE_GROWTH-fold since the start of the march) is a limit (toggle) position.
+TOGGLE_COND = 1e3
+TOGGLE_GROWTH = 30.0
+#: Scaled residual above which a point where Newton met a singular Jacobian is not a solution.
+FAR = 1e-6
+TWO_PI = 2.0 * math.pi
+
+def deg_text(t: float, digits: int = 3) -> str:
+    """An input angle (rad) as degrees with the unit, for messages."""
+    return f"{math.degrees(t):.{digits}f}°"
+
+class Continuation:
+    """State and numerical kernels shared by the steps of one sweep.
+
+    One scalar Newton kernel (:meth:`newton1`: plain floats, ``math``-module
+    functions and the block-triangular solve of
+    :class:`~numkin.compiled.BlockStructure`, with the symbolic or the
+    finite-difference Jacobian of :func:`numkin.newton.fd_jacobian` plugged
+    in) for the sequential steps, and a batched one (:meth:`newton_batch`)
+    for the remaining grid points; both apply the stopping rule of
+    :mod:`numkin.newton`.
+    """
+
+    def __init__(self, mech, jacobian, tol, max_step, on_singular):
+        self.mech = mech
+        self.jacobian = jacobian
+        self.symbolic = jacobian == "symbolic"
+        self.tol = tol
+        self.max_step = max_step
+        self.on_singular = on_singular
+        self.events: list = []
+        comp = mech.compiled
+        self.comp = comp
+        self.n = len(mech.unknowns)
+        self.nn = self.n * self.n
+        self.p = mech.parameter_values
+        self.pt = tuple(self.p.tolist())
+        self.fscale = float(mech.length_scale)
+        self.xs = mech.xscale.tolist()
+        self.xs_arr = np.asarray(mech.xscale, dtype=float)
+        self.blocks = mech.block_structure
+        self.inv_xs = self.blocks.inv_xscale
+        self.unit_scale = all(w == 1.0 for w in self.inv_xs)  # angles only: no scaling in the step tests
+        self.loop_names = [lp.name for lp in mech.loops]
+        self.angle_idx = [k for k, u in enumerate(mech.unknowns) if u in mech.angles]
+        self._fjt = comp.scalar_FJT
+        self._f = comp.scalar_F
+        self.last_previous = None
+        self.started_on_default = False
+        self.crossings: list = []  # change points passed: (input, loop)
+        self.floor = 0.0  # round-off floor of the batch's residuals (set before the batch)
+
+    # ------------------------------------------------------------ one point
+    def eval1(self, x, t):
+        """Residuals, Jacobian rows and dF/dt at one point (flat list), or None where undefined."""
+        try:
+            v = self._fjt(*x, t, *self.pt)
+        except MATH_ERRORS:
+            return None
+        return v if math.isfinite(sum(v)) else None
+
+    def resid1(self, x, t):
+        try:
+            f = self._f(*x, t, *self.pt)
+        except MATH_ERRORS:
+            return None
+        return f if math.isfinite(sum(f)) else None
+
+    def eval1_fd(self, x, t):
+        """Residuals and finite-difference Jacobian rows at one point (flat list), or None."""
+        f = self.resid1(x, t)
+        if f is None:
+            return None
+        tt = np.array([t])
+        comp, p = self.comp, self.p
+        jac = fd_jacobian(lambda z: comp.F(z, tt, p), np.array(x, dtype=float)[:, None],
+                          np.array(f, dtype=float)[:, None], self.jacobian, self.xs_arr)
+        rows = jac[0].ravel().tolist()
+        return f + rows if math.isfinite(sum(rows)) else None
+
+    def newton1(self, x, t, maxiter, cond_max=None):
+        """Newton-Raphson at one input from ``x`` (list): the scalar kernel.
+
+        Returns ``(x, status, iterations, residual, v)``: status is
+        ``"converged"``, ``"singular"``, ``"diverged"`` or ``"maxiter"``;
+        ``v`` is :meth:`eval1` at the returned ``x`` (None if unknown).
+        With ``cond_max`` a Jacobian whose loop blocks have a larger scaled
+        condition number is refused as singular (the conditioning rule of
+        :mod:`numkin.newton`); otherwise only an exactly singular or
+        non-finite solve is.
+        """
+        n, nn, fscale, tol = self.n, self.nn, self.fscale, self.tol
+        update = self.blocks.update1
+        evaluate = self.eval1 if self.symbolic else self.eval1_fd
+        v = evaluate(x, t)
+        if v is None:
+            return x, "diverged", 0, math.nan, None
+        res = max([abs(a) for a in v[:n]]) / fscale
+        prev = math.inf
+        it = 0
+        status = "maxiter"
+        while it < maxiter:
+            if cond_max is not None and is_singular(max(self.blocks.cond1(v[n : n + nn])), cond_max):
+                status = "singular"
+                break
+            x_new, step = update(v, x)
+            if x_new is None:
+                status = "singular"
+                break
+            x = x_new
+            it += 1
+            v = evaluate(x, t)
+            if v is None:
+                return x, "diverged", it, math.nan, None
+            res = max([abs(a) for a in v[:n]]) / fscale
+            floor = 0.0
+            if res > tol and step >= 0.9 * prev:  # stalled above tol: is it the round-off floor?
+                floor = residual_floor([a * w for a, w in zip(x, self.inv_xs)], t)
+            if has_converged(res, step, prev, tol, floor):
+                status = "converged"
+                break
+            prev = step
+        if not self.symbolic:
+            v = self.eval1(x, t)
+        return x, status, it, res, v
+
+    def nearest_turn(self, x, ref):
+        """``x`` with every angle moved by whole turns to lie nearest ``ref``; and whether any moved."""
+        moved = False
+        for k in self.angle_idx:
+            if abs(x[k] - ref[k]) > math.pi:
+                if not moved:
+                    x, moved = list(x), True
+                x[k] = ref[k] + math.remainder(x[k] - ref[k], TWO_PI)
+        return x, moved
+
+    def correct(self, x_pred, t, maxiter=CORRECTOR_ITERATIONS):
+        """Newton from a prediction; the angles taken nearest the prediction (polished again if moved)."""
+        x, status, it, res, v = self.newton1(x_pred, t, maxiter)
+        if status == "converged":
+            x, moved = self.nearest_turn(x, x_pred)
+            if moved:
+                x, status, it2, res, v = self.newton1(x, t, maxiter)
+                it += it2
+        return x, status, it, res, v
+
+    def local1(self, v):
+        """Tangent dq/dt and loop orientations at a solved point; (None, None) if its Jacobian is singular."""
+        n, nn = self.n, self.nn
+        if v is None:
+            return None, None
+        return self.blocks.solve1(v[n : n + nn], [-a for a in v[n + nn :]])
+
+    def small_correction(self, x, x_pred) -> bool:
+        if self.unit_scale:
+            return max([abs(a - b) for a, b in zip(x, x_pred)]) <= MAX_CORRECTION
+        return max([abs(a - b) * w for a, b, w in zip(x, x_pred, self.inv_xs)]) <= MAX_CORRECTION
+
+    def worst1(self, x, t, which="residual"):
+        """(loop name, value) of the loop with the largest residual or condition number at one point."""
+        v = self.eval1(x, t)
+        if v is None:
+            return self.loop_names[0], math.nan
+        if which == "residual":
+            vals = [max(abs(a) for a in v[a0:b0]) / self.fscale for a0, b0 in self.blocks.blocks]
+        else:
+            vals = self.blocks.cond1(v[self.n : self.n + self.nn])
+        k = max(range(len(vals)), key=lambda i: math.inf if vals[i] != vals[i] else vals[i])
+        return self.loop_names[k], float(vals[k])
+
+    # ------------------------------------------------------------ many points
+    def eval_batch(self, x, t, fixed=None):
+        """Residuals (n, N) and Jacobian rows (list of n*n arrays or numbers) at many points.
+
+        ``fixed``: :meth:`CompiledMechanism.fixed_terms` at ``t``, if known.
+        """
+        v = self.comp.FJ_rows(x, t, self.p, fixed)
+        return stack_rows(v[: self.n], t.size), v[self.n :]
+
+    def newton_batch(self, x, t, active, maxiter=CORRECTOR_ITERATIONS):
+        """Newton on the columns ``active`` of ``x`` (n, N) at the inputs ``t``; other columns are kept.
+
+        :func:`numkin.newton.solve_batch` with the fused residual-and-Jacobian
+        rows of :meth:`CompiledMechanism.FJ_rows` (the terms of the input
+        alone computed once) and the block-triangular solve. Returns ``x``,
+        ``converged`` (N,), ``iterations`` (N,), and the residuals (n, N) and
+        Jacobian rows at the returned ``x``. Call it under
+        ``numpy.errstate(all="ignore")``.
+        """
+        nn = self.nn
+        x = np.array(x, dtype=float)
+        comp, p = self.comp, self.p
+        floor = self.floor
+        if self.symbolic:
+            fixed_all = comp.fixed_terms(t, p)
+
+            def evaluate(z, idx):
+                if idx is None:
+                    return self.eval_batch(z, t, fixed_all)
+                return self.eval_batch(z, t.take(idx), [u.take(idx) if np.ndim(u) else u for u in fixed_all])
+
+            def jacobian(z, idx, fz, jz):
+                return jz
+
+            fd_cost = 0
+        else:
+            xs = self.xs_arr
+
+            def evaluate(z, idx):
+                return comp.F(z, t if idx is None else t.take(idx), p), None
+
+            def jacobian(z, idx, fz, jz):
+                tz = t if idx is None else t.take(idx)
+                return list(fd_jacobian(lambda w: comp.F(w, tz, p), z, fz, self.jacobian, xs).reshape(z.shape[1], nn).T)
+
+            fd_cost = self.n if self.jacobian == "forward" else 2 * self.n
+        step = self.blocks.newton_step
+        N = x.shape[1]
+        out = solve_batch(
+            evaluate, jacobian, lambda jac, f, idx: step(jac, f), x, fscale=self.fscale, xscale=self.xs_arr,
+            tol=self.tol, maxiter=maxiter, active=active, floor=floor, fd_cost=fd_cost, compact_min=COMPACT_MIN,
+            history=False,
+            take=lambda jac, idx: [r.take(idx) if np.ndim(r) else r for r in jac],
+            put=lambda jac, sub, idx: [_scatter(r, rz, idx, N) for r, rz in zip(jac, sub)],
+        )
+        if self.symbolic:
+            return out.x, out.converged, out.iterations, out.f, out.jac
+        f, jac = self.eval_batch(out.x, t)
+        return out.x, out.converged, out.iterations, f, jac
+
+    # ------------------------------------------------------------ events
+    def record(self, kind, t, loop, message, *, raise_kind=None, cond=None, **extra):
+        """Raise (``on_singular="raise"``) or record an event once and warn."""
+        if raise_kind is not None and self.on_singular == "raise":
+            raise BranchError(message, kind=raise_kind, input_value=float(t), loop=loop, cond=cond)
+        for e in self.events:  # the same crossing met again (from a node, then from a grid point)
+            if e.kind == kind and e.loop == loop and abs(e.input_value - t) <= 1e-6 * max(1.0, abs(t)):
+                return
+        self.events.append(SweepEvent(kind, float(t), loop, message, **extra))
+        warnings.warn(message, SingularityWarning, stacklevel=4)
+
+    def change_point(self, t, t_new, loop):
+        """Raise at a change point, or note it (once) to be described when the sweep is done."""
+        where = f"{self.mech.name}: loop '{loop}' passes a singular position at input {deg_text(0.5 * (t + t_new), 4)}"
+        if self.on_singular == "raise":
+            self.record(
+                "change point", t_new, loop,
+                f"{where} (its Jacobian changes sign): a change point, where the branches meet and the "
+                "continuation is ambiguous; pass on_singular='report' to go on along the branch whose "
+                "tangent is continuous",
+                raise_kind="change point",
+            )
+        tc = 0.5 * (t + t_new)
+        if not any(abs(c - tc) <= 1e-6 * max(1.0, abs(tc)) and lp == loop for c, lp in self.crossings):
+            self.crossings.append((tc, loop))
+
+    def one_sided_tangent(self, t, X, O, cond, tc, side, h):
+        """dq/d(input) at the change point ``tc`` from one side (``side`` -1 or +1), on the sweep's branch.
+
+        Marches from the best-conditioned grid point on that side to
+        ``tc + side h`` and ``tc + side 2h`` and extrapolates the tangents
+        there linearly to ``tc`` (error of order h^2). None if there is no
+        such grid point or the march fails.
+        """
+        on_side = np.flatnonzero((np.sign(t - tc) == side) & (cond < 1e6))
+        if on_side.size == 0:
+            return None
+        j = int(on_side[np.argmin(np.abs(t[on_side] - tc))])
+        xj = X[:, j].tolist()
+        d, o = self.local1(self.eval1(xj, float(t[j])))
+        if d is None:
+            return None
+        try:
+            x1, d1, o1, _ = self.march(float(t[j]), xj, d, o, tc + 2 * side * h)
+            _, d2, _, _ = self.march(tc + 2 * side * h, x1, d1, o1, tc + side * h)
+        except (BranchError, ConvergenceError):
+            return None
+        if d1 is None or d2 is None:
+            return None
+        return [2.0 * b - a for a, b in zip(d1, d2)]
+
+    def describe_crossings(self, t, X, O, cond):
+        """Record every change point passed (``on_singular="report"``): the branch kept and its tangent."""
+        mech = self.mech
+        inp = str(mech.input_symbol)
+        branch = getattr(mech, "branch", None)
+        kept = f"the {branch} branch" if branch and self.started_on_default else "the branch the sweep was on"
+        span = float(abs(t[-1] - t[0])) if t.size > 1 else 1.0
+        h = min(1e-3, 0.25 * span)
+        for tc, loop in self.crossings:
+            sides = [self.one_sided_tangent(t, X, O, cond, tc, side, h) for side in (-1.0, 1.0)]
+            if t.size > 1 and t[-1] < t[0]:
+                sides.reverse()  # before and after in the sweep's direction
+            before, after = (list(v) if v is not None else [math.nan] * self.n for v in sides)
+            known = [v for v in (before, after) if not math.isnan(v[0])]
+            tangent = [sum(c) / len(known) for c in zip(*known)] if known else [math.nan] * self.n
+            scale = max([abs(a) * w for a, w in zip(tangent, self.inv_xs)] + [1.0])
+            continuous = None
+            if len(known) == 2:
+                continuous = all(abs(a - b) * w <= 1e-3 * scale for a, b, w in zip(before, after, self.inv_xs))
+            rates = ", ".join(f"d{u}/d{inp} = {v:.4f}" for u, v in zip(mech.unknowns, tangent))
+            how = {True: "its tangent is continuous", False: "its tangent jumps here",
+                   None: "its tangent from one side"}[continuous]
+            message = (
+                f"{mech.name}: loop '{loop}' passes a singular position at input {deg_text(tc, 4)} (its Jacobian "
+                f"changes sign): a change point, where the branches meet; kept {kept} ({how}: {rates})"
+            )
+            self.record(
+                "change point", tc, loop, message, branch=kept, tangent=tuple(tangent),
+                tangent_before=tuple(before), tangent_after=tuple(after), tangent_continuous=continuous,
+            )
+
+    # -------------------------------------------------------------- sequential
+    def march(self, t0, x0, d0, o0, t1, previous=None):
+        """Continue from (t0, x0), tangent d0 and orientations o0, to the input t1.
+
+        ``previous`` is an earlier point ``(t, x)`` of the same branch for the
+        quadratic predictor of the first step. Returns ``(x, d, o,
+        iterations)`` at t1; :attr:`last_previous` keeps the point before it.
+        """
+        span = t1 - t0
+        direction = 1.0 if span > 0 else -1.0
+        step = min(self.max_step, abs(span))
+        if previous is None:
+            step = min(step, 0.5 * self.max_step)  # the first predictor is linear: start shorter
+        min_step = 1e-9 * max(1.0, abs(span))
+        t, x, d, o = t0, x0, d0, o0
+        t_prev, x_prev = previous if previous is not None else (None, None)
+        iters = 0
+        inv_xs = self.inv_xs
+        n, nn = self.n, self.nn
+        unit = self.unit_scale
+        for _ in range(MAX_TRIALS):
+            if t == t1:
+                break
+            remaining = abs(t1 - t)
+            dt = step
+            rate = 0.0
+            if d is not None:  # no predicted change above MAX_PREDICTION
+                rate = max(map(abs, d)) if unit else max([abs(a) * w for a, w in zip(d, inv_xs)])
+                if rate * dt > MAX_PREDICTION:
+                    dt = MAX_PREDICTION / rate
+            if remaining <= dt * (1.0 + 1e-9):
+                t_new = t1
+            else:
+                if remaining < 2.0 * dt:  # no short last step: split what is left in two
+                    dt = 0.5 * remaining
+                t_new = t + direction * dt
+            if dt < min_step or t_new == t:
+                self.fail(t0, x0, t, x, t_new, x, "singular", "singular", 0, math.nan)
+            x_pred = predict(t, x, d, t_prev, x_prev, t_new, None if unit else inv_xs, rate)
+            x_new, status, it, res, v = self.correct(x_pred, t_new)
+            reason = status
+            ok = status == "converged"
+            if ok and not self.small_correction(x_new, x_pred):
+                ok, reason = False, "correction"
+            if ok:
+                d_new, o_new = self.local1(v)
+                if o_new is None:
+                    ok, reason = False, "singular"
+                elif o_new != o:
+                    k = next(i for i, (a, b) in enumerate(zip(o_new, o)) if a != b)
+                    if dt > 64 * min_step:
+                        ok, reason = False, "orientation"  # localise the crossing before deciding
+                    else:
+                        self.change_point(t, t_new, self.loop_names[k])
+            if ok:
+                if dt < TANGENT_CHECK_STEP and d is not None and not max(self.blocks.cond1(v[n : n + nn])) <= COND_TANGENT:
+                    d_new = d  # a tangent solved through a near-singular Jacobian is noise: keep the last good one
+                t_prev, x_prev = t, x
+                t, x, d, o = t_new, x_new, d_new, o_new
+                iters = it
+                step = min(self.max_step, 2.0 * dt)
+                continue
+            step = 0.5 * dt
+            if step < min_step:
+                self.fail(t0, x0, t, x, t_new, x_new, status, reason, it, res)
+        else:
+            raise ConvergenceError(
+                f"{self.mech.name}: the continuation from input {deg_text(t0, 3)} to {deg_text(t1, 3)} made no "
+                f"progress in {MAX_TRIALS} trial steps (stopped at {deg_text(t, 6)})",
+                input_value=float(t), loop=self.loop_names[0], iterations=MAX_TRIALS, cause="no progress",
+            )
+        self.last_previous = (t_prev, x_prev) if t_prev is not None else None
+        return x, d, o, iters
+
+    def fail(self, t0, x0, t, x, t_next, x_try, status, reason, iterations, res):
+        """Explain why the continuation cannot go from t to t_next, and raise.
+
+        The step has shrunk to nothing. If the Jacobian at the last point
+        reached is ill-conditioned (or has grown so since the start of the
+        march) the linkage is at a limit position: a toggle. Otherwise Newton
+        failed, or the solution jumps, at a regular point.
+        """
+        loop, cond = self.worst1(x, t, which="cond")
+        _, cond0 = self.worst1(x0, t0, which="cond")
+        if reason == "singular" or not cond < TOGGLE_COND or not cond < TOGGLE_GROWTH * cond0:
+            raise BranchError(
+                f"{self.mech.name}: limit (toggle) position of loop '{loop}' near {deg_text(t, 3)} "
+                f"(condition number {cond:.3g}): the input cannot be driven past it on this branch",
+                kind="toggle", input_value=float(t), loop=loop, cond=cond,
+            )
+        bad_loop, bad_res = self.worst1(x_try, t_next)
+        if reason in ("correction", "orientation"):
+            what = (
+                "moves the solution too far" if reason == "correction" else "lands on another assembly branch"
+            )
+            msg = (
+                f"{self.mech.name}: no continuous solution from input {deg_text(t, 6)} to {deg_text(t_next, 6)}: "
+                f"the smallest step {what} (loop '{bad_loop}'); the loop equations jump there"
+            )
+            cause = "jump"
+        else:
+            msg = (
+                f"{self.mech.name}: Newton did not converge at input {deg_text(t_next, 3)} (condition number "
+                f"{cond:.3g}): loop '{bad_loop}' residual {bad_res:.3g} after {iterations} iterations"
+            )
+            cause = "no convergence"
+        raise ConvergenceError(msg, input_value=float(t_next), loop=bad_loop, residual=bad_res, iterations=iterations,
+                               cause=cause)
+
+def _scatter(row, sub, idx, N):
+    """A Jacobian row (array or number) with the columns ``idx`` replaced by ``sub``."""
+    if not np.ndim(row):
+        if not np.ndim(sub):
+            return row
+        row = np.full(N, row, dtype=np.result_type(row, sub))
+    row[idx] = sub
+    return row
+
+
+def predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate):
+    """Predictor of a continuation step that cannot blow up.
+
+    The tangent ``x + d s``; plus the quadratic term through the previous
+    point only when that point is at least :data:`SANE_DISTANCE` times the
+    step away and the term (scaled) is below the step times (1 + ``rate``),
+    ``rate`` the largest scaled entry of the tangent. Without a tangent: the
+    secant through a sane previous point, or ``x`` itself. ``inv_xs`` are the
+    unknowns' inverse scales (None: all one).
+    """
+    s = t_new - t
+    if d is None:
+        if x_prev is None or abs(t - t_prev) < SANE_DISTANCE * abs(s):
+            return list(x)
+        r = s / (t - t_prev)
+        lin = [a + (a - b) * r for a, b in zip(x, x_prev)]
+        if max([abs(a - b) * w for a, b, w in zip(lin, x, inv_xs or [1.0] * len(x))]) <= MAX_PREDICTION:
+            return lin
+        return list(x)
+    lin = [a + da * s for a, da in zip(x, d)]
+    if x_prev is None:
+        return lin
+    h = t_prev - t
+    if abs(h) < SANE_DISTANCE * abs(s):
+        return lin
+    s2 = s * s / (h * h)
+    quad = [(b - a - da * h) * s2 for a, da, b in zip(x, d, x_prev)]
+    if not max([abs(q) * w for q, w in zip(quad, inv_xs)] if inv_xs else map(abs, quad)) <= abs(s) * (1.0 + rate):
+        return lin
+    return [a + q for a, q in zip(lin, quad)]
