@@ -13,7 +13,7 @@ import warnings
 import numpy as np
 
 from .compiled import stack_rows
-from .march import MAX_CORRECTION, Continuation, deg_text
+from .march import COND_TANGENT, MAX_CORRECTION, Continuation, deg_text
 from .newton import COND_MAX, COND_WARN, colmax as _colmax, is_singular, residual_floor
 from .sweep import SweepEvent, SingularityWarning
 
@@ -90,14 +90,21 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
     if redo.size:
         # Points the batch could not place safely are reached one by one from their left neighbour.
         tl = t.tolist()
+        n = X.shape[0]
         for k in redo.tolist():
             left = k - 1
             xl = X[:, left].tolist()
-            if np.all(np.isfinite(D[:, left])):
+            v = ctx.eval1(xl, tl[left])
+            if v is not None and not max(ctx.blocks.cond1(v[n : n + n * n])) <= COND_TANGENT:
+                # on a singular position (a change point on the grid) the tangent is noise: the
+                # secant through the point before it continues the branch the nodes kept
+                dl = None
+            elif np.all(np.isfinite(D[:, left])):
                 dl = D[:, left].tolist()
             else:
-                dl, _ = ctx.local1(ctx.eval1(xl, tl[left]))
-            xk, dk, ok_, iters[k] = ctx.march(tl[left], xl, dl, O[:, left].tolist(), tl[k])
+                dl, _ = ctx.local1(v)
+            previous = (tl[left - 1], X[:, left - 1].tolist()) if left >= 1 else None
+            xk, dk, ok_, iters[k] = ctx.march(tl[left], xl, dl, O[:, left].tolist(), tl[k], previous)
             X[:, k], D[:, k], O[:, k] = xk, dk, ok_
         f_redo, jac_redo = ctx.eval_batch(X[:, redo], t[redo])
         f[:, redo] = f_redo

@@ -15,9 +15,14 @@ Algorithm
    another turn. The corrected angles are taken nearest the prediction.
    A step is accepted only if Newton converges, the correction is small
    (:data:`MAX_CORRECTION`) and the sign of every loop's Jacobian
-   determinant (its *orientation*, constant along a branch) is unchanged;
+   determinant (its *orientation*, constant along a branch) is unchanged
+   and the tangent has not turned by more than :data:`MAX_TANGENT_TURN`
+   (1 + |q'|) (where two branches meet, the other one keeps the
+   orientation, and only the kink in the tangent shows the switch);
    otherwise the step is halved, so a large ``max_step`` costs no safety and
-   a small one loses none.
+   a small one loses none. A change of orientation is localised to
+   :data:`CROSSING_STEP` and placed where the determinant, linear between
+   the two points, is zero.
 3. Fill the grid points between nodes in one batch: a cubic Hermite predictor
    from the nodes' values and tangents, then Newton on all points at once.
    A point that fails the same acceptance tests (converged, small
@@ -52,11 +57,11 @@ import numpy as np
 
 from .batch_fill import fill, nodes_of, report_near_singular
 from .first_point import solve_start
-from .march import DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_PREDICTION, Continuation
+from .march import CROSSING_STEP, DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_PREDICTION, MAX_TANGENT_TURN, Continuation
 from .newton import JACOBIANS, check_tol, colmax as _colmax
 from .sweep import Sweep
 
-__all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION"]
+__all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION", "MAX_TANGENT_TURN", "CROSSING_STEP"]
 
 
 def _validate_inputs(inputs) -> np.ndarray:

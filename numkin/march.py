@@ -29,7 +29,7 @@ from .newton import (
 from .sweep import SweepEvent, SingularityWarning
 
 __all__ = ["Continuation", "predict", "deg_text", "MAX_CORRECTION", "MAX_PREDICTION", "CORRECTOR_ITERATIONS",
-           "DEFAULT_MAX_STEP", "FAR", "TWO_PI"]
+           "DEFAULT_MAX_STEP", "FAR", "TWO_PI", "MAX_TANGENT_TURN", "CROSSING_STEP", "COND_TANGENT"]
 
 #: Correction (scaled: rad, or lengths / length_scale) above which a continuation step is refused.
 MAX_CORRECTION = 0.3
@@ -42,8 +42,14 @@ SANE_DISTANCE = 0.2
 #: Condition number above which a solved point's tangent is not used to predict (it carries
 #: the position's error times the condition number: noise next to a change point).
 COND_TANGENT = 1e6
-#: Steps (rad) below which that check is made: steps shrink so only next to a singular position.
-TANGENT_CHECK_STEP = 1e-3
+#: Largest change of the (scaled) tangent in one continuation step, relative to 1 + its size:
+#: a larger one is halved until the step is resolved, so a switch to another branch where
+#: branches meet (same orientation, a kink in the tangent) is never taken for a step.
+MAX_TANGENT_TURN = 0.5
+#: Step (rad) to which a change of orientation is localised before it is taken for a change
+#: point: small enough to place it, large enough that the branches meeting there are still
+#: told apart (their distance, ~ step, stays far above Newton's noise, ~ eps / step).
+CROSSING_STEP = 1e-5
 #: Newton steps allowed for a continuation corrector.
 CORRECTOR_ITERATIONS = 12
 #: Trial steps allowed for one march between nodes (accepted or refused).
@@ -292,18 +298,33 @@ class Continuation:
         self.events.append(SweepEvent(kind, float(t), loop, message, **extra))
         warnings.warn(message, SingularityWarning, stacklevel=4)
 
-    def change_point(self, t, t_new, loop):
+    def crossing(self, t, x, t_new, v_new, k):
+        """Input where loop ``k``'s Jacobian determinant, linear between two solved points, is zero."""
+        a, b = self.blocks.blocks[k]
+        n = self.n
+
+        def det(v):
+            rows = v[n : n + n * n]
+            return float(np.linalg.det(np.array([[rows[i * n + j] for j in range(a, b)] for i in range(a, b)])))
+
+        v_old = self.eval1(x, t)
+        d0, d1 = (det(v_old), det(v_new)) if v_old is not None else (math.nan, math.nan)
+        if not (math.isfinite(d0) and math.isfinite(d1) and d0 != d1):
+            return 0.5 * (t + t_new)
+        return t + (t_new - t) * min(1.0, max(0.0, d0 / (d0 - d1)))
+
+    def change_point(self, t, t_new, loop, tc=None):
         """Raise at a change point, or note it (once) to be described when the sweep is done."""
-        where = f"{self.mech.name}: loop '{loop}' passes a singular position at input {deg_text(0.5 * (t + t_new), 4)}"
+        tc = 0.5 * (t + t_new) if tc is None else tc
+        where = f"{self.mech.name}: loop '{loop}' passes a singular position at input {deg_text(tc, 4)}"
         if self.on_singular == "raise":
             self.record(
-                "change point", t_new, loop,
+                "change point", tc, loop,
                 f"{where} (its Jacobian changes sign): a change point, where the branches meet and the "
                 "continuation is ambiguous; pass on_singular='report' to go on along the branch whose "
                 "tangent is continuous",
                 raise_kind="change point",
             )
-        tc = 0.5 * (t + t_new)
         if not any(abs(c - tc) <= 1e-6 * max(1.0, abs(tc)) and lp == loop for c, lp in self.crossings):
             self.crossings.append((tc, loop))
 
@@ -377,6 +398,7 @@ class Continuation:
         if previous is None:
             step = min(step, 0.5 * self.max_step)  # the first predictor is linear: start shorter
         min_step = 1e-9 * max(1.0, abs(span))
+        crossing_step = max(CROSSING_STEP, 64 * min_step)
         t, x, d, o = t0, x0, d0, o0
         t_prev, x_prev = previous if previous is not None else (None, None)
         iters = 0
@@ -413,13 +435,18 @@ class Continuation:
                     ok, reason = False, "singular"
                 elif o_new != o:
                     k = next(i for i, (a, b) in enumerate(zip(o_new, o)) if a != b)
-                    if dt > 64 * min_step:
+                    if dt > crossing_step:
                         ok, reason = False, "orientation"  # localise the crossing before deciding
                     else:
-                        self.change_point(t, t_new, self.loop_names[k])
-            if ok:
-                if dt < TANGENT_CHECK_STEP and d is not None and not max(self.blocks.cond1(v[n : n + nn])) <= COND_TANGENT:
+                        self.change_point(t, t_new, self.loop_names[k], self.crossing(t, x, t_new, v, k))
+            if ok and d is not None:
+                if not max(self.blocks.cond1(v[n : n + nn])) <= COND_TANGENT:
                     d_new = d  # a tangent solved through a near-singular Jacobian is noise: keep the last good one
+                elif dt > crossing_step and self.kinked(d, d_new, rate):
+                    # Where branches meet, the other branch keeps the orientation: only the
+                    # tangent shows the switch. A smooth branch passes once the step is small.
+                    ok, reason = False, "kink"
+            if ok:
                 t_prev, x_prev = t, x
                 t, x, d, o = t_new, x_new, d_new, o_new
                 iters = it
@@ -436,6 +463,16 @@ class Continuation:
             )
         self.last_previous = (t_prev, x_prev) if t_prev is not None else None
         return x, d, o, iters
+
+    def kinked(self, d, d_new, rate) -> bool:
+        """Whether the tangent turned by more than :data:`MAX_TANGENT_TURN` (1 + |dq/dt|) in one step."""
+        if d_new is None:
+            return False
+        if self.unit_scale:
+            jump = max([abs(a - b) for a, b in zip(d_new, d)])
+        else:
+            jump = max([abs(a - b) * w for a, b, w in zip(d_new, d, self.inv_xs)])
+        return jump > MAX_TANGENT_TURN * (1.0 + rate)
 
     def fail(self, t0, x0, t, x, t_next, x_try, status, reason, iterations, res):
         """Explain why the continuation cannot go from t to t_next, and raise.
@@ -454,10 +491,12 @@ class Continuation:
                 kind="toggle", input_value=float(t), loop=loop, cond=cond,
             )
         bad_loop, bad_res = self.worst1(x_try, t_next)
-        if reason in ("correction", "orientation"):
-            what = (
-                "moves the solution too far" if reason == "correction" else "lands on another assembly branch"
-            )
+        if reason in ("correction", "orientation", "kink"):
+            what = {
+                "correction": "moves the solution too far",
+                "orientation": "lands on another assembly branch",
+                "kink": "turns the tangent abruptly (another branch meets this one)",
+            }[reason]
             msg = (
                 f"{self.mech.name}: no continuous solution from input {deg_text(t, 6)} to {deg_text(t_next, 6)}: "
                 f"the smallest step {what} (loop '{bad_loop}'); the loop equations jump there"

@@ -148,9 +148,17 @@ def length(name: str, value) -> float:
     >>> length("crank", "2")
     2.0
     """
+    from ..mechanism import LENGTH_SCALE_RANGE
+
     v = finite(name, value)
     if v <= 0:
         raise ValueError(f"{name} = {value!r} must be a positive, finite length")
+    lo, hi = LENGTH_SCALE_RANGE
+    if not lo <= v <= hi:
+        raise ValueError(
+            f"{name} = {value!r} is outside the lengths numkin solves, {lo:.0e} to {hi:.0e}: "
+            "give the lengths in another unit"
+        )
     return v
 
 

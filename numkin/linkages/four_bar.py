@@ -54,7 +54,9 @@ def closed_form(t2, r1, r2, r3, r4, sign):
     ax, ay = r2 * np.cos(t2), r2 * np.sin(t2)
     dx, dy = r1 - ax, -ay
     d = np.hypot(dx, dy)
-    gamma = np.arccos(np.clip((r3**2 + d**2 - r4**2) / (2 * r3 * d), -1, 1))
+    # with A on O4 (d = 0) the coupler's direction is free: any angle is as good a guess
+    cos_gamma = (r3**2 + d**2 - r4**2) / (2 * r3 * np.where(d > 0, d, 1.0))
+    gamma = np.arccos(np.clip(np.where(d > 0, cos_gamma, 0.0), -1, 1))
     t3 = np.arctan2(dy, dx) + sign * gamma
     bx, by = ax + r3 * np.cos(t3), ay + r3 * np.sin(t3)
     t4 = np.arctan2(by, bx - r1)
@@ -154,7 +156,7 @@ def four_bar(ground, crank, coupler, rocker, *, branch: str = "open", length_uni
 
     return finish(Mechanism(
         [loop], t2, {R1: r1, R2: r2, R3: r3, R4: r4},
-        name=label, guess=guess, length_unit=length_unit,
+        name=label, guess=guess, length_unit=length_unit, branch=branch,
         points={
             "O2": (0, 0), "A": (R2 * sp.cos(t2), R2 * sp.sin(t2)),
             "B": (R1 + R4 * sp.cos(t4), R4 * sp.sin(t4)), "O4": (R1, 0),
