@@ -363,13 +363,75 @@ def autograder_zip(result: Path) -> Path:
     return zips[-1]
 
 
-def run(submission: Path, autograder: Path, out: Path) -> dict:
-    """``otter run`` one submission; returns its results.json."""
-    out.mkdir(parents=True, exist_ok=True)
+def zip_requirements(autograder: Path) -> list[str]:
+    """What the autograder image installs: the pip packages of the zip's environment.yml.
+
+    Gradescope and ``otter grade`` build a conda environment from this file:
+    Python, pip, ``jupyter_server`` and these pip packages (otter-grader and the
+    ``requirements`` of the master's ASSIGNMENT CONFIG), nothing else.
+    """
+    import zipfile
+
+    import yaml
+
+    with zipfile.ZipFile(autograder) as archive:
+        environment = yaml.safe_load(archive.read("environment.yml"))
+    pip = [d["pip"] for d in environment["dependencies"] if isinstance(d, dict) and "pip" in d]
+    conda = [d for d in environment["dependencies"] if isinstance(d, str)]
+    from_conda = [d for d in conda if d.split("=")[0] not in ("python", "pip")]
+    return [*from_conda, *(pip[0] if pip else [])]
+
+
+def grading_venv(requirements: list[str], dest: Path) -> Path:
+    """A fresh virtual environment holding only ``requirements``; returns its ``bin`` folder.
+
+    This stands in for the autograder image: nothing of numkin or of the
+    instructor's environment is visible in it.
+    """
+    import venv
+
+    venv.EnvBuilder(with_pip=True, clear=True).create(dest)
+    bin_dir = dest / ("Scripts" if sys.platform == "win32" else "bin")
     subprocess.run(
-        [_tool("otter"), "run", "-a", str(autograder), "-o", str(out), "--no-logo", str(submission)],
+        [str(bin_dir / "python"), "-m", "pip", "install", "--quiet", "--disable-pip-version-check",
+         *requirements],
+        check=True,
+        env=_isolated_env(bin_dir),
+    )
+    return bin_dir
+
+
+def _isolated_env(bin_dir: Path | None, home: Path | None = None) -> dict:
+    """Environment variables for a process that must see only ``bin_dir``'s Python."""
+    import os
+
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("PYTHON", "VIRTUAL_ENV", "JUPYTER"))}
+    if bin_dir is not None:
+        env["PATH"] = os.pathsep.join([str(bin_dir), env.get("PATH", "")])
+        env["VIRTUAL_ENV"] = str(bin_dir.parent)
+        env["PYTHONNOUSERSITE"] = "1"  # no packages from the user's site folder
+    if home is not None:  # no user kernelspecs: the kernel is the venv's own Python
+        env["JUPYTER_DATA_DIR"] = str(home / "jupyter-data")
+        env["JUPYTER_CONFIG_DIR"] = str(home / "jupyter-config")
+        env["IPYTHONDIR"] = str(home / "ipython")
+    return env
+
+
+def run(submission: Path, autograder: Path, out: Path, *, bin_dir: Path | None = None) -> dict:
+    """``otter run`` one submission; returns its results.json.
+
+    With ``bin_dir`` (see :func:`grading_venv`) the submission is graded with
+    that environment's otter and Python only, as the autograder image would.
+    """
+    submission, autograder, out = submission.resolve(), autograder.resolve(), out.resolve()
+    out.mkdir(parents=True, exist_ok=True)
+    otter = str(bin_dir / "otter") if bin_dir is not None else _tool("otter")
+    subprocess.run(
+        [otter, "run", "-a", str(autograder), "-o", str(out), "--no-logo", str(submission)],
         check=True,
         stdout=subprocess.DEVNULL,
+        cwd=out,
+        env=_isolated_env(bin_dir, out if bin_dir is not None else None),
     )
     return json.loads((out / "results.json").read_text())
 
@@ -417,14 +479,26 @@ def feedback(results: dict) -> str:
     return "\n".join(t.get("output", "") for t in results["tests"])
 
 
-def grade(hw_or_zip: str, submissions: list[Path], out: Path) -> Path:
+def environment(autograder: Path, venv: Path | None) -> Path | None:
+    """The ``bin`` folder of ``venv``, made from the zip's requirements if it does not exist yet."""
+    if venv is None:
+        return None
+    bin_dir = venv / ("Scripts" if sys.platform == "win32" else "bin")
+    if not (bin_dir / "otter").exists():
+        print(f"building {venv} with {' '.join(zip_requirements(autograder))}")
+        grading_venv(zip_requirements(autograder), venv)
+    return bin_dir
+
+
+def grade(hw_or_zip: str, submissions: list[Path], out: Path, venv: Path | None = None) -> Path:
     """Run ``otter run`` on every submission; write one results folder each and scores.csv."""
     target = Path(hw_or_zip)
     autograder = target if target.suffix == ".zip" else autograder_zip(DIST / hw_or_zip)
+    bin_dir = environment(autograder, venv)
     rows = []
     for submission in submissions:
         folder = out / submission.stem
-        results = run(submission, autograder, folder)
+        results = run(submission, autograder, folder, bin_dir=bin_dir)
         got, possible = score(results)
         rows.append({"submission": submission.name, "score": got, "possible": possible})
         print(f"{submission.name}: {got:g} / {possible:g}")
@@ -468,10 +542,13 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("homework", help="homework name (uses assignments/dist) or autograder zip")
     p.add_argument("submissions", nargs="+", type=Path, help=".ipynb or .zip files, or folders of them")
     p.add_argument("--out", type=Path, default=Path("grades"))
+    p.add_argument("--venv", type=Path, help="grade in this virtual environment, made from the zip's "
+                   "requirements alone if it does not exist (as Gradescope / otter grade do)")
 
     p = sub.add_parser("mistakes", help="grade the solution and each deliberate mistake, print feedback")
     p.add_argument("homework", nargs="*")
     p.add_argument("--out", type=Path, default=DIST)
+    p.add_argument("--venv", type=Path, help="as for grade")
 
     args = parser.parse_args(argv)
     try:
@@ -503,18 +580,24 @@ def _run(args) -> int:
         files = []
         for path in args.submissions:
             files += sorted(path.glob("*.zip")) + sorted(path.glob("*.ipynb")) if path.is_dir() else [path]
-        print(f"scores written to {grade(args.homework, files, args.out)}")
+        print(f"scores written to {grade(args.homework, files, args.out, args.venv)}")
         return 0
     if args.command == "mistakes":
         for hw in _homework(args.homework):
             result = assign(hw, args.out, run_tests=False)
-            solution = result / "autograder" / f"{hw}.ipynb"
-            graded = run(solution, autograder_zip(result), result / "graded" / "solution")
-            print(f"{hw} solution: {'%g / %g' % score(graded)}")
+            name = result.name
+            bin_dir = environment(autograder_zip(result), args.venv)
+            solution = result / "autograder" / f"{name}.ipynb"
+            graded = run(solution, autograder_zip(result), result / "graded" / "solution", bin_dir=bin_dir)
+            print(f"{name} solution: {'%g / %g' % score(graded)}")
             for mistake in mistakes(hw):
-                wrong = apply_mistake(solution, mistake, result / "mistakes" / mistake["name"] / f"{hw}.ipynb")
-                graded = run(wrong, autograder_zip(result), wrong.parent)
-                print(f"\n{hw} {mistake['name']} ({mistake['about']}): {'%g / %g' % score(graded)}")
+                wrong = apply_mistake(solution, mistake, result / "mistakes" / mistake["name"] / f"{name}.ipynb")
+                graded = run(wrong, autograder_zip(result), wrong.parent, bin_dir=bin_dir)
+                print(f"\n{name} {mistake['name']} ({mistake['about']}): {'%g / %g' % score(graded)}"
+                      f" (mistakes.toml: {mistake.get('score')})")
+                for test in graded["tests"]:
+                    if test.get("max_score") and test.get("score") != test.get("max_score"):
+                        print(f"  {test['name']}: {test.get('score'):g} / {test['max_score']:g}")
                 print(feedback(graded))
         return 0
     return 2

@@ -1,23 +1,16 @@
 """The homework in assignments/: reference values, feedback helpers, and grading with otter.
 
-Fast tests check that the committed reference values are numkin's, and the feedback
-module ``assignments/kincheck.py`` on its own.  The tests marked ``slow`` build every
-homework with ``otter assign`` and grade, with ``otter run`` (no Docker), the solution
-notebook (full marks) and each deliberate mistake of ``assignments/<hw>/mistakes.toml``
-(partial marks, and feedback that names the mistake).  Every homework is built once and
-all submissions are graded in one module-scoped fixture, two at a time.
+These tests are fast: the committed reference values are numkin's, the masters are
+otter notebooks, the deliberate mistakes apply, and the feedback module
+``assignments/kincheck.py`` works on its own.  Building and grading with otter is in
+``tests/test_grading.py``.
 """
 
 from __future__ import annotations
 
 import importlib.util
-import json
 import math
-import os
-import re
 import sys
-import zipfile
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -254,119 +247,3 @@ def test_read_angles_picks_the_unit_that_closes_the_loop():
 
     unit, angles, residual = kc.read_angles("t", np.full(361, math.degrees(1.0)), gap)
     assert unit == "deg" and np.allclose(angles, 1.0) and residual.max() < 1e-12
-
-
-# --------------------------------------------------------------------------
-# otter: build, grade the solutions and the mistakes
-# --------------------------------------------------------------------------
-
-
-@pytest.fixture(scope="module")
-def graded(tmp_path_factory):
-    """Build every homework with otter assign; grade every solution and mistake with otter run."""
-    pytest.importorskip("otter")
-    pytest.importorskip("jupytext")
-    pytest.importorskip("nbclient")
-    out = tmp_path_factory.mktemp("assignments")
-    workers = max(1, min(2, os.cpu_count() or 1))
-    with ThreadPoolExecutor(workers) as pool:
-        results = dict(zip(HOMEWORK, pool.map(lambda hw: build.assign(hw, out, run_tests=False), HOMEWORK)))
-    jobs = []
-    for hw, result in results.items():
-        solution = result / "autograder" / f"{hw}.ipynb"
-        jobs.append((hw, "solution", solution, result / "graded" / "solution"))
-        for mistake in build.mistakes(hw):
-            wrong = result / "mistakes" / mistake["name"] / f"{hw}.ipynb"
-            build.apply_mistake(solution, mistake, wrong)
-            jobs.append((hw, mistake["name"], wrong, wrong.parent))
-
-    def grade(job):
-        hw, name, submission, folder = job
-        try:
-            return build.run(submission, build.autograder_zip(results[hw]), folder)
-        except Exception as error:  # reported by the test that needs it
-            return error
-
-    with ThreadPoolExecutor(workers) as pool:
-        graded = dict(zip([(j[0], j[1]) for j in jobs], pool.map(grade, jobs)))
-    return {"built": results, "graded": graded}
-
-
-def _results(graded, hw, name) -> dict:
-    outcome = graded["graded"][(hw, name)]
-    if isinstance(outcome, Exception):
-        raise outcome
-    return outcome
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("hw", HOMEWORK)
-def test_otter_assign_builds_student_and_autograder_versions(graded, hw):
-    result = graded["built"][hw]
-    student = (result / "student" / f"{hw}.ipynb").read_text()
-    autograder = (result / "autograder" / f"{hw}.ipynb").read_text()
-    assert (result / "student" / "kincheck.py").exists()
-    assert "grader.check(" in student
-    assert "BEGIN SOLUTION" not in student and "hidden: true" not in student
-    expected = build.load_expected(hw)
-    for key, value in expected.items():
-        values = value.values() if isinstance(value, dict) else value if isinstance(value, list) else [value]
-        precise = [repr(v) for v in values if len(repr(v)) >= 10]  # not round numbers like 80.0
-        assert precise, key
-        for text in precise:
-            assert text not in student, f"reference value {key} ({text}) leaked into the student notebook"
-            assert text in autograder, f"reference value {key} ({text}) missing from the hidden tests"
-    with zipfile.ZipFile(build.autograder_zip(result)) as archive:
-        names = archive.namelist()
-        tests = "".join(archive.read(n).decode() for n in names if re.match(r"tests/.*\.py$", n))
-    assert "files/kincheck.py" in names
-    assert "hidden=True" in tests
-
-
-def _solution_lines(hw: str) -> list[str]:
-    """Code the master marks as solution: lines in '# BEGIN SOLUTION' blocks, '# SOLUTION' lines."""
-    found, inside = [], False
-    for line in build.master_path(hw).read_text().splitlines():
-        text = line.strip()
-        if text.startswith("# BEGIN SOLUTION"):
-            inside = True
-        elif text.startswith("# END SOLUTION"):
-            inside = False
-        elif inside:
-            found.append(text)
-        elif text.endswith("# SOLUTION"):
-            found.append(text.removesuffix("# SOLUTION").strip())
-    return [line for line in found if len(line) >= 20 and not line.startswith("#")]
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("hw", HOMEWORK)
-def test_student_version_has_no_solutions(graded, hw):
-    cells = json.loads((graded["built"][hw] / "student" / f"{hw}.ipynb").read_text())["cells"]
-    student = "\n".join("".join(cell["source"]) for cell in cells)
-    lines = _solution_lines(hw)
-    assert len(lines) >= 3
-    leaked = [line for line in lines if line in student]
-    assert not leaked, f"solution code in the student notebook: {leaked}"
-    assert student.count("= ...") + student.count("    ...") >= 2
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("hw", HOMEWORK)
-def test_solution_scores_full_marks(graded, hw):
-    results = _results(graded, hw, "solution")
-    got, possible = build.score(results)
-    assert possible > 0
-    assert got == possible, build.feedback(results)
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("hw, name", MISTAKES)
-def test_mistake_scores_partial_marks_and_is_named(graded, hw, name):
-    results = _results(graded, hw, name)
-    got, possible = build.score(results)
-    text = build.feedback(results)
-    assert 0 < got < possible, f"{name}: {got} / {possible}\n{text}"
-    (mistake,) = [m for m in build.mistakes(hw) if m["name"] == name]
-    for words in mistake["feedback"]:
-        assert words in text, f"{name}: feedback lacks {words!r}:\n{text}"

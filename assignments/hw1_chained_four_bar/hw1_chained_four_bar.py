@@ -15,6 +15,9 @@
 # name: hw1-chained-four-bar
 # files:
 #   - kincheck.py
+# requirements:
+#   - numpy>=1.24,<3
+#   - matplotlib>=3.7,<4
 # tests:
 #   ok_format: false
 # generate: true
@@ -62,7 +65,7 @@ h = np.radians(1.0)  # grid step, rad
 # %% [raw]
 # # BEGIN QUESTION
 # name: q1a
-# points: 3
+# points: [1, 1, 1]
 
 # %% [markdown]
 # **Q1a — Newton with continuation.** Write a multivariable Newton–Raphson solver for the
@@ -178,7 +181,7 @@ plt.show()
 # %% [raw]
 # # BEGIN QUESTION
 # name: q1b
-# points: 3
+# points: [1, 1, 1]
 
 # %% [markdown]
 # **Q1b — dφ/dθ.** Compute dφ/dθ at every θ in two ways: the first **forward** difference
@@ -287,7 +290,7 @@ plt.show()
 # %% [raw]
 # # BEGIN QUESTION
 # name: q1c
-# points: 2
+# points: [1, 1]
 
 # %% [markdown]
 # **Q1c — which is more accurate?** Set `order_forward` and `order_centred` to the order p
@@ -338,7 +341,7 @@ def test_orders(more_accurate, order_forward, order_centred):
 # %% [raw]
 # # BEGIN QUESTION
 # name: q2a
-# points: 3
+# points: [1, 1, 1]
 
 # %% [markdown]
 # **Q2a — the second linkage.** Its input angle is α = φ + 149°. Solve linkage 2 with the
@@ -414,7 +417,7 @@ def test_beta_newton_converged(phi, beta):
 # %% [raw]
 # # BEGIN QUESTION
 # name: q2b
-# points: 8
+# points: [1, 1, 1, 1, 1, 1, 1, 1]
 
 # %% [markdown]
 # **Q2b — angular velocity and acceleration of the output.** With ω the speed of the

@@ -15,6 +15,9 @@
 # name: hw2-quick-return
 # files:
 #   - kincheck.py
+# requirements:
+#   - numpy>=1.24,<3
+#   - matplotlib>=3.7,<4
 # tests:
 #   ok_format: false
 # generate: true
@@ -56,7 +59,7 @@ THETA2_DEG = 30.0
 # %% [raw]
 # # BEGIN QUESTION
 # name: q1
-# points: 2
+# points: [1, 1]
 
 # %% [markdown]
 # **Q1 — residual and Jacobian.** Write `F(x, theta2)`, returning the four residuals of
@@ -154,7 +157,7 @@ def test_residual_vanishes_at_the_solution(F):
 # %% [raw]
 # # BEGIN QUESTION
 # name: q2
-# points: 2
+# points: [1, 1]
 
 # %% [markdown]
 # **Q2 — Newton–Raphson at θ₂ = 30°.** Solve F(x) = 0 at θ₂ = 30° by Newton–Raphson from a
@@ -263,7 +266,7 @@ def test_values_at_30_degrees(r3, theta3, r4, r5):
 # %% [raw]
 # # BEGIN QUESTION
 # name: q3
-# points: 3
+# points: [1, 1, 1]
 
 # %% [markdown]
 # **Q3 — a full turn.** Solve the position for θ₂ = 0°, 1°, …, 360°, starting the Newton

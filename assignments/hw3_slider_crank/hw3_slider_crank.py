@@ -15,6 +15,9 @@
 # name: hw3-slider-crank
 # files:
 #   - kincheck.py
+# requirements:
+#   - numpy>=1.24,<3
+#   - matplotlib>=3.7,<4
 # tests:
 #   ok_format: false
 # generate: true
@@ -51,7 +54,7 @@ h = np.radians(1.0)  # grid step, rad
 # %% [raw]
 # # BEGIN QUESTION
 # name: q1
-# points: 2
+# points: [1, 1]
 
 # %% [markdown]
 # **Q1 — position.** Solve the loop for x at every θ of `theta` (the closed form, or
@@ -113,7 +116,7 @@ def test_position_values(x_piston):
 # %% [raw]
 # # BEGIN QUESTION
 # name: q2
-# points: 1
+# points: [1]
 
 # %% [markdown]
 # **Q2 — crank speed.** Set `omega` to the crank speed in rad/s.
@@ -146,7 +149,7 @@ def test_omega(omega):
 # %% [raw]
 # # BEGIN QUESTION
 # name: q3
-# points: 4
+# points: [1, 1, 1, 1]
 
 # %% [markdown]
 # **Q3 — acceleration.** The crank speed is constant, so ẍ = ω² d²x/dθ². Compute it with the

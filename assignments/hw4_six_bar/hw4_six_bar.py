@@ -15,6 +15,9 @@
 # name: hw4-six-bar
 # files:
 #   - kincheck.py
+# requirements:
+#   - numpy>=1.24,<3
+#   - matplotlib>=3.7,<4
 # tests:
 #   ok_format: false
 # generate: true
@@ -60,7 +63,7 @@ h = np.radians(1.0)  # grid step, rad
 # %% [raw]
 # # BEGIN QUESTION
 # name: q1
-# points: 3
+# points: [1, 1, 1]
 
 # %% [markdown]
 # **Q1 — position.** Solve loop 1 for (θ₃, θ₄), then loop 2 for (θ₅, x), by Newton–Raphson
@@ -186,7 +189,7 @@ def test_newton_converged(theta3, theta4, theta5, x_D):
 # %% [raw]
 # # BEGIN QUESTION
 # name: q2
-# points: 4
+# points: [1, 1, 1, 1]
 
 # %% [markdown]
 # **Q2 — velocity and acceleration of the slider.** The crank speed is constant, so
