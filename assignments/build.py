@@ -35,6 +35,8 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+if str(HERE) not in sys.path:
+    sys.path.insert(0, str(HERE))  # fromscene.py
 KINCHECK = HERE / "kincheck.py"
 DIST = HERE / "dist"
 
@@ -214,17 +216,42 @@ def _literal(value) -> str:
     return repr(value)
 
 
-def master_path(hw: str) -> Path:
-    return HERE / hw / f"{hw}.py"
+def folder(hw) -> Path:
+    """The folder of a homework: a name in assignments/, or the path of a folder (generated ones)."""
+    path = Path(hw)
+    if str(hw) in HOMEWORK or not path.is_dir():
+        return HERE / str(hw)
+    return path.resolve()
 
 
-def expected_path(hw: str) -> Path:
-    return HERE / hw / "expected.json"
+def master_path(hw) -> Path:
+    where = folder(hw)
+    return where / f"{where.name}.py"
 
 
-def compute(hw: str) -> dict:
+def expected_path(hw) -> Path:
+    return folder(hw) / "expected.json"
+
+
+def compute(hw) -> dict:
     """Reference values of one homework, freshly computed by numkin and rounded."""
-    return {k: _rounded(v) for k, v in EXPECTED[hw]().items()}
+    where = folder(hw)
+    if (where / "scene.toml").exists():
+        import fromscene
+
+        values = fromscene.expected(where)
+    else:
+        values = EXPECTED[where.name]()
+    return {k: _rounded(v) for k, v in values.items()}
+
+
+def new_from_scene(scene: Path, root: Path = HERE) -> Path:
+    """A homework master generated from a scene file, with its reference values; returns its folder."""
+    import fromscene
+
+    where = fromscene.generate(Path(scene), Path(root))
+    write(where, compute(where))
+    return where
 
 
 def load_expected(hw: str) -> dict:
@@ -251,7 +278,7 @@ def write(hw: str, values: dict) -> None:
     """Write expected.json and the marker lines of the master source."""
     payload = {
         "about": (
-            f"Reference values of {hw}, computed by numkin "
+            f"Reference values of {folder(hw).name}, computed by numkin "
             "(python assignments/build.py expected). Angles in rad, keys of "
             "dictionaries are input angles in degrees."
         ),
@@ -331,21 +358,23 @@ def _tool(name: str) -> str:
     return str(local) if local.exists() else name
 
 
-def notebook(hw: str, dest: Path) -> Path:
-    """Convert the jupytext master to ``dest/<hw>.ipynb`` and copy kincheck.py beside it."""
+def notebook(hw, dest: Path) -> Path:
+    """Convert the jupytext master to ``dest/<hw>.ipynb``; copy kincheck.py (and linkage.py) beside it."""
     import jupytext
 
     dest.mkdir(parents=True, exist_ok=True)
     nb = jupytext.read(master_path(hw))
-    path = dest / f"{hw}.ipynb"
+    path = dest / f"{folder(hw).name}.ipynb"
     jupytext.write(nb, path)
     shutil.copy(KINCHECK, dest / KINCHECK.name)
+    if (folder(hw) / "linkage.py").exists():
+        shutil.copy(folder(hw) / "linkage.py", dest / "linkage.py")
     return path
 
 
-def assign(hw: str, out: Path = DIST, *, run_tests: bool = True) -> Path:
+def assign(hw, out: Path = DIST, *, run_tests: bool = True) -> Path:
     """``otter assign`` one homework into ``out/<hw>/{student,autograder}``; returns ``out/<hw>``."""
-    result = out / hw
+    result = Path(out).resolve() / folder(hw).name
     if result.exists():
         shutil.rmtree(result)
     source = notebook(hw, result / "source")
@@ -450,7 +479,7 @@ def mistakes(hw: str) -> list[dict]:
     except ModuleNotFoundError:  # Python < 3.11
         import tomli as tomllib
 
-    path = HERE / hw / "mistakes.toml"
+    path = folder(hw) / "mistakes.toml"
     if not path.exists():
         return []
     return tomllib.loads(path.read_text())["mistake"]
@@ -519,7 +548,7 @@ def grade(hw_or_zip: str, submissions: list[Path], out: Path, venv: Path | None 
 def _homework(names: list[str]) -> list[str]:
     if not names:
         return list(HOMEWORK)
-    unknown = [n for n in names if n not in HOMEWORK]
+    unknown = [n for n in names if n not in HOMEWORK and not (Path(n) / "mistakes.toml").exists()]
     if unknown:
         raise SystemExit(f"unknown homework {unknown}; choose from {list(HOMEWORK)}")
     return names
@@ -532,6 +561,10 @@ def main(argv: list[str] | None = None) -> int:
     p = sub.add_parser("expected", help="recompute the reference values with numkin")
     p.add_argument("homework", nargs="*", help=f"default: all of {', '.join(HOMEWORK)}")
     p.add_argument("--check", action="store_true", help="only compare; exit 1 if stale")
+
+    p = sub.add_parser("new", help="generate a homework master from a scene file (numkin scene TOML)")
+    p.add_argument("scene", type=Path, help="a scene .toml with a [mechanism] and an [input] speed")
+    p.add_argument("--root", type=Path, default=HERE, help="folder to write hw_<scene>/ in (default: assignments/)")
 
     p = sub.add_parser("assign", help="build student and autograder versions with otter assign")
     p.add_argument("homework", nargs="*")
@@ -571,6 +604,10 @@ def _run(args) -> int:
                 write(hw, fresh)
                 print(f"{hw}: {len(fresh)} reference values written")
         return 1 if failed else 0
+    if args.command == "new":
+        where = new_from_scene(args.scene, args.root)
+        print(f"{where.name}: master {master_path(where)}; next: python assignments/build.py assign {where}")
+        return 0
     if args.command == "assign":
         for hw in _homework(args.homework):
             result = assign(hw, args.out, run_tests=not args.no_run_tests)

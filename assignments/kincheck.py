@@ -32,7 +32,9 @@ __all__ = [
     "closure",
     "continuity",
     "four_bar_gap",
+    "listed",
     "read_angle_group",
+    "rows",
     "read_angles",
     "six_bar_gap",
     "explain_factor",
@@ -123,6 +125,52 @@ def array(x, name: str, grid=FULL_TURN) -> np.ndarray:
             "did Newton fail to converge there?"
         )
     return values
+
+
+def rows(x, name: str, width: int, grid=FULL_TURN) -> np.ndarray:
+    """``x`` as a float array of one row of ``width`` unknowns per grid angle, all finite."""
+    if _not_set(x):
+        raise AssertionError(f"`{name}` is not set yet: run the cell that computes it")
+    try:
+        values = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise AssertionError(f"`{name}` should be an array of numbers, got {type(x).__name__}") from None
+    count = _grid_angles(grid).size
+    if values.ndim == 2 and values.shape == (width, count):
+        values = values.T
+    if values.ndim != 2 or values.shape != (count, width):
+        raise AssertionError(
+            f"`{name}` should have one row of {width} unknowns for each {_grid_text(grid)} "
+            f"({count} × {width}); got shape {np.shape(x)}"
+        )
+    bad = np.flatnonzero(~np.isfinite(values).all(axis=1))
+    if bad.size:
+        raise AssertionError(
+            f"`{name}` is not finite at θ = {_grid_angles(grid)[bad[0]]:g}° ({bad.size} such rows): "
+            "the solve failed or was not stored there"
+        )
+    return values
+
+
+def listed(name: str, x, want, *, rtol: float = 1e-3, unit: str = "") -> None:
+    """Compare a short list of numbers with ``want`` element by element (relative ``rtol``)."""
+    if _not_set(x):
+        raise AssertionError(f"`{name}` is not set yet: run the cell that computes it")
+    try:
+        got = np.atleast_1d(np.asarray(x, dtype=float)).ravel()
+    except (TypeError, ValueError):
+        raise AssertionError(f"`{name}` should be a list of numbers, got {type(x).__name__}") from None
+    want = np.asarray(want, dtype=float)
+    if got.shape != want.shape:
+        raise AssertionError(f"`{name}` should hold {want.size} numbers, got {got.size}")
+    off = np.abs(got - want) > rtol * np.abs(want)
+    if off.any():
+        i = int(np.flatnonzero(off)[0])
+        unit_text = f" {unit}" if unit else ""
+        raise AssertionError(
+            f"`{name}`[{i}] = {_fmt(got[i])}{unit_text}, expected {_fmt(want[i])}{unit_text} "
+            f"(within {rtol:.2g} relative)"
+        )
 
 
 def _index(grid, deg: float) -> int:

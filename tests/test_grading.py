@@ -196,7 +196,7 @@ def _public_points(text: str) -> list[str]:
     return re.findall(r"@test_case\(points=([\d.]+), hidden=False", text)
 
 
-@pytest.mark.parametrize("hw", [*HOMEWORK, "offset-slider-crank"])
+@pytest.mark.parametrize("hw", [*HOMEWORK, "hw_offset_slider_crank"])
 def test_zip_asks_for_what_the_notebook_imports_and_logs_match(built, hw):
     """The image gets numpy and matplotlib; public checks carry the same points for
     students as for grading, so otter run finds no "differs from logged score"."""
@@ -225,7 +225,7 @@ def test_grading_environment_is_isolated(built, environments):
 # --------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("hw", [*HOMEWORK, "offset-slider-crank"])
+@pytest.mark.parametrize("hw", [*HOMEWORK, "hw_offset_slider_crank"])
 def test_solution_scores_full_marks(graded, hw):
     results = _results(graded, hw, "solution")
     got, possible = build.score(results)
@@ -249,9 +249,9 @@ def test_mistake_scores_what_mistakes_toml_states_and_is_named(graded, hw, name)
 
 
 def test_generated_homework_mistakes(built, graded):
-    hw, _ = built["offset-slider-crank"]
+    hw, _ = built["hw_offset_slider_crank"]
     for mistake in build.mistakes(hw):
-        results = _results(graded, "offset-slider-crank", mistake["name"])
+        results = _results(graded, "hw_offset_slider_crank", mistake["name"])
         got, _ = build.score(results)
         assert got == mistake["score"], build.feedback(results)
         for words in mistake["feedback"]:
