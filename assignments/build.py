@@ -45,6 +45,7 @@ HOMEWORK = (
     "hw2_quick_return",
     "hw3_slider_crank",
     "hw4_six_bar",
+    "hw5_quadrature_pendulum",
 )
 
 MARKER = re.compile(r"^(?P<head>\s*\w+ = )(?P<value>.*?)(?P<tail>\s+# numkin: (?P<key>[\w.]+)\s*)$")
@@ -187,6 +188,7 @@ EXPECTED = {
     "hw2_quick_return": expected_hw2,
     "hw3_slider_crank": expected_hw3,
     "hw4_six_bar": expected_hw4,
+    "hw5_quadrature_pendulum": lambda: __import__("exam004").expected(),
 }
 
 
@@ -278,8 +280,9 @@ def write(hw: str, values: dict) -> None:
     """Write expected.json and the marker lines of the master source."""
     payload = {
         "about": (
-            f"Reference values of {folder(hw).name}, computed by numkin "
-            "(python assignments/build.py expected). Angles in rad, keys of "
+            f"Reference values of {folder(hw).name}, computed by "
+            + ("mpmath (assignments/exam004.py)" if folder(hw).name == "hw5_quadrature_pendulum" else "numkin")
+            + " (python assignments/build.py expected). Angles in rad, keys of "
             "dictionaries are input angles in degrees."
         ),
         "values": {
