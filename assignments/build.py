@@ -120,6 +120,8 @@ def expected_hw1() -> dict:
         "d2beta_dt2_forward_twice": _at(
             omega**2 * derivatives.forward_of_forward(beta, h), theta_deg, check
         ),
+        # np.gradient is numpy's, applied to numkin's sweep: what a student who calls it twice gets
+        "d2beta_dt2_gradient_twice": _at(omega**2 * np.gradient(np.gradient(beta, h), h), theta_deg, check),
         "omega_beta_100": float(_column(kin, "omega_beta")[i100]),
         "alpha_beta_100": float(_column(kin, "alpha_beta")[i100]),
         "alpha_beta_fw_100": float(omega**2 * derivatives.forward_of_forward(beta, h)[i100]),

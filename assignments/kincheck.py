@@ -32,8 +32,10 @@ __all__ = [
     "closure",
     "continuity",
     "four_bar_gap",
+    "own_difference",
     "initial_state",
     "quadrature_rule",
+    "quick_return_input_unit",
     "state",
     "listed",
     "read_angle_group",
@@ -76,9 +78,12 @@ SUSPECTS = {
 _FACTOR_TOLERANCE = 0.02  # relative, for recognising a unit factor
 
 NEWTON_HINT = (
-    "An error this small usually comes from a Newton iteration stopped too early "
-    "(a loose tolerance such as |F| < 1e-4), which finite differences magnify"
+    "Differences this small have several causes: a difference formula other than the one "
+    "asked (np.gradient, a one-sided or shifted formula, another step), or positions that "
+    "are not converged (a loose Newton tolerance, which finite differences magnify; the "
+    "position checks say whether yours are)"
 )
+"""The hint of a small miss that no alternative explains: it lists the causes, it does not pick one."""
 
 
 # --------------------------------------------------------------------------
@@ -115,17 +120,21 @@ def array(x, name: str, grid=FULL_TURN) -> np.ndarray:
         ) from None
     values = np.atleast_1d(np.squeeze(values))
     count = _grid_angles(grid).size
-    if values.ndim != 1 or values.size not in (count, count - 1):
+    if values.ndim != 1 or values.size not in (count, count - 1, count - 2):
         raise AssertionError(
             f"`{name}` should hold {count} values, one for each {_grid_text(grid)}; "
             f"got shape {np.shape(x)}"
         )
-    bad = np.flatnonzero(~np.isfinite(values))
-    if bad.size:
+    if values.size == count - 1:  # stops one step short (np.diff, or 0°…359°): read from the start
+        values = np.append(values, np.nan)
+    elif values.size == count - 2:  # interior points only, e.g. (y[2:] - y[:-2]) / (2h)
+        values = np.concatenate([[np.nan], values, [np.nan]])
+    bad = np.flatnonzero(~np.isfinite(values[1:-1])) + 1
+    if bad.size:  # NaN at the two ends is allowed: the checks compare interior angles
         where = _grid_angles(grid)[bad[0]]
         raise AssertionError(
-            f"`{name}` is {values[bad[0]]} at θ = {where:g}° ({bad.size} such values): "
-            "did Newton fail to converge there?"
+            f"`{name}` is {values[bad[0]]} at θ = {where:g}° ({bad.size} such interior values): "
+            "a solve that failed there, or a formula that left it undefined"
         )
     return values
 
@@ -195,14 +204,28 @@ def at(x, name: str, deg: float, grid=FULL_TURN) -> float:
         values = array(x, name, grid)
         result = float(values[_index(grid, deg)])
     if not math.isfinite(result):
-        raise AssertionError(f"`{name}` is {result} at θ = {deg:g}°")
+        end = values.size > 1 and _index(grid, deg) in (0, _grid_angles(grid).size - 1)
+        raise AssertionError(
+            f"`{name}` is {result} at θ = {deg:g}°"
+            + (": an end of the grid, where the question asks for a value too (use a one-sided "
+               "formula there, or values beyond the end)" if end else "")
+        )
     return result
+
+
+_current = ["the array"]  # name of the array being checked, for _pick's message
 
 
 def _pick(values: np.ndarray, ref: dict, grid) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     degs = np.array(sorted(float(d) for d in ref))
     got = np.array([values[_index(grid, d)] for d in degs])
     want = np.array([float(ref[d]) for d in sorted(ref, key=float)])
+    missing = np.flatnonzero(~np.isfinite(got))
+    if missing.size:
+        raise AssertionError(
+            f"`{_current[0]}` has no value at θ = {degs[missing[0]]:g}°, an end of the grid that is "
+            "checked: use a one-sided formula there, or values beyond the end"
+        )
     return degs, got, want
 
 
@@ -333,6 +356,7 @@ def series(
     reported.
     """
     values = array(x, name, grid)
+    _current[0] = name
     degs, got, want = _pick(values, ref, grid)
     if _close(got, want, rtol, atol).all():
         return
@@ -453,6 +477,26 @@ def _loose_factor(got: float, low: float, high: float, suspects) -> str | None:
     return texts[0] if len(texts) == 1 else f"{texts[0]} Or {texts[1]}"
 
 
+def own_difference(y, degs, h: float, kind: str, factor: float = 1.0) -> dict:
+    """``{angle: factor × difference of y}`` at the listed grid indices (angles in grid steps).
+
+    ``kind`` is ``"centred"``, ``"forward"``, ``"second"`` (centred second difference),
+    ``"forward_twice"`` or ``"gradient_twice"`` (``np.gradient`` applied twice, which at
+    interior points is the centred second difference of step 2h).  Used to check a
+    student's rate against the student's own positions, so that one slip upstream does
+    not cost every check downstream.
+    """
+    y = np.asarray(y, dtype=float)
+    formulas = {
+        "centred": lambda k: (y[k + 1] - y[k - 1]) / (2 * h),
+        "forward": lambda k: (y[k + 1] - y[k]) / h,
+        "second": lambda k: (y[k + 1] - 2 * y[k] + y[k - 1]) / h**2,
+        "forward_twice": lambda k: (y[k + 2] - 2 * y[k + 1] + y[k]) / h**2,
+        "gradient_twice": lambda k: (y[k + 2] - 2 * y[k] + y[k - 2]) / (4 * h**2),
+    }
+    return {d: factor * float(formulas[kind](int(d))) for d in degs}
+
+
 def _wrapped(difference: np.ndarray) -> np.ndarray:
     return (difference + np.pi) % (2 * np.pi) - np.pi
 
@@ -465,6 +509,7 @@ def unit_of(name: str, x, ref: dict, *, grid=FULL_TURN, tol: float = 1e-6, allow
     off the values are (and in which unit they were read) when neither fits.
     """
     values = array(x, name, grid)
+    _current[0] = name
     degs, got, want = _pick(values, ref, grid)
     errors = {}
     for unit in ("rad", "deg"):
@@ -546,6 +591,31 @@ def six_bar_gap(crank_rad, t3, t4, t5, x, *, crank=1.0, coupler=4.0, o4=(3.7, -2
     return np.maximum(np.abs(one), np.abs(two))
 
 
+def quick_return_input_unit(values, theta2_deg: float) -> None:
+    """Raise if (r3, θ3, r4, r5) close the quick-return loop at θ2 = ``theta2_deg`` *radians*.
+
+    That is the evidence of θ2 passed in degrees to functions that take radians; the
+    message names it only when the loop closes there and not at the asked angle.
+    """
+    r3, t3, r4, r5 = (float(v) for v in values)
+
+    def worst(t2, t3):
+        return max(abs(40.0 * math.cos(t2) - r3 * math.cos(t3)),
+                   abs(60.0 + 40.0 * math.sin(t2) - r3 * math.sin(t3)),
+                   abs(120.0 - r4 * math.sin(t3)), abs(r5 - r4 * math.cos(t3)))
+
+    for t3_rad in (t3, math.radians(t3)):
+        if worst(math.radians(theta2_deg), t3_rad) < 1e-6:
+            return  # closes at the asked angle
+    for t3_rad in (t3, math.radians(t3)):
+        if worst(theta2_deg, t3_rad) < 1e-6:
+            raise AssertionError(
+                f"your r3, θ3, r4, r5 close the loop at θ2 = {theta2_deg:g} rad "
+                f"(= {math.degrees(theta2_deg) % 360:.1f}° after whole turns), not at {theta2_deg:g}°: "
+                f"θ2 was given in degrees where F and J take radians; use np.radians({theta2_deg:g})"
+            )
+
+
 def read_angle_group(arrays, gap):
     """Read several angle arrays in one unit, deciding it by the loop equations.
 
@@ -588,7 +658,7 @@ def closure(
     between ``tol`` and ``broken`` means the Newton iteration stopped before it
     converged, and the message says how finite differences magnify it.
     """
-    gap = np.abs(np.asarray(gap, dtype=float))
+    gap = np.nan_to_num(np.abs(np.asarray(gap, dtype=float)), nan=0.0)  # NaN ends: not checked
     worst = int(np.argmax(gap))
     if gap[worst] <= tol:
         return
@@ -611,7 +681,7 @@ def closure(
 def continuity(name: str, angles_rad, *, grid=FULL_TURN, max_step_deg: float = 10.0):
     """Check that angles (radians) move by less than ``max_step_deg`` between grid points."""
     values = np.asarray(angles_rad, dtype=float)
-    steps = np.degrees(np.abs(_wrapped(np.diff(values))))
+    steps = np.nan_to_num(np.degrees(np.abs(_wrapped(np.diff(values)))), nan=0.0)
     worst = int(np.argmax(steps))
     if steps[worst] <= max_step_deg:
         return
