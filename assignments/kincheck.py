@@ -204,7 +204,7 @@ def at(x, name: str, deg: float, grid=FULL_TURN) -> float:
         values = array(x, name, grid)
         result = float(values[_index(grid, deg)])
     if not math.isfinite(result):
-        end = values.size > 1 and _index(grid, deg) in (0, _grid_angles(grid).size - 1)
+        end = _index(grid, deg) in (0, _grid_angles(grid).size - 1)
         raise AssertionError(
             f"`{name}` is {result} at θ = {deg:g}°"
             + (": an end of the grid, where the question asks for a value too (use a one-sided "
