@@ -36,7 +36,9 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 if str(HERE) not in sys.path:
-    sys.path.insert(0, str(HERE))  # fromscene.py
+    sys.path.insert(0, str(HERE))  # fromscene.py, grading.py, exam004.py
+
+from grading import environment, grading_venv, isolated_env, run, tool, zip_requirements  # noqa: E402,F401
 KINCHECK = HERE / "kincheck.py"
 DIST = HERE / "dist"
 
@@ -357,14 +359,8 @@ def stale(hw: str, fresh: dict | None = None) -> list[str]:
 # --------------------------------------------------------------------------
 
 
-def _tool(name: str) -> str:
-    """Path of a console script installed next to this Python (or on PATH)."""
-    local = Path(sys.executable).with_name(name)
-    return str(local) if local.exists() else name
-
-
 def notebook(hw, dest: Path) -> Path:
-    """Convert the jupytext master to ``dest/<hw>.ipynb``; copy kincheck.py (and linkage.py) beside it."""
+    """Convert the jupytext master to ``dest/<hw>.ipynb``; copy kincheck.py and the folder's other .py files beside it."""
     import jupytext
 
     dest.mkdir(parents=True, exist_ok=True)
@@ -372,8 +368,9 @@ def notebook(hw, dest: Path) -> Path:
     path = dest / f"{folder(hw).name}.ipynb"
     jupytext.write(nb, path)
     shutil.copy(KINCHECK, dest / KINCHECK.name)
-    if (folder(hw) / "linkage.py").exists():
-        shutil.copy(folder(hw) / "linkage.py", dest / "linkage.py")
+    for extra in sorted(folder(hw).glob("*.py")):  # linkage.py, odecheck.py: listed in the config's files
+        if extra != master_path(hw):
+            shutil.copy(extra, dest / extra.name)
     return path
 
 
@@ -383,7 +380,7 @@ def assign(hw, out: Path = DIST, *, run_tests: bool = True) -> Path:
     if result.exists():
         shutil.rmtree(result)
     source = notebook(hw, result / "source")
-    cmd = [_tool("otter"), "assign", str(source), str(result)]
+    cmd = [tool("otter"), "assign", str(source), str(result)]
     if not run_tests:
         cmd.append("--no-run-tests")
     subprocess.run(cmd, check=True)
@@ -395,79 +392,6 @@ def autograder_zip(result: Path) -> Path:
     if not zips:
         raise FileNotFoundError(f"no autograder zip in {result / 'autograder'}: run assign first")
     return zips[-1]
-
-
-def zip_requirements(autograder: Path) -> list[str]:
-    """What the autograder image installs: the pip packages of the zip's environment.yml.
-
-    Gradescope and ``otter grade`` build a conda environment from this file:
-    Python, pip, ``jupyter_server`` and these pip packages (otter-grader and the
-    ``requirements`` of the master's ASSIGNMENT CONFIG), nothing else.
-    """
-    import zipfile
-
-    import yaml
-
-    with zipfile.ZipFile(autograder) as archive:
-        environment = yaml.safe_load(archive.read("environment.yml"))
-    pip = [d["pip"] for d in environment["dependencies"] if isinstance(d, dict) and "pip" in d]
-    conda = [d for d in environment["dependencies"] if isinstance(d, str)]
-    from_conda = [d for d in conda if d.split("=")[0] not in ("python", "pip")]
-    return [*from_conda, *(pip[0] if pip else [])]
-
-
-def grading_venv(requirements: list[str], dest: Path) -> Path:
-    """A fresh virtual environment holding only ``requirements``; returns its ``bin`` folder.
-
-    This stands in for the autograder image: nothing of numkin or of the
-    instructor's environment is visible in it.
-    """
-    import venv
-
-    venv.EnvBuilder(with_pip=True, clear=True).create(dest)
-    bin_dir = dest / ("Scripts" if sys.platform == "win32" else "bin")
-    subprocess.run(
-        [str(bin_dir / "python"), "-m", "pip", "install", "--quiet", "--disable-pip-version-check",
-         *requirements],
-        check=True,
-        env=_isolated_env(bin_dir),
-    )
-    return bin_dir
-
-
-def _isolated_env(bin_dir: Path | None, home: Path | None = None) -> dict:
-    """Environment variables for a process that must see only ``bin_dir``'s Python."""
-    import os
-
-    env = {k: v for k, v in os.environ.items() if not k.startswith(("PYTHON", "VIRTUAL_ENV", "JUPYTER"))}
-    if bin_dir is not None:
-        env["PATH"] = os.pathsep.join([str(bin_dir), env.get("PATH", "")])
-        env["VIRTUAL_ENV"] = str(bin_dir.parent)
-        env["PYTHONNOUSERSITE"] = "1"  # no packages from the user's site folder
-    if home is not None:  # no user kernelspecs: the kernel is the venv's own Python
-        env["JUPYTER_DATA_DIR"] = str(home / "jupyter-data")
-        env["JUPYTER_CONFIG_DIR"] = str(home / "jupyter-config")
-        env["IPYTHONDIR"] = str(home / "ipython")
-    return env
-
-
-def run(submission: Path, autograder: Path, out: Path, *, bin_dir: Path | None = None) -> dict:
-    """``otter run`` one submission; returns its results.json.
-
-    With ``bin_dir`` (see :func:`grading_venv`) the submission is graded with
-    that environment's otter and Python only, as the autograder image would.
-    """
-    submission, autograder, out = submission.resolve(), autograder.resolve(), out.resolve()
-    out.mkdir(parents=True, exist_ok=True)
-    otter = str(bin_dir / "otter") if bin_dir is not None else _tool("otter")
-    subprocess.run(
-        [otter, "run", "-a", str(autograder), "-o", str(out), "--no-logo", str(submission)],
-        check=True,
-        stdout=subprocess.DEVNULL,
-        cwd=out,
-        env=_isolated_env(bin_dir, out if bin_dir is not None else None),
-    )
-    return json.loads((out / "results.json").read_text())
 
 
 def score(results: dict) -> tuple[float, float]:
@@ -511,17 +435,6 @@ def apply_mistake(solution: Path, mistake: dict, dest: Path) -> Path:
 def feedback(results: dict) -> str:
     """All test output of an otter results.json, public and hidden, as one text."""
     return "\n".join(t.get("output", "") for t in results["tests"])
-
-
-def environment(autograder: Path, venv: Path | None) -> Path | None:
-    """The ``bin`` folder of ``venv``, made from the zip's requirements if it does not exist yet."""
-    if venv is None:
-        return None
-    bin_dir = venv / ("Scripts" if sys.platform == "win32" else "bin")
-    if not (bin_dir / "otter").exists():
-        print(f"building {venv} with {' '.join(zip_requirements(autograder))}")
-        grading_venv(zip_requirements(autograder), venv)
-    return bin_dir
 
 
 def grade(hw_or_zip: str, submissions: list[Path], out: Path, venv: Path | None = None) -> Path:

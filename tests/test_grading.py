@@ -213,7 +213,7 @@ def test_zip_asks_for_what_the_notebook_imports_and_logs_match(built, hw):
 
 def test_grading_environment_is_isolated(built, environments):
     bin_dir = next(iter(environments.values()))
-    env = build._isolated_env(bin_dir)
+    env = build.isolated_env(bin_dir)
     numkin = subprocess.run([str(bin_dir / "python"), "-c", "import numkin"], env=env, capture_output=True)
     assert numkin.returncode != 0, "numkin is importable in the grading environment"
     plot = subprocess.run([str(bin_dir / "python"), "-c", "import matplotlib, numpy"], env=env)

@@ -15,6 +15,7 @@
 # name: hw5-quadrature-pendulum
 # files:
 #   - kincheck.py
+#   - odecheck.py
 # requirements:
 #   - numpy>=1.24,<3
 #   - matplotlib>=3.7,<4
@@ -93,9 +94,9 @@ I7 = gauss_chebyshev(f, 7)  # SOLUTION
 # %%
 def test_rule_is_exact_for_polynomials(gauss_chebyshev):
     import math
-    import kincheck as kc
+    import odecheck as oc
 
-    kc.quadrature_rule(gauss_chebyshev, n=3, cases=[
+    oc.quadrature_rule(gauss_chebyshev, n=3, cases=[
         (lambda t: 1.0 + 0.0 * t, 0, math.pi),
         (lambda t: t**2, 2, math.pi / 2),
         (lambda t: t**6, 6, 5 * math.pi / 16),
@@ -227,9 +228,9 @@ sol = rk4(pendulum, Y0, t)  # SOLUTION
 
 # %%
 def test_initial_state(sol):
-    import kincheck as kc
+    import odecheck as oc
 
-    kc.initial_state("sol", sol, [0.4, 0.7853981633974483, 0.0, 0.0], rows=501,
+    oc.initial_state("sol", sol, [0.4, 0.7853981633974483, 0.0, 0.0], rows=501,
                      names=("r (m)", "θ (rad)", "ṙ (m/s)", "θ̇ (rad/s)"))
 
 # %%
@@ -237,20 +238,20 @@ def test_initial_state(sol):
 hidden: true
 """ # END TEST CONFIG
 def test_state_at_half_second(sol):
-    import kincheck as kc
+    import odecheck as oc
 
     REF = [0.471409428657, -0.33923121466, -0.221242816746, -3.25718061843]  # numkin: state_half
-    kc.state("sol", sol, 250, REF, time="t = 0.5 s", rtol=1e-6)
+    oc.state("sol", sol, 250, REF, time="t = 0.5 s", rtol=1e-6)
 
 # %%
 """ # BEGIN TEST CONFIG
 hidden: true
 """ # END TEST CONFIG
 def test_state_at_one_second(sol):
-    import kincheck as kc
+    import odecheck as oc
 
     REF = [0.460550966662, -0.396508462161, 0.5881987357, 2.98402279412]  # numkin: state_end
-    kc.state("sol", sol, 500, REF, time="t = 1 s", rtol=1e-5)
+    oc.state("sol", sol, 500, REF, time="t = 1 s", rtol=1e-5)
 
 # %% [raw]
 # # END TESTS
