@@ -31,6 +31,7 @@ __all__ = [
     "band",
     "closure",
     "continuity",
+    "chained_four_bar_angles",
     "four_bar_gap",
     "own_difference",
     "quick_return_input_unit",
@@ -569,6 +570,23 @@ def four_bar_gap(out_rad, in_rad, r_fixed, r_in, r_coupler, r_out) -> np.ndarray
     in_rad = np.asarray(in_rad, dtype=float)
     reach = np.abs(r_fixed - r_out * np.exp(1j * out_rad) + r_in * np.exp(1j * in_rad))
     return np.abs(reach - r_coupler)
+
+
+def chained_four_bar_angles(phi, beta):
+    """φ and β of the chained four-bars homework read in radians, each unit decided by its loop.
+
+    Returns ``(phi_rad, beta_rad, beta_unit, beta_residual)``.
+    """
+    def gap1(a):
+        return four_bar_gap(a, np.radians(np.arange(a.size)), 7.0, 1.94, 6.86, 2.36)
+
+    _, phi_rad, _ = read_angles("phi", phi, gap1)
+
+    def gap2(b):
+        return four_bar_gap(b, phi_rad[: b.size] + np.radians(149.0), 1.25, 2.39, 1.87, 1.26)
+
+    unit, beta_rad, residual = read_angles("beta", beta, gap2)
+    return phi_rad, beta_rad, unit, residual
 
 
 def six_bar_gap(crank_rad, t3, t4, t5, x, *, crank=1.0, coupler=4.0, o4=(3.7, -2.0), o4b=3.0, bc=3.2,

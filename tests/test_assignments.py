@@ -285,3 +285,14 @@ def test_read_angles_picks_the_unit_that_closes_the_loop():
 
     unit, angles, residual = kc.read_angles("t", np.full(361, math.degrees(1.0)), gap)
     assert unit == "deg" and np.allclose(angles, 1.0) and residual.max() < 1e-12
+
+
+def test_chained_angles_are_read_in_the_unit_that_closes_each_loop():
+    from numkin import linkages
+
+    theta = np.radians(np.arange(361.0))
+    sweep = linkages.chained_four_bars().sweep(theta)
+    phi, beta = np.asarray(sweep["phi"]), np.asarray(sweep["beta"])
+    phi_rad, beta_rad, unit, residual = kc.chained_four_bar_angles(phi, np.degrees(beta))
+    assert unit == "deg" and np.max(residual) < 1e-9
+    assert np.allclose(beta_rad, beta) and np.allclose(phi_rad, phi)

@@ -352,18 +352,9 @@ beta, gamma = four_bar_sweep(alpha_in, FIXED_2, INPUT_2, COUPLER_2, OUTPUT_2, np
 
 # %%
 def test_beta_closes_loop_on_one_branch(phi, beta):
-    import numpy as np
     import kincheck as kc
 
-    def gap1(a):
-        return kc.four_bar_gap(a, np.radians(np.arange(a.size)), 7.0, 1.94, 6.86, 2.36)
-
-    _, phi_rad, _ = kc.read_angles("phi", phi, gap1)
-
-    def gap2(b):
-        return kc.four_bar_gap(b, phi_rad[: b.size] + np.radians(149.0), 1.25, 2.39, 1.87, 1.26)
-
-    unit, angles, residual = kc.read_angles("beta", beta, gap2)
+    _, angles, unit, residual = kc.chained_four_bar_angles(phi, beta)
     print(f"`beta` read as {'radians' if unit == 'rad' else 'degrees'}")
     kc.closure("beta", residual, tol=1e-9)
     kc.continuity("beta", angles)
@@ -556,15 +547,7 @@ def test_dbeta_dt_is_your_omega_times_the_centred_difference(dbeta_dt_c, omega, 
     import numpy as np
     import kincheck as kc
 
-    def gap1(a):
-        return kc.four_bar_gap(a, np.radians(np.arange(a.size)), 7.0, 1.94, 6.86, 2.36)
-
-    _, phi_rad, _ = kc.read_angles("phi", phi, gap1)
-
-    def gap2(b):
-        return kc.four_bar_gap(b, phi_rad[: b.size] + np.radians(149.0), 1.25, 2.39, 1.87, 1.26)
-
-    _, b, _ = kc.read_angles("beta", beta, gap2)
+    _, b, _, _ = kc.chained_four_bar_angles(phi, beta)
     b, w, h, degs = np.unwrap(b), kc.at(omega, "omega", 0), np.radians(1.0), range(10, 360, 30)
     kc.series(
         "dbeta_dt_c", dbeta_dt_c, kc.own_difference(b, degs, h, "centred", w), rtol=1e-6, unit="rad/s",
@@ -581,15 +564,7 @@ def test_d2beta_dt2_is_your_omega_squared_times_the_second_difference(d2beta_dt2
     import numpy as np
     import kincheck as kc
 
-    def gap1(a):
-        return kc.four_bar_gap(a, np.radians(np.arange(a.size)), 7.0, 1.94, 6.86, 2.36)
-
-    _, phi_rad, _ = kc.read_angles("phi", phi, gap1)
-
-    def gap2(b):
-        return kc.four_bar_gap(b, phi_rad[: b.size] + np.radians(149.0), 1.25, 2.39, 1.87, 1.26)
-
-    _, b, _ = kc.read_angles("beta", beta, gap2)
+    _, b, _, _ = kc.chained_four_bar_angles(phi, beta)
     b, w, h, degs = np.unwrap(b), kc.at(omega, "omega", 0), np.radians(1.0), range(10, 340, 30)
     kc.series(
         "d2beta_dt2_c", d2beta_dt2_c, kc.own_difference(b, degs, h, "second", w**2), rtol=1e-6, unit="rad/s²",
