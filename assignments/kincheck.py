@@ -1,4 +1,4 @@
-"""Feedback helpers for the numkin homework checks.
+"""Feedback checks for the numkin homework.
 
 Every homework folder ships this module next to its notebook, and the
 autograder tests (``grader.check("q2")`` in the notebook, ``otter run`` for

@@ -14,7 +14,7 @@ nothing of the development environment), and grade there with ``otter run``:
 * a homework generated from a scene none of the ready homework uses (an offset
   slider-crank) builds and grades the same way.
 
-Everything is built once per test session; the submissions are graded two at a
+Everything is built once per pytest run; the submissions are graded two at a
 time.  The environment needs PyPI (or a local index) to be reachable.
 """
 
