@@ -12,8 +12,15 @@ Commands::
     python assignments/build.py expected           # recompute references with numkin, rewrite them
     python assignments/build.py expected --check   # fail if the committed references are stale
     python assignments/build.py assign [HW ...]    # jupytext -> .ipynb -> otter assign, into assignments/dist/
-    python assignments/build.py grade HW SUBMISSION ... [--out DIR]   # otter run on each submission
-    python assignments/build.py mistakes [HW ...]  # grade the deliberate mistakes, show the feedback
+    python assignments/build.py grade HW SUBMISSION ... [--out DIR] [--venv DIR]   # otter run on each
+    python assignments/build.py mistakes [HW ...] [--venv DIR]  # grade the deliberate mistakes, show the feedback
+    python assignments/build.py new SCENE.toml     # a homework master generated from a scene
+
+With ``--venv DIR`` grading happens in a virtual environment made from the
+autograder zip's requirements alone (otter-grader, numpy, matplotlib), as on
+Gradescope or with ``otter grade``; see ``grading.py``.  Homework 5's reference
+values come from mpmath (``exam004.py``), a generated homework's from its scene
+(``fromscene.py``).
 
 The reference values are computed by numkin from its ready-made linkages
 (``numkin.linkages``), its finite-difference schemes (``numkin.derivatives``)

@@ -211,12 +211,15 @@ def test_zip_asks_for_what_the_notebook_imports_and_logs_match(built, hw):
             assert _public_points(test.read_text()) == _public_points(graded), test.name
 
 
-def test_grading_environment_is_isolated(built, environments):
+def test_grading_environment_is_isolated(built, environments, tmp_path):
     bin_dir = next(iter(environments.values()))
     env = build.isolated_env(bin_dir)
-    numkin = subprocess.run([str(bin_dir / "python"), "-c", "import numkin"], env=env, capture_output=True)
-    assert numkin.returncode != 0, "numkin is importable in the grading environment"
-    plot = subprocess.run([str(bin_dir / "python"), "-c", "import matplotlib, numpy"], env=env)
+    python = str(bin_dir / "python")
+    numkin = subprocess.run([python, "-c", "import numkin"], env=env, capture_output=True, text=True, cwd=tmp_path)
+    assert "No module named 'numkin'" in numkin.stderr, "numkin is importable in the grading environment"
+    sympy = subprocess.run([python, "-c", "import sympy"], env=env, capture_output=True, text=True, cwd=tmp_path)
+    assert "No module named 'sympy'" in sympy.stderr, "the grading environment holds numkin's dependencies"
+    plot = subprocess.run([python, "-c", "import matplotlib, numpy, otter"], env=env, cwd=tmp_path)
     assert plot.returncode == 0
 
 
