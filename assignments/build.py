@@ -12,8 +12,15 @@ Commands::
     python assignments/build.py expected           # recompute references with numkin, rewrite them
     python assignments/build.py expected --check   # fail if the committed references are stale
     python assignments/build.py assign [HW ...]    # jupytext -> .ipynb -> otter assign, into assignments/dist/
-    python assignments/build.py grade HW SUBMISSION ... [--out DIR]   # otter run on each submission
-    python assignments/build.py mistakes [HW ...]  # grade the deliberate mistakes, show the feedback
+    python assignments/build.py grade HW SUBMISSION ... [--out DIR] [--venv DIR]   # otter run on each
+    python assignments/build.py mistakes [HW ...] [--venv DIR]  # grade the deliberate mistakes, show the feedback
+    python assignments/build.py new SCENE.toml     # a homework master generated from a scene
+
+With ``--venv DIR`` grading happens in a virtual environment made from the
+autograder zip's requirements alone (otter-grader, numpy, matplotlib), as on
+Gradescope or with ``otter grade``; see ``grading.py``.  Homework 5's reference
+values come from mpmath (``exam004.py``), a generated homework's from its scene
+(``fromscene.py``).
 
 The reference values are computed by numkin from its ready-made linkages
 (``numkin.linkages``), its finite-difference schemes (``numkin.derivatives``)
@@ -35,6 +42,10 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+if str(HERE) not in sys.path:
+    sys.path.insert(0, str(HERE))  # fromscene.py, grading.py, exam004.py
+
+from grading import environment, grading_venv, isolated_env, run, tool, zip_requirements  # noqa: E402,F401
 KINCHECK = HERE / "kincheck.py"
 DIST = HERE / "dist"
 
@@ -43,6 +54,7 @@ HOMEWORK = (
     "hw2_quick_return",
     "hw3_slider_crank",
     "hw4_six_bar",
+    "hw5_quadrature_pendulum",
 )
 
 MARKER = re.compile(r"^(?P<head>\s*\w+ = )(?P<value>.*?)(?P<tail>\s+# numkin: (?P<key>[\w.]+)\s*)$")
@@ -117,6 +129,8 @@ def expected_hw1() -> dict:
         "d2beta_dt2_forward_twice": _at(
             omega**2 * derivatives.forward_of_forward(beta, h), theta_deg, check
         ),
+        # np.gradient is numpy's, applied to numkin's sweep: what a student who calls it twice gets
+        "d2beta_dt2_gradient_twice": _at(omega**2 * np.gradient(np.gradient(beta, h), h), theta_deg, check),
         "omega_beta_100": float(_column(kin, "omega_beta")[i100]),
         "alpha_beta_100": float(_column(kin, "alpha_beta")[i100]),
         "alpha_beta_fw_100": float(omega**2 * derivatives.forward_of_forward(beta, h)[i100]),
@@ -185,6 +199,7 @@ EXPECTED = {
     "hw2_quick_return": expected_hw2,
     "hw3_slider_crank": expected_hw3,
     "hw4_six_bar": expected_hw4,
+    "hw5_quadrature_pendulum": lambda: __import__("exam004").expected(),
 }
 
 
@@ -214,17 +229,42 @@ def _literal(value) -> str:
     return repr(value)
 
 
-def master_path(hw: str) -> Path:
-    return HERE / hw / f"{hw}.py"
+def folder(hw) -> Path:
+    """The folder of a homework: a name in assignments/, or the path of a folder (generated ones)."""
+    path = Path(hw)
+    if str(hw) in HOMEWORK or not path.is_dir():
+        return HERE / str(hw)
+    return path.resolve()
 
 
-def expected_path(hw: str) -> Path:
-    return HERE / hw / "expected.json"
+def master_path(hw) -> Path:
+    where = folder(hw)
+    return where / f"{where.name}.py"
 
 
-def compute(hw: str) -> dict:
+def expected_path(hw) -> Path:
+    return folder(hw) / "expected.json"
+
+
+def compute(hw) -> dict:
     """Reference values of one homework, freshly computed by numkin and rounded."""
-    return {k: _rounded(v) for k, v in EXPECTED[hw]().items()}
+    where = folder(hw)
+    if (where / "scene.toml").exists():
+        import fromscene
+
+        values = fromscene.expected(where)
+    else:
+        values = EXPECTED[where.name]()
+    return {k: _rounded(v) for k, v in values.items()}
+
+
+def new_from_scene(scene: Path, root: Path = HERE) -> Path:
+    """A homework master generated from a scene file, with its reference values; returns its folder."""
+    import fromscene
+
+    where = fromscene.generate(Path(scene), Path(root))
+    write(where, compute(where))
+    return where
 
 
 def load_expected(hw: str) -> dict:
@@ -251,8 +291,9 @@ def write(hw: str, values: dict) -> None:
     """Write expected.json and the marker lines of the master source."""
     payload = {
         "about": (
-            f"Reference values of {hw}, computed by numkin "
-            "(python assignments/build.py expected). Angles in rad, keys of "
+            f"Reference values of {folder(hw).name}, computed by "
+            + ("mpmath (assignments/exam004.py)" if folder(hw).name == "hw5_quadrature_pendulum" else "numkin")
+            + " (python assignments/build.py expected). Angles in rad, keys of "
             "dictionaries are input angles in degrees."
         ),
         "values": {
@@ -325,31 +366,28 @@ def stale(hw: str, fresh: dict | None = None) -> list[str]:
 # --------------------------------------------------------------------------
 
 
-def _tool(name: str) -> str:
-    """Path of a console script installed next to this Python (or on PATH)."""
-    local = Path(sys.executable).with_name(name)
-    return str(local) if local.exists() else name
-
-
-def notebook(hw: str, dest: Path) -> Path:
-    """Convert the jupytext master to ``dest/<hw>.ipynb`` and copy kincheck.py beside it."""
+def notebook(hw, dest: Path) -> Path:
+    """Convert the jupytext master to ``dest/<hw>.ipynb``; copy kincheck.py and the folder's other .py files beside it."""
     import jupytext
 
     dest.mkdir(parents=True, exist_ok=True)
     nb = jupytext.read(master_path(hw))
-    path = dest / f"{hw}.ipynb"
+    path = dest / f"{folder(hw).name}.ipynb"
     jupytext.write(nb, path)
     shutil.copy(KINCHECK, dest / KINCHECK.name)
+    for extra in sorted(folder(hw).glob("*.py")):  # linkage.py, odecheck.py: listed in the config's files
+        if extra != master_path(hw):
+            shutil.copy(extra, dest / extra.name)
     return path
 
 
-def assign(hw: str, out: Path = DIST, *, run_tests: bool = True) -> Path:
+def assign(hw, out: Path = DIST, *, run_tests: bool = True) -> Path:
     """``otter assign`` one homework into ``out/<hw>/{student,autograder}``; returns ``out/<hw>``."""
-    result = out / hw
+    result = Path(out).resolve() / folder(hw).name
     if result.exists():
         shutil.rmtree(result)
     source = notebook(hw, result / "source")
-    cmd = [_tool("otter"), "assign", str(source), str(result)]
+    cmd = [tool("otter"), "assign", str(source), str(result)]
     if not run_tests:
         cmd.append("--no-run-tests")
     subprocess.run(cmd, check=True)
@@ -361,17 +399,6 @@ def autograder_zip(result: Path) -> Path:
     if not zips:
         raise FileNotFoundError(f"no autograder zip in {result / 'autograder'}: run assign first")
     return zips[-1]
-
-
-def run(submission: Path, autograder: Path, out: Path) -> dict:
-    """``otter run`` one submission; returns its results.json."""
-    out.mkdir(parents=True, exist_ok=True)
-    subprocess.run(
-        [_tool("otter"), "run", "-a", str(autograder), "-o", str(out), "--no-logo", str(submission)],
-        check=True,
-        stdout=subprocess.DEVNULL,
-    )
-    return json.loads((out / "results.json").read_text())
 
 
 def score(results: dict) -> tuple[float, float]:
@@ -388,7 +415,7 @@ def mistakes(hw: str) -> list[dict]:
     except ModuleNotFoundError:  # Python < 3.11
         import tomli as tomllib
 
-    path = HERE / hw / "mistakes.toml"
+    path = folder(hw) / "mistakes.toml"
     if not path.exists():
         return []
     return tomllib.loads(path.read_text())["mistake"]
@@ -417,14 +444,15 @@ def feedback(results: dict) -> str:
     return "\n".join(t.get("output", "") for t in results["tests"])
 
 
-def grade(hw_or_zip: str, submissions: list[Path], out: Path) -> Path:
+def grade(hw_or_zip: str, submissions: list[Path], out: Path, venv: Path | None = None) -> Path:
     """Run ``otter run`` on every submission; write one results folder each and scores.csv."""
     target = Path(hw_or_zip)
     autograder = target if target.suffix == ".zip" else autograder_zip(DIST / hw_or_zip)
+    bin_dir = environment(autograder, venv)
     rows = []
     for submission in submissions:
         folder = out / submission.stem
-        results = run(submission, autograder, folder)
+        results = run(submission, autograder, folder, bin_dir=bin_dir)
         got, possible = score(results)
         rows.append({"submission": submission.name, "score": got, "possible": possible})
         print(f"{submission.name}: {got:g} / {possible:g}")
@@ -445,7 +473,7 @@ def grade(hw_or_zip: str, submissions: list[Path], out: Path) -> Path:
 def _homework(names: list[str]) -> list[str]:
     if not names:
         return list(HOMEWORK)
-    unknown = [n for n in names if n not in HOMEWORK]
+    unknown = [n for n in names if n not in HOMEWORK and not (Path(n) / "mistakes.toml").exists()]
     if unknown:
         raise SystemExit(f"unknown homework {unknown}; choose from {list(HOMEWORK)}")
     return names
@@ -459,6 +487,10 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("homework", nargs="*", help=f"default: all of {', '.join(HOMEWORK)}")
     p.add_argument("--check", action="store_true", help="only compare; exit 1 if stale")
 
+    p = sub.add_parser("new", help="generate a homework master from a scene file (numkin scene TOML)")
+    p.add_argument("scene", type=Path, help="a scene .toml with a [mechanism] and an [input] speed")
+    p.add_argument("--root", type=Path, default=HERE, help="folder to write hw_<scene>/ in (default: assignments/)")
+
     p = sub.add_parser("assign", help="build student and autograder versions with otter assign")
     p.add_argument("homework", nargs="*")
     p.add_argument("--out", type=Path, default=DIST)
@@ -468,10 +500,13 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("homework", help="homework name (uses assignments/dist) or autograder zip")
     p.add_argument("submissions", nargs="+", type=Path, help=".ipynb or .zip files, or folders of them")
     p.add_argument("--out", type=Path, default=Path("grades"))
+    p.add_argument("--venv", type=Path, help="grade in this virtual environment, made from the zip's "
+                   "requirements alone if it does not exist (as Gradescope / otter grade do)")
 
     p = sub.add_parser("mistakes", help="grade the solution and each deliberate mistake, print feedback")
     p.add_argument("homework", nargs="*")
     p.add_argument("--out", type=Path, default=DIST)
+    p.add_argument("--venv", type=Path, help="as for grade")
 
     args = parser.parse_args(argv)
     try:
@@ -494,6 +529,10 @@ def _run(args) -> int:
                 write(hw, fresh)
                 print(f"{hw}: {len(fresh)} reference values written")
         return 1 if failed else 0
+    if args.command == "new":
+        where = new_from_scene(args.scene, args.root)
+        print(f"{where.name}: master {master_path(where)}; next: python assignments/build.py assign {where}")
+        return 0
     if args.command == "assign":
         for hw in _homework(args.homework):
             result = assign(hw, args.out, run_tests=not args.no_run_tests)
@@ -503,18 +542,24 @@ def _run(args) -> int:
         files = []
         for path in args.submissions:
             files += sorted(path.glob("*.zip")) + sorted(path.glob("*.ipynb")) if path.is_dir() else [path]
-        print(f"scores written to {grade(args.homework, files, args.out)}")
+        print(f"scores written to {grade(args.homework, files, args.out, args.venv)}")
         return 0
     if args.command == "mistakes":
         for hw in _homework(args.homework):
             result = assign(hw, args.out, run_tests=False)
-            solution = result / "autograder" / f"{hw}.ipynb"
-            graded = run(solution, autograder_zip(result), result / "graded" / "solution")
-            print(f"{hw} solution: {'%g / %g' % score(graded)}")
+            name = result.name
+            bin_dir = environment(autograder_zip(result), args.venv)
+            solution = result / "autograder" / f"{name}.ipynb"
+            graded = run(solution, autograder_zip(result), result / "graded" / "solution", bin_dir=bin_dir)
+            print(f"{name} solution: {'%g / %g' % score(graded)}")
             for mistake in mistakes(hw):
-                wrong = apply_mistake(solution, mistake, result / "mistakes" / mistake["name"] / f"{hw}.ipynb")
-                graded = run(wrong, autograder_zip(result), wrong.parent)
-                print(f"\n{hw} {mistake['name']} ({mistake['about']}): {'%g / %g' % score(graded)}")
+                wrong = apply_mistake(solution, mistake, result / "mistakes" / mistake["name"] / f"{name}.ipynb")
+                graded = run(wrong, autograder_zip(result), wrong.parent, bin_dir=bin_dir)
+                print(f"\n{name} {mistake['name']} ({mistake['about']}): {'%g / %g' % score(graded)}"
+                      f" (mistakes.toml: {mistake.get('score')})")
+                for test in graded["tests"]:
+                    if test.get("max_score") and test.get("score") != test.get("max_score"):
+                        print(f"  {test['name']}: {test.get('score'):g} / {test['max_score']:g}")
                 print(feedback(graded))
         return 0
     return 2

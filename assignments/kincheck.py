@@ -1,4 +1,4 @@
-"""Feedback helpers for the numkin homework checks.
+"""Feedback checks for the numkin homework.
 
 Every homework folder ships this module next to its notebook, and the
 autograder tests (``grader.check("q2")`` in the notebook, ``otter run`` for
@@ -31,8 +31,13 @@ __all__ = [
     "band",
     "closure",
     "continuity",
+    "chained_four_bar_angles",
     "four_bar_gap",
+    "own_difference",
+    "quick_return_input_unit",
+    "listed",
     "read_angle_group",
+    "rows",
     "read_angles",
     "six_bar_gap",
     "explain_factor",
@@ -71,9 +76,12 @@ SUSPECTS = {
 _FACTOR_TOLERANCE = 0.02  # relative, for recognising a unit factor
 
 NEWTON_HINT = (
-    "An error this small usually comes from a Newton iteration stopped too early "
-    "(a loose tolerance such as |F| < 1e-4), which finite differences magnify"
+    "Differences this small have several causes: a difference formula other than the one "
+    "asked (np.gradient, a one-sided or shifted formula, another step), or positions that "
+    "are not converged (a loose Newton tolerance, which finite differences magnify; the "
+    "position checks say whether yours are)"
 )
+"""The hint of a small miss that no alternative explains: it lists the causes, it does not pick one."""
 
 
 # --------------------------------------------------------------------------
@@ -110,19 +118,69 @@ def array(x, name: str, grid=FULL_TURN) -> np.ndarray:
         ) from None
     values = np.atleast_1d(np.squeeze(values))
     count = _grid_angles(grid).size
-    if values.ndim != 1 or values.size not in (count, count - 1):
+    if values.ndim != 1 or values.size not in (count, count - 1, count - 2):
         raise AssertionError(
             f"`{name}` should hold {count} values, one for each {_grid_text(grid)}; "
             f"got shape {np.shape(x)}"
         )
-    bad = np.flatnonzero(~np.isfinite(values))
-    if bad.size:
+    if values.size == count - 1:  # stops one step short (np.diff, or 0°…359°): read from the start
+        values = np.append(values, np.nan)
+    elif values.size == count - 2:  # interior points only, e.g. (y[2:] - y[:-2]) / (2h)
+        values = np.concatenate([[np.nan], values, [np.nan]])
+    bad = np.flatnonzero(~np.isfinite(values[1:-1])) + 1
+    if bad.size:  # NaN at the two ends is allowed: the checks compare interior angles
         where = _grid_angles(grid)[bad[0]]
         raise AssertionError(
-            f"`{name}` is {values[bad[0]]} at θ = {where:g}° ({bad.size} such values): "
-            "did Newton fail to converge there?"
+            f"`{name}` is {values[bad[0]]} at θ = {where:g}° ({bad.size} such interior values): "
+            "a solve that failed there, or a formula that left it undefined"
         )
     return values
+
+
+def rows(x, name: str, width: int, grid=FULL_TURN) -> np.ndarray:
+    """``x`` as a float array of one row of ``width`` unknowns per grid angle, all finite."""
+    if _not_set(x):
+        raise AssertionError(f"`{name}` is not set yet: run the cell that computes it")
+    try:
+        values = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise AssertionError(f"`{name}` should be an array of numbers, got {type(x).__name__}") from None
+    count = _grid_angles(grid).size
+    if values.ndim == 2 and values.shape == (width, count):
+        values = values.T
+    if values.ndim != 2 or values.shape != (count, width):
+        raise AssertionError(
+            f"`{name}` should have one row of {width} unknowns for each {_grid_text(grid)} "
+            f"({count} × {width}); got shape {np.shape(x)}"
+        )
+    bad = np.flatnonzero(~np.isfinite(values).all(axis=1))
+    if bad.size:
+        raise AssertionError(
+            f"`{name}` is not finite at θ = {_grid_angles(grid)[bad[0]]:g}° ({bad.size} such rows): "
+            "the solve failed or was not stored there"
+        )
+    return values
+
+
+def listed(name: str, x, want, *, rtol: float = 1e-3, unit: str = "") -> None:
+    """Compare a short list of numbers with ``want`` element by element (relative ``rtol``)."""
+    if _not_set(x):
+        raise AssertionError(f"`{name}` is not set yet: run the cell that computes it")
+    try:
+        got = np.atleast_1d(np.asarray(x, dtype=float)).ravel()
+    except (TypeError, ValueError):
+        raise AssertionError(f"`{name}` should be a list of numbers, got {type(x).__name__}") from None
+    want = np.asarray(want, dtype=float)
+    if got.shape != want.shape:
+        raise AssertionError(f"`{name}` should hold {want.size} numbers, got {got.size}")
+    off = np.abs(got - want) > rtol * np.abs(want)
+    if off.any():
+        i = int(np.flatnonzero(off)[0])
+        unit_text = f" {unit}" if unit else ""
+        raise AssertionError(
+            f"`{name}`[{i}] = {_fmt(got[i])}{unit_text}, expected {_fmt(want[i])}{unit_text} "
+            f"(within {rtol:.2g} relative)"
+        )
 
 
 def _index(grid, deg: float) -> int:
@@ -144,14 +202,28 @@ def at(x, name: str, deg: float, grid=FULL_TURN) -> float:
         values = array(x, name, grid)
         result = float(values[_index(grid, deg)])
     if not math.isfinite(result):
-        raise AssertionError(f"`{name}` is {result} at θ = {deg:g}°")
+        end = _index(grid, deg) in (0, _grid_angles(grid).size - 1)
+        raise AssertionError(
+            f"`{name}` is {result} at θ = {deg:g}°"
+            + (": an end of the grid, where the question asks for a value too (use a one-sided "
+               "formula there, or values beyond the end)" if end else "")
+        )
     return result
+
+
+_current = ["the array"]  # name of the array being checked, for _pick's message
 
 
 def _pick(values: np.ndarray, ref: dict, grid) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     degs = np.array(sorted(float(d) for d in ref))
     got = np.array([values[_index(grid, d)] for d in degs])
     want = np.array([float(ref[d]) for d in sorted(ref, key=float)])
+    missing = np.flatnonzero(~np.isfinite(got))
+    if missing.size:
+        raise AssertionError(
+            f"`{_current[0]}` has no value at θ = {degs[missing[0]]:g}°, an end of the grid that is "
+            "checked: use a one-sided formula there, or values beyond the end"
+        )
     return degs, got, want
 
 
@@ -282,6 +354,7 @@ def series(
     reported.
     """
     values = array(x, name, grid)
+    _current[0] = name
     degs, got, want = _pick(values, ref, grid)
     if _close(got, want, rtol, atol).all():
         return
@@ -305,6 +378,10 @@ def series(
     if small_hint and error < 0.05 * np.max(np.abs(want)):
         message += f". {small_hint}"
     raise AssertionError(message)
+
+
+def _tolerance(rtol: float) -> str:
+    return f"{rtol:.2%}" if rtol >= 1e-4 else f"{rtol:.1g} relative"
 
 
 def value(
@@ -338,7 +415,8 @@ def value(
         raise AssertionError(f"`{name}`{where} = {_fmt(got)}{unit_text}: {hint}")
     raise AssertionError(
         f"`{name}`{where} = {_fmt(got)}{unit_text}, expected {_fmt(want)}{unit_text} "
-        f"(within {rtol:.2%}): off by {100 * (got - want) / want:+.3g} %"
+        f"(within {_tolerance(rtol)}): "
+        f"off by {100 * (got - want) / want:+.3g} %"
     )
 
 
@@ -397,6 +475,26 @@ def _loose_factor(got: float, low: float, high: float, suspects) -> str | None:
     return texts[0] if len(texts) == 1 else f"{texts[0]} Or {texts[1]}"
 
 
+def own_difference(y, degs, h: float, kind: str, factor: float = 1.0) -> dict:
+    """``{angle: factor × difference of y}`` at the listed grid indices (angles in grid steps).
+
+    ``kind`` is ``"centred"``, ``"forward"``, ``"second"`` (centred second difference),
+    ``"forward_twice"`` or ``"gradient_twice"`` (``np.gradient`` applied twice, which at
+    interior points is the centred second difference of step 2h).  Used to check a
+    student's rate against the student's own positions, so that one slip upstream does
+    not cost every check downstream.
+    """
+    y = np.asarray(y, dtype=float)
+    formulas = {
+        "centred": lambda k: (y[k + 1] - y[k - 1]) / (2 * h),
+        "forward": lambda k: (y[k + 1] - y[k]) / h,
+        "second": lambda k: (y[k + 1] - 2 * y[k] + y[k - 1]) / h**2,
+        "forward_twice": lambda k: (y[k + 2] - 2 * y[k + 1] + y[k]) / h**2,
+        "gradient_twice": lambda k: (y[k + 2] - 2 * y[k] + y[k - 2]) / (4 * h**2),
+    }
+    return {d: factor * float(formulas[kind](int(d))) for d in degs}
+
+
 def _wrapped(difference: np.ndarray) -> np.ndarray:
     return (difference + np.pi) % (2 * np.pi) - np.pi
 
@@ -409,6 +507,7 @@ def unit_of(name: str, x, ref: dict, *, grid=FULL_TURN, tol: float = 1e-6, allow
     off the values are (and in which unit they were read) when neither fits.
     """
     values = array(x, name, grid)
+    _current[0] = name
     degs, got, want = _pick(values, ref, grid)
     errors = {}
     for unit in ("rad", "deg"):
@@ -473,6 +572,23 @@ def four_bar_gap(out_rad, in_rad, r_fixed, r_in, r_coupler, r_out) -> np.ndarray
     return np.abs(reach - r_coupler)
 
 
+def chained_four_bar_angles(phi, beta):
+    """φ and β of the chained four-bars homework read in radians, each unit decided by its loop.
+
+    Returns ``(phi_rad, beta_rad, beta_unit, beta_residual)``.
+    """
+    def gap1(a):
+        return four_bar_gap(a, np.radians(np.arange(a.size)), 7.0, 1.94, 6.86, 2.36)
+
+    _, phi_rad, _ = read_angles("phi", phi, gap1)
+
+    def gap2(b):
+        return four_bar_gap(b, phi_rad[: b.size] + np.radians(149.0), 1.25, 2.39, 1.87, 1.26)
+
+    unit, beta_rad, residual = read_angles("beta", beta, gap2)
+    return phi_rad, beta_rad, unit, residual
+
+
 def six_bar_gap(crank_rad, t3, t4, t5, x, *, crank=1.0, coupler=4.0, o4=(3.7, -2.0), o4b=3.0, bc=3.2,
                 o4c=6.0, rod=6.5, slider_y=3.0) -> np.ndarray:
     """Loop-closure residual of the six-bar homework, the larger of its two loops per sample.
@@ -488,6 +604,31 @@ def six_bar_gap(crank_rad, t3, t4, t5, x, *, crank=1.0, coupler=4.0, o4=(3.7, -2
     two = (pivot + o4b * np.exp(1j * t4) + bc * np.exp(1j * (t4 + beta)) - rod * np.exp(1j * t5)
            - (np.asarray(x) + 1j * slider_y))
     return np.maximum(np.abs(one), np.abs(two))
+
+
+def quick_return_input_unit(values, theta2_deg: float) -> None:
+    """Raise if (r3, θ3, r4, r5) close the quick-return loop at θ2 = ``theta2_deg`` *radians*.
+
+    That is the evidence of θ2 passed in degrees to functions that take radians; the
+    message names it only when the loop closes there and not at the asked angle.
+    """
+    r3, t3, r4, r5 = (float(v) for v in values)
+
+    def worst(t2, t3):
+        return max(abs(40.0 * math.cos(t2) - r3 * math.cos(t3)),
+                   abs(60.0 + 40.0 * math.sin(t2) - r3 * math.sin(t3)),
+                   abs(120.0 - r4 * math.sin(t3)), abs(r5 - r4 * math.cos(t3)))
+
+    for t3_rad in (t3, math.radians(t3)):
+        if worst(math.radians(theta2_deg), t3_rad) < 1e-6:
+            return  # closes at the asked angle
+    for t3_rad in (t3, math.radians(t3)):
+        if worst(theta2_deg, t3_rad) < 1e-6:
+            raise AssertionError(
+                f"your r3, θ3, r4, r5 close the loop at θ2 = {theta2_deg:g} rad "
+                f"(= {math.degrees(theta2_deg) % 360:.1f}° after whole turns), not at {theta2_deg:g}°: "
+                f"θ2 was given in degrees where F and J take radians; use np.radians({theta2_deg:g})"
+            )
 
 
 def read_angle_group(arrays, gap):
@@ -532,7 +673,7 @@ def closure(
     between ``tol`` and ``broken`` means the Newton iteration stopped before it
     converged, and the message says how finite differences magnify it.
     """
-    gap = np.abs(np.asarray(gap, dtype=float))
+    gap = np.nan_to_num(np.abs(np.asarray(gap, dtype=float)), nan=0.0)  # NaN ends: not checked
     worst = int(np.argmax(gap))
     if gap[worst] <= tol:
         return
@@ -555,7 +696,7 @@ def closure(
 def continuity(name: str, angles_rad, *, grid=FULL_TURN, max_step_deg: float = 10.0):
     """Check that angles (radians) move by less than ``max_step_deg`` between grid points."""
     values = np.asarray(angles_rad, dtype=float)
-    steps = np.degrees(np.abs(_wrapped(np.diff(values))))
+    steps = np.nan_to_num(np.degrees(np.abs(_wrapped(np.diff(values)))), nan=0.0)
     worst = int(np.argmax(steps))
     if steps[worst] <= max_step_deg:
         return
@@ -565,3 +706,4 @@ def continuity(name: str, angles_rad, *, grid=FULL_TURN, max_step_deg: float = 1
         f"{where[worst + 1]:g}°: Newton has jumped to the other assembly branch. Start each "
         "solve from the previous solution (continuation), not from the same fixed guess."
     )
+

@@ -15,6 +15,9 @@
 # name: hw1-chained-four-bar
 # files:
 #   - kincheck.py
+# requirements:
+#   - numpy>=1.24,<3
+#   - matplotlib>=3.7,<4
 # tests:
 #   ok_format: false
 # generate: true
@@ -62,7 +65,7 @@ h = np.radians(1.0)  # grid step, rad
 # %% [raw]
 # # BEGIN QUESTION
 # name: q1a
-# points: 3
+# points: [1, 1]
 
 # %% [markdown]
 # **Q1a — Newton with continuation.** Write a multivariable Newton–Raphson solver for the
@@ -134,7 +137,7 @@ def test_phi_closes_loop_on_one_branch(phi):
 
     unit, angles, residual = kc.read_angles("phi", phi, gap)
     print(f"`phi` read as {'radians' if unit == 'rad' else 'degrees'}")
-    kc.closure("phi", residual, tol=1e-3)
+    kc.closure("phi", residual, tol=1e-9)
     kc.continuity("phi", angles)
 
 # %%
@@ -147,20 +150,6 @@ def test_phi_values(phi):
     PHI = {10: 0.48101131173, 40: 0.801992851788, 70: 1.21832147982, 100: 1.64824558046, 130: 2.04593688727, 160: 2.31500391439, 190: 2.20276535076, 220: 1.71369175609, 250: 1.22685763437, 280: 0.852830800482, 310: 0.579419252725, 340: 0.417601762442}  # numkin: phi
     kc.angles("phi", phi, PHI, tol=1e-6)
 
-# %%
-""" # BEGIN TEST CONFIG
-hidden: true
-""" # END TEST CONFIG
-def test_phi_newton_converged(phi):
-    import numpy as np
-    import kincheck as kc
-
-    def gap(a):
-        return kc.four_bar_gap(a, np.radians(np.arange(a.size)), 7.0, 1.94, 6.86, 2.36)
-
-    unit, angles, residual = kc.read_angles("phi", phi, gap)
-    kc.closure("phi", residual, tol=1e-9)
-
 # %% [raw]
 # # END TESTS
 
@@ -168,17 +157,18 @@ def test_phi_newton_converged(phi):
 # # END QUESTION
 
 # %%
-fig, ax = plt.subplots()
-ax.plot(theta_deg, phi)
-ax.set_xlabel("θ (deg)")
-ax.set_ylabel("φ")
-ax.set_title("Output angle of linkage 1")
-plt.show()
+if np.shape(phi) == theta.shape:  # once `phi` is computed
+    fig, ax = plt.subplots()
+    ax.plot(theta_deg, phi)
+    ax.set_xlabel("θ (deg)")
+    ax.set_ylabel("φ (rad, or deg if you kept degrees)")
+    ax.set_title("Output angle of linkage 1")
+    plt.show()
 
 # %% [raw]
 # # BEGIN QUESTION
 # name: q1b
-# points: 3
+# points: [1, 1, 1]
 
 # %% [markdown]
 # **Q1b — dφ/dθ.** Compute dφ/dθ at every θ in two ways: the first **forward** difference
@@ -225,9 +215,10 @@ def test_dphi_are_two_different_formulas(dphi_fw, dphi_c):
     import numpy as np
     import kincheck as kc
 
-    fw = kc.array(dphi_fw, "dphi_fw")
-    c = kc.array(dphi_c, "dphi_c")
-    assert not np.allclose(fw[1:-1], c[1:-1], rtol=1e-9, atol=1e-12), (
+    fw = kc.array(dphi_fw, "dphi_fw")[1:-1]
+    c = kc.array(dphi_c, "dphi_c")[1:-1]
+    both = np.isfinite(fw) & np.isfinite(c)
+    assert not np.allclose(fw[both], c[both], rtol=1e-9, atol=1e-12), (
         "`dphi_fw` and `dphi_c` are identical: one of them uses the other's formula"
     )
 
@@ -239,8 +230,8 @@ def test_dphi_centred(dphi_c):
     import kincheck as kc
 
     CENTRED = {10: 0.414283965924, 40: 0.745299788649, 70: 0.822866522745, 100: 0.806756122363, 130: 0.686503335805, 160: 0.25268110877, 190: -0.700963531508, 220: -1.01264948824, 250: -0.823267776406, 280: -0.612790094621, 310: -0.430894869195, 340: -0.148607150408}  # numkin: dphi_centred
-    FORWARD = {10: 0.423335776186, 40: 0.747933951388, 70: 0.823226771803, 100: 0.805832351818, 130: 0.682926280501, 160: 0.240248249112, 190: -0.714614613832, 220: -1.01139924675, 250: -0.819446899514, 280: -0.60965543375, 310: -0.427650811304, 340: -0.141470646941}  # numkin: dphi_forward
-    BACKWARD = {10: 0.405232155663, 40: 0.74266562591, 70: 0.822506273686, 100: 0.807679892908, 130: 0.690080391109, 160: 0.265113968429, 190: -0.687312449184, 220: -1.01389972974, 250: -0.827088653297, 280: -0.615924755492, 310: -0.434138927087, 340: -0.155743653875}  # numkin: dphi_backward
+    FORWARD = {10: 0.423335776186, 40: 0.747933951388, 70: 0.823226771803, 100: 0.805832351818, 130: 0.682926280501, 160: 0.240248249112, 190: -0.714614613832, 220: -1.01139924675, 250: -0.819446899514, 280: -0.609655433751, 310: -0.427650811304, 340: -0.141470646941}  # numkin: dphi_forward
+    BACKWARD = {10: 0.405232155663, 40: 0.74266562591, 70: 0.822506273686, 100: 0.807679892908, 130: 0.690080391109, 160: 0.265113968429, 190: -0.687312449184, 220: -1.01389972974, 250: -0.827088653297, 280: -0.615924755492, 310: -0.434138927086, 340: -0.155743653875}  # numkin: dphi_backward
     kc.series(
         "dphi_c", dphi_c, CENTRED, rtol=1e-5,
         alternatives=[
@@ -258,8 +249,8 @@ def test_dphi_forward(dphi_fw):
     import kincheck as kc
 
     CENTRED = {10: 0.414283965924, 40: 0.745299788649, 70: 0.822866522745, 100: 0.806756122363, 130: 0.686503335805, 160: 0.25268110877, 190: -0.700963531508, 220: -1.01264948824, 250: -0.823267776406, 280: -0.612790094621, 310: -0.430894869195, 340: -0.148607150408}  # numkin: dphi_centred
-    FORWARD = {10: 0.423335776186, 40: 0.747933951388, 70: 0.823226771803, 100: 0.805832351818, 130: 0.682926280501, 160: 0.240248249112, 190: -0.714614613832, 220: -1.01139924675, 250: -0.819446899514, 280: -0.60965543375, 310: -0.427650811304, 340: -0.141470646941}  # numkin: dphi_forward
-    BACKWARD = {10: 0.405232155663, 40: 0.74266562591, 70: 0.822506273686, 100: 0.807679892908, 130: 0.690080391109, 160: 0.265113968429, 190: -0.687312449184, 220: -1.01389972974, 250: -0.827088653297, 280: -0.615924755492, 310: -0.434138927087, 340: -0.155743653875}  # numkin: dphi_backward
+    FORWARD = {10: 0.423335776186, 40: 0.747933951388, 70: 0.823226771803, 100: 0.805832351818, 130: 0.682926280501, 160: 0.240248249112, 190: -0.714614613832, 220: -1.01139924675, 250: -0.819446899514, 280: -0.609655433751, 310: -0.427650811304, 340: -0.141470646941}  # numkin: dphi_forward
+    BACKWARD = {10: 0.405232155663, 40: 0.74266562591, 70: 0.822506273686, 100: 0.807679892908, 130: 0.690080391109, 160: 0.265113968429, 190: -0.687312449184, 220: -1.01389972974, 250: -0.827088653297, 280: -0.615924755492, 310: -0.434138927086, 340: -0.155743653875}  # numkin: dphi_backward
     kc.series(
         "dphi_fw", dphi_fw, FORWARD, rtol=1e-5,
         alternatives=[
@@ -276,18 +267,19 @@ def test_dphi_forward(dphi_fw):
 # # END QUESTION
 
 # %%
-fig, ax = plt.subplots()
-ax.plot(theta_deg, dphi_fw, label="forward")
-ax.plot(theta_deg, dphi_c, ":", label="centred")
-ax.set_xlabel("θ (deg)")
-ax.set_ylabel("dφ/dθ")
-ax.legend()
-plt.show()
+if np.shape(dphi_fw) == np.shape(dphi_c) == theta.shape:  # once both are computed
+    fig, ax = plt.subplots()
+    ax.plot(theta_deg, dphi_fw, label="forward")
+    ax.plot(theta_deg, dphi_c, ":", label="centred")
+    ax.set_xlabel("θ (deg)")
+    ax.set_ylabel("dφ/dθ (rad/rad)")
+    ax.legend()
+    plt.show()
 
 # %% [raw]
 # # BEGIN QUESTION
 # name: q1c
-# points: 2
+# points: [1, 1]
 
 # %% [markdown]
 # **Q1c — which is more accurate?** Set `order_forward` and `order_centred` to the order p
@@ -338,7 +330,7 @@ def test_orders(more_accurate, order_forward, order_centred):
 # %% [raw]
 # # BEGIN QUESTION
 # name: q2a
-# points: 3
+# points: [1, 1]
 
 # %% [markdown]
 # **Q2a — the second linkage.** Its input angle is α = φ + 149°. Solve linkage 2 with the
@@ -360,20 +352,11 @@ beta, gamma = four_bar_sweep(alpha_in, FIXED_2, INPUT_2, COUPLER_2, OUTPUT_2, np
 
 # %%
 def test_beta_closes_loop_on_one_branch(phi, beta):
-    import numpy as np
     import kincheck as kc
 
-    def gap1(a):
-        return kc.four_bar_gap(a, np.radians(np.arange(a.size)), 7.0, 1.94, 6.86, 2.36)
-
-    _, phi_rad, _ = kc.read_angles("phi", phi, gap1)
-
-    def gap2(b):
-        return kc.four_bar_gap(b, phi_rad[: b.size] + np.radians(149.0), 1.25, 2.39, 1.87, 1.26)
-
-    unit, angles, residual = kc.read_angles("beta", beta, gap2)
+    _, angles, unit, residual = kc.chained_four_bar_angles(phi, beta)
     print(f"`beta` read as {'radians' if unit == 'rad' else 'degrees'}")
-    kc.closure("beta", residual, tol=1e-3)
+    kc.closure("beta", residual, tol=1e-9)
     kc.continuity("beta", angles)
 
 # %%
@@ -386,25 +369,6 @@ def test_beta_values(beta):
     BETA = {10: 1.23603736328, 40: 1.96570412988, 70: 2.92817258874, 100: 3.747693474, 130: 4.42245807272, 160: 4.88799096175, 190: 4.68846659713, 220: 3.86171648104, 250: 2.94604737807, 280: 2.0903207924, 310: 1.43923519488, 340: 1.11996147629}  # numkin: beta
     kc.angles("beta", beta, BETA, tol=1e-6)
 
-# %%
-""" # BEGIN TEST CONFIG
-hidden: true
-""" # END TEST CONFIG
-def test_beta_newton_converged(phi, beta):
-    import numpy as np
-    import kincheck as kc
-
-    def gap1(a):
-        return kc.four_bar_gap(a, np.radians(np.arange(a.size)), 7.0, 1.94, 6.86, 2.36)
-
-    _, phi_rad, _ = kc.read_angles("phi", phi, gap1)
-
-    def gap2(b):
-        return kc.four_bar_gap(b, phi_rad[: b.size] + np.radians(149.0), 1.25, 2.39, 1.87, 1.26)
-
-    unit, angles, residual = kc.read_angles("beta", beta, gap2)
-    kc.closure("beta", residual, tol=1e-9)
-
 # %% [raw]
 # # END TESTS
 
@@ -414,7 +378,7 @@ def test_beta_newton_converged(phi, beta):
 # %% [raw]
 # # BEGIN QUESTION
 # name: q2b
-# points: 8
+# points: [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]
 
 # %% [markdown]
 # **Q2b — angular velocity and acceleration of the output.** With ω the speed of the
@@ -474,11 +438,18 @@ def test_omega_in_rad_per_s(omega):
     kc.value("omega", omega, 7.5, rtol=1e-9, unit="rad/s", suspects=("rad/min",))
 
 # %%
-def test_near_the_assignment_check(omega_100, alpha_100):
+def test_near_the_assignment_check(omega_100, alpha_100, omega, beta):
+    import numpy as np
     import kincheck as kc
 
-    kc.band("omega_100", omega_100, 8.0, 12.0, about=10.0, deg=100, unit="rad/s")
-    kc.band("alpha_100", alpha_100, -32.5, -17.5, about=-25.0, deg=100, unit="rad/s²")
+    # which unit slips fit is decided by what else was handed in, not by the size alone
+    w = kc.at(omega, "omega", 0)
+    suspects = ["deg"] if abs(w - 7.5) < 1e-6 * 7.5 else ["rad/min"] if abs(w - 450.0) < 1e-3 else ["deg", "rad/min"]
+    b = kc.array(beta, "beta")
+    if suspects == ["deg"] and np.nanmax(np.abs(b)) <= 2 * np.pi + 0.5:
+        suspects = []  # beta is in radians and omega is right: neither unit explains a miss
+    kc.band("omega_100", omega_100, 8.0, 12.0, about=10.0, deg=100, unit="rad/s", suspects=suspects)
+    kc.band("alpha_100", alpha_100, -32.5, -17.5, about=-25.0, deg=100, unit="rad/s²", suspects=suspects)
 
 # %%
 """ # BEGIN TEST CONFIG
@@ -498,7 +469,7 @@ def test_alpha_100(alpha_100):
     import kincheck as kc
 
     ALPHA_100 = -28.3749666204  # numkin: alpha_beta_100
-    ALPHA_100_FW = -28.1265557971  # numkin: alpha_beta_fw_100
+    ALPHA_100_FW = -28.1265557975  # numkin: alpha_beta_fw_100
     kc.value(
         "alpha_100", alpha_100, ALPHA_100, deg=100, rtol=5e-3, unit="rad/s²",
         alternatives=[(ALPHA_100_FW, "this matches the forward difference applied twice; the question asks for the centred second difference")],
@@ -511,9 +482,9 @@ hidden: true
 def test_dbeta_dt_centred(dbeta_dt_c):
     import kincheck as kc
 
-    CENTRED = {10: 5.98965846242, 40: 13.7121192715, 70: 12.9516698602, 100: 10.6329970835, 130: 8.62780841934, 160: 3.48986519077, 190: -9.09290899242, 220: -13.1258179125, 250: -12.9009693547, 280: -11.2400843708, 310: -7.0823888985, 340: -1.93099874475}  # numkin: dbeta_dt_centred
-    FORWARD = {10: 6.1539575112, 40: 13.7627006538, 70: 12.9095510357, 100: 10.5999795275, 130: 8.5867169372, 160: 3.32443065015, 190: -9.24976225005, 220: -13.1364439499, 250: -12.8885650637, 280: -11.1909207485, 310: -7.00095892645, 340: -1.83373672837}  # numkin: dbeta_dt_forward
-    BACKWARD = {10: 5.82535941365, 40: 13.6615378892, 70: 12.9937886847, 100: 10.6660146395, 130: 8.66889990148, 160: 3.65529973138, 190: -8.9360557348, 220: -13.1151918752, 250: -12.9133736458, 280: -11.289247993, 310: -7.16381887055, 340: -2.02826076113}  # numkin: dbeta_dt_backward
+    CENTRED = {10: 5.98965846242, 40: 13.7121192715, 70: 12.9516698602, 100: 10.6329970835, 130: 8.62780841934, 160: 3.48986519077, 190: -9.09290899242, 220: -13.1258179125, 250: -12.9009693547, 280: -11.2400843708, 310: -7.0823888985, 340: -1.93099874476}  # numkin: dbeta_dt_centred
+    FORWARD = {10: 6.1539575112, 40: 13.7627006538, 70: 12.9095510357, 100: 10.5999795275, 130: 8.5867169372, 160: 3.32443065016, 190: -9.24976225005, 220: -13.1364439499, 250: -12.8885650637, 280: -11.1909207485, 310: -7.00095892645, 340: -1.83373672838}  # numkin: dbeta_dt_forward
+    BACKWARD = {10: 5.82535941365, 40: 13.6615378892, 70: 12.9937886847, 100: 10.6660146395, 130: 8.66889990148, 160: 3.65529973138, 190: -8.93605573479, 220: -13.1151918752, 250: -12.9133736458, 280: -11.289247993, 310: -7.16381887055, 340: -2.02826076113}  # numkin: dbeta_dt_backward
     kc.series(
         "dbeta_dt_c", dbeta_dt_c, CENTRED, rtol=1e-5, unit="rad/s",
         alternatives=[
@@ -529,8 +500,8 @@ hidden: true
 def test_dbeta_dt_forward(dbeta_dt_fw):
     import kincheck as kc
 
-    CENTRED = {10: 5.98965846242, 40: 13.7121192715, 70: 12.9516698602, 100: 10.6329970835, 130: 8.62780841934, 160: 3.48986519077, 190: -9.09290899242, 220: -13.1258179125, 250: -12.9009693547, 280: -11.2400843708, 310: -7.0823888985, 340: -1.93099874475}  # numkin: dbeta_dt_centred
-    FORWARD = {10: 6.1539575112, 40: 13.7627006538, 70: 12.9095510357, 100: 10.5999795275, 130: 8.5867169372, 160: 3.32443065015, 190: -9.24976225005, 220: -13.1364439499, 250: -12.8885650637, 280: -11.1909207485, 310: -7.00095892645, 340: -1.83373672837}  # numkin: dbeta_dt_forward
+    CENTRED = {10: 5.98965846242, 40: 13.7121192715, 70: 12.9516698602, 100: 10.6329970835, 130: 8.62780841934, 160: 3.48986519077, 190: -9.09290899242, 220: -13.1258179125, 250: -12.9009693547, 280: -11.2400843708, 310: -7.0823888985, 340: -1.93099874476}  # numkin: dbeta_dt_centred
+    FORWARD = {10: 6.1539575112, 40: 13.7627006538, 70: 12.9095510357, 100: 10.5999795275, 130: 8.5867169372, 160: 3.32443065016, 190: -9.24976225005, 220: -13.1364439499, 250: -12.8885650637, 280: -11.1909207485, 310: -7.00095892645, 340: -1.83373672838}  # numkin: dbeta_dt_forward
     kc.series(
         "dbeta_dt_fw", dbeta_dt_fw, FORWARD, rtol=1e-5, unit="rad/s",
         alternatives=[(CENTRED, "this matches the centred difference; the question asks for forward")],
@@ -543,11 +514,15 @@ hidden: true
 def test_d2beta_dt2_centred(d2beta_dt2_c):
     import kincheck as kc
 
-    SECOND = {10: 141.204631092, 40: 43.4714958899, 70: -36.1984632387, 100: -28.3764991381, 130: -35.3155275091, 160: -142.180514444, 190: -134.805444973, 220: -9.13240639291, 250: 10.6607028756, 280: 42.2530209024, 310: 69.9839058642, 340: 83.5905456814}  # numkin: d2beta_dt2_second
-    FORWARD_TWICE = {10: 141.834312182, 40: 38.0004175177, 70: -36.3696217269, 100: -28.1265557971, 130: -36.4179336932, 160: -148.743488113, 190: -128.172584078, 220: -7.63602782719, 250: 11.1778128316, 280: 43.7021492818, 310: 70.1928583397, 340: 85.0328710984}  # numkin: d2beta_dt2_forward_twice
+    SECOND = {10: 141.204631092, 40: 43.47149589, 70: -36.1984632388, 100: -28.3764991377, 130: -35.3155275092, 160: -142.180514443, 190: -134.805444974, 220: -9.13240639217, 250: 10.6607028756, 280: 42.2530209027, 310: 69.9839058636, 340: 83.5905456819}  # numkin: d2beta_dt2_second
+    FORWARD_TWICE = {10: 141.834312181, 40: 38.0004175175, 70: -36.3696217271, 100: -28.1265557975, 130: -36.417933694, 160: -148.743488111, 190: -128.172584077, 220: -7.63602782686, 250: 11.1778128316, 280: 43.7021492814, 310: 70.1928583397, 340: 85.0328710984}  # numkin: d2beta_dt2_forward_twice
+    GRADIENT_TWICE = {10: 141.15020446, 40: 43.4968361987, 70: -36.1776377673, 100: -28.3810960095, 130: -35.3383400878, 160: -142.191413548, 190: -134.807188983, 220: -9.16255435504, 250: 10.667562033, 280: 42.252398488, 310: 69.9758272445, 340: 83.6149448045}  # numkin: d2beta_dt2_gradient_twice
     kc.series(
         "d2beta_dt2_c", d2beta_dt2_c, SECOND, rtol=1e-4, unit="rad/s²",
-        alternatives=[(FORWARD_TWICE, "this matches the forward difference applied twice; the question asks for the centred second difference")],
+        alternatives=[
+            (FORWARD_TWICE, "this matches the forward difference applied twice; the question asks for the centred second difference"),
+            (GRADIENT_TWICE, "this matches np.gradient applied twice, a centred difference of step 2h; the question asks for the centred second difference (βᵢ₊₁ − 2βᵢ + βᵢ₋₁)/h²"),
+        ],
     )
 
 # %%
@@ -557,11 +532,49 @@ hidden: true
 def test_d2beta_dt2_forward(d2beta_dt2_fw):
     import kincheck as kc
 
-    SECOND = {10: 141.204631092, 40: 43.4714958899, 70: -36.1984632387, 100: -28.3764991381, 130: -35.3155275091, 160: -142.180514444, 190: -134.805444973, 220: -9.13240639291, 250: 10.6607028756, 280: 42.2530209024, 310: 69.9839058642, 340: 83.5905456814}  # numkin: d2beta_dt2_second
-    FORWARD_TWICE = {10: 141.834312182, 40: 38.0004175177, 70: -36.3696217269, 100: -28.1265557971, 130: -36.4179336932, 160: -148.743488113, 190: -128.172584078, 220: -7.63602782719, 250: 11.1778128316, 280: 43.7021492818, 310: 70.1928583397, 340: 85.0328710984}  # numkin: d2beta_dt2_forward_twice
+    SECOND = {10: 141.204631092, 40: 43.47149589, 70: -36.1984632388, 100: -28.3764991377, 130: -35.3155275092, 160: -142.180514443, 190: -134.805444974, 220: -9.13240639217, 250: 10.6607028756, 280: 42.2530209027, 310: 69.9839058636, 340: 83.5905456819}  # numkin: d2beta_dt2_second
+    FORWARD_TWICE = {10: 141.834312181, 40: 38.0004175175, 70: -36.3696217271, 100: -28.1265557975, 130: -36.417933694, 160: -148.743488111, 190: -128.172584077, 220: -7.63602782686, 250: 11.1778128316, 280: 43.7021492814, 310: 70.1928583397, 340: 85.0328710984}  # numkin: d2beta_dt2_forward_twice
     kc.series(
         "d2beta_dt2_fw", d2beta_dt2_fw, FORWARD_TWICE, rtol=1e-4, unit="rad/s²",
         alternatives=[(SECOND, "this matches the centred second difference; the question asks for the forward difference applied twice")],
+    )
+
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_dbeta_dt_is_your_omega_times_the_centred_difference(dbeta_dt_c, omega, phi, beta):
+    import numpy as np
+    import kincheck as kc
+
+    _, b, _, _ = kc.chained_four_bar_angles(phi, beta)
+    b, w, h, degs = np.unwrap(b), kc.at(omega, "omega", 0), np.radians(1.0), range(10, 360, 30)
+    kc.series(
+        "dbeta_dt_c", dbeta_dt_c, kc.own_difference(b, degs, h, "centred", w), rtol=1e-6, unit="rad/s",
+        alternatives=[(kc.own_difference(b, degs, h, "forward", w),
+                       "this matches the forward difference of your `beta`; the question asks for centred")],
+        suspects=("deg",), small_hint=None,
+    )
+
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_d2beta_dt2_is_your_omega_squared_times_the_second_difference(d2beta_dt2_c, omega, phi, beta):
+    import numpy as np
+    import kincheck as kc
+
+    _, b, _, _ = kc.chained_four_bar_angles(phi, beta)
+    b, w, h, degs = np.unwrap(b), kc.at(omega, "omega", 0), np.radians(1.0), range(10, 340, 30)
+    kc.series(
+        "d2beta_dt2_c", d2beta_dt2_c, kc.own_difference(b, degs, h, "second", w**2), rtol=1e-6, unit="rad/s²",
+        alternatives=[
+            (kc.own_difference(b, degs, h, "forward_twice", w**2),
+             "this matches the forward difference of your `beta` applied twice; the question asks for the centred second difference"),
+            (kc.own_difference(b, degs, h, "gradient_twice", w**2),
+             "this matches np.gradient applied twice to your `beta`, a centred difference of step 2h; the question asks for (βᵢ₊₁ − 2βᵢ + βᵢ₋₁)/h²"),
+        ],
+        suspects=("deg",), small_hint=None,
     )
 
 # %% [raw]
@@ -571,14 +584,15 @@ def test_d2beta_dt2_forward(d2beta_dt2_fw):
 # # END QUESTION
 
 # %%
-fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(7, 7))
-ax1.plot(theta_deg, dbeta_dt_fw, label="forward")
-ax1.plot(theta_deg, dbeta_dt_c, ":", label="centred")
-ax1.set_ylabel("dβ/dt (rad/s)")
-ax1.legend()
-ax2.plot(theta_deg, d2beta_dt2_fw, label="forward of forward")
-ax2.plot(theta_deg, d2beta_dt2_c, ":", label="centred second difference")
-ax2.set_xlabel("θ (deg)")
-ax2.set_ylabel("d²β/dt² (rad/s²)")
-ax2.legend()
-plt.show()
+if all(np.shape(y) == theta.shape for y in (dbeta_dt_fw, dbeta_dt_c, d2beta_dt2_fw, d2beta_dt2_c)):
+    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(7, 7))
+    ax1.plot(theta_deg, dbeta_dt_fw, label="forward")
+    ax1.plot(theta_deg, dbeta_dt_c, ":", label="centred")
+    ax1.set_ylabel("dβ/dt (rad/s)")
+    ax1.legend()
+    ax2.plot(theta_deg, d2beta_dt2_fw, label="forward of forward")
+    ax2.plot(theta_deg, d2beta_dt2_c, ":", label="centred second difference")
+    ax2.set_xlabel("θ (deg)")
+    ax2.set_ylabel("d²β/dt² (rad/s²)")
+    ax2.legend()
+    plt.show()

@@ -15,6 +15,9 @@
 # name: hw2-quick-return
 # files:
 #   - kincheck.py
+# requirements:
+#   - numpy>=1.24,<3
+#   - matplotlib>=3.7,<4
 # tests:
 #   ok_format: false
 # generate: true
@@ -56,7 +59,7 @@ THETA2_DEG = 30.0
 # %% [raw]
 # # BEGIN QUESTION
 # name: q1
-# points: 2
+# points: [1, 1]
 
 # %% [markdown]
 # **Q1 — residual and Jacobian.** Write `F(x, theta2)`, returning the four residuals of
@@ -154,7 +157,7 @@ def test_residual_vanishes_at_the_solution(F):
 # %% [raw]
 # # BEGIN QUESTION
 # name: q2
-# points: 2
+# points: [1, 1]
 
 # %% [markdown]
 # **Q2 — Newton–Raphson at θ₂ = 30°.** Solve F(x) = 0 at θ₂ = 30° by Newton–Raphson from a
@@ -219,6 +222,7 @@ def test_solution_satisfies_the_equations(r3, theta3, r4, r5):
             best = (unit, f)
     unit, f = best
     print(f"`theta3` read as {'radians' if unit == 'rad' else 'degrees'}")
+    kc.quick_return_input_unit(values, 30.0)
     labels = ["(I) r1 + r2 sin θ2 = r3 sin θ3", "(II) r2 cos θ2 = r3 cos θ3",
               "(III) r1 + r6 = r4 sin θ3", "(IV) r5 = r4 cos θ3"]
     worst = int(np.argmax(np.abs(f)))
@@ -239,6 +243,7 @@ def test_values_at_30_degrees(r3, theta3, r4, r5):
     THETA3 = 1.1621584717  # numkin: theta3_30
     R4 = 130.766968306  # numkin: r4_30
     R5 = 51.9615242271  # numkin: r5_30
+    kc.quick_return_input_unit([kc.at(v, n, 30) for v, n in ((r3, "r3"), (theta3, "theta3"), (r4, "r4"), (r5, "r5"))], 30.0)
     kc.value("r3", r3, R3, rtol=1e-6, unit="mm", suspects=("mm",))
     kc.value(
         "r4", r4, R4, rtol=1e-6, unit="mm", suspects=("mm",),
@@ -263,7 +268,7 @@ def test_values_at_30_degrees(r3, theta3, r4, r5):
 # %% [raw]
 # # BEGIN QUESTION
 # name: q3
-# points: 3
+# points: [1, 1, 1]
 
 # %% [markdown]
 # **Q3 — a full turn.** Solve the position for θ₂ = 0°, 1°, …, 360°, starting the Newton
@@ -344,9 +349,10 @@ def test_r5_sweep(r5_sweep):
 # # END QUESTION
 
 # %%
-fig, ax = plt.subplots()
-ax.plot(theta2_deg, r5_sweep)
-ax.set_xlabel("θ2 (deg)")
-ax.set_ylabel("r5 = CB (mm)")
-ax.set_title("Output slider of the quick-return mechanism")
-plt.show()
+if np.shape(r5_sweep) == theta2_deg.shape:  # once `r5_sweep` is computed
+    fig, ax = plt.subplots()
+    ax.plot(theta2_deg, r5_sweep)
+    ax.set_xlabel("crank angle θ2 (deg)")
+    ax.set_ylabel("r5 = CB (mm)")
+    ax.set_title("Output slider of the quick-return mechanism")
+    plt.show()

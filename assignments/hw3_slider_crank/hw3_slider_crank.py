@@ -15,6 +15,9 @@
 # name: hw3-slider-crank
 # files:
 #   - kincheck.py
+# requirements:
+#   - numpy>=1.24,<3
+#   - matplotlib>=3.7,<4
 # tests:
 #   ok_format: false
 # generate: true
@@ -51,7 +54,7 @@ h = np.radians(1.0)  # grid step, rad
 # %% [raw]
 # # BEGIN QUESTION
 # name: q1
-# points: 2
+# points: [1, 1]
 
 # %% [markdown]
 # **Q1 — position.** Solve the loop for x at every θ of `theta` (the closed form, or
@@ -113,7 +116,7 @@ def test_position_values(x_piston):
 # %% [raw]
 # # BEGIN QUESTION
 # name: q2
-# points: 1
+# points: [1]
 
 # %% [markdown]
 # **Q2 — crank speed.** Set `omega` to the crank speed in rad/s.
@@ -146,7 +149,7 @@ def test_omega(omega):
 # %% [raw]
 # # BEGIN QUESTION
 # name: q3
-# points: 4
+# points: [1, 1, 1, 1, 1]
 
 # %% [markdown]
 # **Q3 — acceleration.** The crank speed is constant, so ẍ = ω² d²x/dθ². Compute it with the
@@ -222,6 +225,21 @@ def test_acceleration_curve(a_piston):
     A = {0: -44215.8277169, 20: -39662.2185167, 40: -27006.8431306, 60: -9517.00516052, 80: 7355.12225638, 100: 18323.6906951, 120: 22065.728923, 140: 21380.7127557, 160: 19693.9058083, 180: 18949.6404501}  # numkin: a
     kc.series("a_piston", a_piston, A, grid=(0, 180, 1), rtol=5e-3, unit="m/s²", suspects=("deg", "rpm", "mm"))
 
+# %%
+""" # BEGIN TEST CONFIG
+hidden: true
+""" # END TEST CONFIG
+def test_acceleration_is_your_omega_squared_times_the_second_difference(a_piston, x_piston, omega):
+    import math
+    import numpy as np
+    import kincheck as kc
+
+    x = kc.array(x_piston, "x_piston", grid=(0, 180, 1)) / 1000.0  # m
+    w = kc.at(omega, "omega", 0)
+    own = kc.own_difference(x, range(20, 180, 20), math.radians(1.0), "second", w**2)
+    kc.series("a_piston", a_piston, own, grid=(0, 180, 1), rtol=1e-6, unit="m/s²",
+              suspects=("deg", "mm"), small_hint=None)
+
 # %% [raw]
 # # END TESTS
 
@@ -229,8 +247,9 @@ def test_acceleration_curve(a_piston):
 # # END QUESTION
 
 # %%
-fig, ax = plt.subplots()
-ax.plot(theta_deg, np.asarray(a_piston) / 1000)
-ax.set_xlabel("θ (deg)")
-ax.set_ylabel("piston acceleration (km/s²)")
-plt.show()
+if np.shape(a_piston) == theta.shape:  # once `a_piston` is computed
+    fig, ax = plt.subplots()
+    ax.plot(theta_deg, np.asarray(a_piston) / 1000)
+    ax.set_xlabel("crank angle θ (deg)")
+    ax.set_ylabel("piston acceleration ẍ (km/s²)")
+    plt.show()

@@ -1,0 +1,261 @@
+"""Build every homework with otter and grade it the way the autograder image does.
+
+Gradescope and ``otter grade`` (Docker) grade in an environment built from the
+autograder zip alone: otter-grader and the ``requirements`` of the master's
+ASSIGNMENT CONFIG, as listed in the zip's ``environment.yml``.  These tests build
+each autograder zip with ``otter assign``, then build one fresh virtual
+environment per distinct requirement list, holding only those packages (no numkin,
+nothing of the development environment), and grade there with ``otter run``:
+
+* the solution scores full marks;
+* every deliberate mistake of ``assignments/<hw>/mistakes.toml`` scores exactly the
+  ``score`` it states (its ``rubric`` says which checks fail) and gets the feedback
+  it names;
+* a homework generated from a scene none of the ready homework uses (an offset
+  slider-crank) builds and grades the same way.
+
+Everything is built once per pytest run; the submissions are graded two at a
+time.  The environment needs PyPI (or a local index) to be reachable.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import os
+import re
+import subprocess
+import sys
+import zipfile
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import pytest
+
+pytestmark = pytest.mark.slow
+
+ROOT = Path(__file__).resolve().parents[1]
+ASSIGNMENTS = ROOT / "assignments"
+WORKERS = max(1, min(2, os.cpu_count() or 1))
+
+
+def _load(name: str, path: Path):
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+build = _load("numkin_assignments_build", ASSIGNMENTS / "build.py")
+
+HOMEWORK = list(build.HOMEWORK)
+MISTAKES = [(hw, m["name"]) for hw in HOMEWORK for m in build.mistakes(hw)]
+
+OFFSET_SLIDER_CRANK = """\
+[scene]
+description = "Offset slider-crank: crank 30 mm, rod 100 mm, offset 12 mm, 300 rpm"
+
+[mechanism]
+linkage = "slider_crank"
+unit = "mm"
+
+[mechanism.dimensions]
+crank = 30
+rod = 100
+offset = 12
+
+[input]
+speed = "300 rpm"
+start_deg = 0
+stop_deg = 360
+step_deg = 1
+
+[[check]]
+at_deg = 60
+"""
+
+
+@pytest.fixture(scope="session")
+def built(tmp_path_factory):
+    """otter assign of every homework and of one generated from a scene: {name: result folder}."""
+    pytest.importorskip("otter")
+    pytest.importorskip("jupytext")
+    out = tmp_path_factory.mktemp("assignments")
+    scene = out / "offset-slider-crank.toml"
+    scene.write_text(OFFSET_SLIDER_CRANK)
+    generated = build.new_from_scene(scene, out / "masters")
+    names = [*HOMEWORK, generated]
+    with ThreadPoolExecutor(WORKERS) as pool:
+        folders = list(pool.map(lambda hw: build.assign(hw, out / "dist", run_tests=False), names))
+    return {Path(str(hw)).name: (hw, folder) for hw, folder in zip(names, folders)}
+
+
+@pytest.fixture(scope="session")
+def environments(built, tmp_path_factory):
+    """One fresh virtual environment per distinct requirement list of the zips: {zip: bin folder}."""
+    root = tmp_path_factory.mktemp("grading-venv")
+    wanted: dict[tuple, list[Path]] = {}
+    for _, folder in built.values():
+        autograder = build.autograder_zip(folder)
+        wanted.setdefault(tuple(build.zip_requirements(autograder)), []).append(autograder)
+    found = {}
+    for k, (requirements, zips) in enumerate(sorted(wanted.items())):
+        bin_dir = build.grading_venv(list(requirements), root / f"env{k}")
+        found.update({z: bin_dir for z in zips})
+    return found
+
+
+@pytest.fixture(scope="session")
+def graded(built, environments):
+    """Grade every solution and every deliberate mistake in the fresh environments."""
+    jobs = []
+    for name, (hw, folder) in built.items():
+        solution = folder / "autograder" / f"{name}.ipynb"
+        jobs.append((name, "solution", solution, folder / "graded" / "solution"))
+        for mistake in build.mistakes(hw):
+            wrong = folder / "mistakes" / mistake["name"] / f"{name}.ipynb"
+            build.apply_mistake(solution, mistake, wrong)
+            jobs.append((name, mistake["name"], wrong, wrong.parent))
+
+    def grade(job):
+        name, _, submission, out = job
+        autograder = build.autograder_zip(built[name][1])
+        try:
+            return build.run(submission, autograder, out, bin_dir=environments[autograder])
+        except Exception as error:  # reported by the test that needs it
+            return error
+
+    with ThreadPoolExecutor(WORKERS) as pool:
+        return dict(zip([(j[0], j[1]) for j in jobs], pool.map(grade, jobs)))
+
+
+def _results(graded, hw, name) -> dict:
+    outcome = graded[(hw, name)]
+    if isinstance(outcome, Exception):
+        raise outcome
+    return outcome
+
+
+# --------------------------------------------------------------------------
+# what otter assign builds
+# --------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("hw", HOMEWORK)
+def test_otter_assign_builds_student_and_autograder_versions(built, hw):
+    result = built[hw][1]
+    student = (result / "student" / f"{hw}.ipynb").read_text()
+    autograder = (result / "autograder" / f"{hw}.ipynb").read_text()
+    assert (result / "student" / "kincheck.py").exists()
+    assert "grader.check(" in student
+    assert "BEGIN SOLUTION" not in student and "hidden: true" not in student
+    expected = build.load_expected(hw)
+    for key, value in expected.items():
+        values = value.values() if isinstance(value, dict) else value if isinstance(value, list) else [value]
+        precise = [repr(v) for v in values if len(repr(v)) >= 10]  # not round numbers like 80.0
+        assert precise, key
+        for text in precise:
+            assert text not in student, f"reference value {key} ({text}) leaked into the student notebook"
+            assert text in autograder, f"reference value {key} ({text}) missing from the hidden tests"
+    with zipfile.ZipFile(build.autograder_zip(result)) as archive:
+        names = archive.namelist()
+        tests = "".join(archive.read(n).decode() for n in names if re.match(r"tests/.*\.py$", n))
+    assert "files/kincheck.py" in names
+    assert "hidden=True" in tests
+
+
+def _solution_lines(hw: str) -> list[str]:
+    """Code the master marks as solution: lines in '# BEGIN SOLUTION' blocks, '# SOLUTION' lines."""
+    found, inside = [], False
+    for line in build.master_path(hw).read_text().splitlines():
+        text = line.strip()
+        if text.startswith("# BEGIN SOLUTION"):
+            inside = True
+        elif text.startswith("# END SOLUTION"):
+            inside = False
+        elif inside:
+            found.append(text)
+        elif text.endswith("# SOLUTION"):
+            found.append(text.removesuffix("# SOLUTION").strip())
+    return [line for line in found if len(line) >= 20 and not line.startswith("#")]
+
+
+@pytest.mark.parametrize("hw", HOMEWORK)
+def test_student_version_has_no_solutions(built, hw):
+    cells = json.loads((built[hw][1] / "student" / f"{hw}.ipynb").read_text())["cells"]
+    student = "\n".join("".join(cell["source"]) for cell in cells)
+    lines = _solution_lines(hw)
+    assert len(lines) >= 3
+    leaked = [line for line in lines if line in student]
+    assert not leaked, f"solution code in the student notebook: {leaked}"
+    assert student.count("= ...") + student.count("    ...") >= 2
+
+
+def _public_points(text: str) -> list[str]:
+    return re.findall(r"@test_case\(points=([\d.]+), hidden=False", text)
+
+
+@pytest.mark.parametrize("hw", [*HOMEWORK, "hw_offset_slider_crank"])
+def test_zip_asks_for_what_the_notebook_imports_and_logs_match(built, hw):
+    """The image gets numpy and matplotlib; public checks carry the same points for
+    students as for grading, so otter run finds no "differs from logged score"."""
+    result = built[hw][1]
+    requirements = build.zip_requirements(build.autograder_zip(result))
+    names = {re.split(r"[<>=\[ ]", r)[0].lower() for r in requirements}
+    assert {"otter-grader", "numpy", "matplotlib"} <= names
+    assert "numkin" not in names
+    with zipfile.ZipFile(build.autograder_zip(result)) as archive:
+        for test in (result / "student" / "tests").glob("*.py"):
+            graded = archive.read(f"tests/{test.name}").decode()
+            assert _public_points(test.read_text()) == _public_points(graded), test.name
+
+
+def test_grading_environment_is_isolated(built, environments, tmp_path):
+    bin_dir = next(iter(environments.values()))
+    env = build.isolated_env(bin_dir)
+    python = str(bin_dir / "python")
+    numkin = subprocess.run([python, "-c", "import numkin"], env=env, capture_output=True, text=True, cwd=tmp_path)
+    assert "No module named 'numkin'" in numkin.stderr, "numkin is importable in the grading environment"
+    sympy = subprocess.run([python, "-c", "import sympy"], env=env, capture_output=True, text=True, cwd=tmp_path)
+    assert "No module named 'sympy'" in sympy.stderr, "the grading environment holds numkin's dependencies"
+    plot = subprocess.run([python, "-c", "import matplotlib, numpy, otter"], env=env, cwd=tmp_path)
+    assert plot.returncode == 0
+
+
+# --------------------------------------------------------------------------
+# grading in the fresh environment
+# --------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("hw", [*HOMEWORK, "hw_offset_slider_crank"])
+def test_solution_scores_full_marks(graded, hw):
+    results = _results(graded, hw, "solution")
+    got, possible = build.score(results)
+    assert possible > 0
+    assert got == possible, build.feedback(results)
+
+
+@pytest.mark.parametrize("hw, name", MISTAKES)
+def test_mistake_scores_what_mistakes_toml_states_and_is_named(graded, hw, name):
+    results = _results(graded, hw, name)
+    got, possible = build.score(results)
+    text = build.feedback(results)
+    (mistake,) = [m for m in build.mistakes(hw) if m["name"] == name]
+    assert got == mistake["score"], f"{name}: {got} / {possible}, mistakes.toml says {mistake['score']}\n{text}"
+    assert 0 < got <= possible
+    for words in mistake["feedback"]:
+        assert words in text, f"{name}: feedback lacks {words!r}:\n{text}"
+    for words in mistake.get("not_feedback", []):
+        assert words not in text, f"{name}: feedback names a cause the evidence does not support {words!r}:\n{text}"
+    assert "Traceback" not in text and "ValueError" not in text, text
+
+
+def test_generated_homework_mistakes(built, graded):
+    hw, _ = built["hw_offset_slider_crank"]
+    for mistake in build.mistakes(hw):
+        results = _results(graded, "hw_offset_slider_crank", mistake["name"])
+        got, _ = build.score(results)
+        assert got == mistake["score"], build.feedback(results)
+        for words in mistake["feedback"]:
+            assert words in build.feedback(results)
