@@ -67,25 +67,29 @@ html_title = f"numkin {release}"
 html_theme_options = {
     "navigation_with_keys": False,
     "show_toc_level": 2,
-    "header_links_before_dropdown": 6,
+    "header_links_before_dropdown": 7,
     "secondary_sidebar_items": ["page-toc"],
     "footer_start": ["copyright"],
     "footer_end": ["sphinx-version"],
 }
-html_sidebars = {"index": [], "gallery/index": []}
+html_sidebars = {page: [] for page in ("index", "gallery/index", "scene", "cli", "assignments")}
+smartquotes_action = "qe"  # quotes and ellipses; "--out" stays two hyphens
+highlight_language = "none"  # literal blocks in docstrings are TOML, shell or plain text; doctests are highlighted anyway
 html_last_updated_fmt = None
 
 # -- MathJax ---------------------------------------------------------------------
 # Equations are typeset by MathJax in the browser. Where Debian's libjs-mathjax
-# is installed, the pages load that copy (readable offline); otherwise Sphinx's
-# default (a CDN). NUMKIN_DOCS_MATHJAX overrides: "cdn" for the default, or the
-# URL of a MathJax 2 or 3 script. The build itself never needs MathJax.
+# (MathJax 2) is installed, the pages load that copy (readable offline; SVG
+# output, which needs no web fonts); otherwise Sphinx's default (a CDN).
+# NUMKIN_DOCS_MATHJAX overrides: "cdn" for the default, or the URL of a MathJax
+# script. The build itself never needs MathJax.
 _mathjax = os.environ.get("NUMKIN_DOCS_MATHJAX", "")
 _debian_mathjax = Path("/usr/share/javascript/mathjax/MathJax.js")
 if _mathjax != "cdn" and (_mathjax or _debian_mathjax.exists()):
     _url = _mathjax or _debian_mathjax.as_uri()
     if "MathJax.js" in _url:  # MathJax 2
-        mathjax_path = _url if "?" in _url else _url + "?config=TeX-AMS-MML_HTMLorMML"
+        mathjax_path = _url if "?" in _url else _url + "?config=TeX-AMS-MML_SVG"
+        myst_update_mathjax = False  # myst's setting is MathJax 3's
         mathjax2_config = {"tex2jax": {"inlineMath": [["\\(", "\\)"]], "displayMath": [["\\[", "\\]"]],
                                        "processEscapes": True, "processEnvironments": True}}
     else:
@@ -123,6 +127,11 @@ myst_heading_anchors = 3
 myst_dmath_double_inline = True
 
 # -- cross references -----------------------------------------------------------
-intersphinx_mapping: dict = {}  # no network at build time; third-party names stay plain text
-nitpicky = False
-suppress_warnings: list[str] = []
+# Every reference to numkin's own objects must resolve (-n): a broken one in
+# docs/ fails the build; one in a docstring is listed among the docstring
+# defects (docs/_ext/numkin_docs.py). No network at build time, so no
+# intersphinx: names of other libraries stay plain text.
+nitpicky = True
+nitpick_ignore_regex = [
+    (r"py:.*", r"(numpy|pandas|matplotlib|sympy|scipy|mpmath|PIL|tqdm|time|math|argparse|pathlib|typing|collections)(\..*)?"),
+]

@@ -22,8 +22,12 @@ import shutil
 import subprocess
 import sys
 import tempfile
+from html.parser import HTMLParser
 from pathlib import Path
+from urllib.parse import unquote, urlsplit
 
+from docutils import nodes
+from docutils.utils import get_source_line
 from sphinx.util import logging as sphinx_logging
 
 LESSON_SUFFIX = ".lesson.py"
@@ -99,6 +103,7 @@ def build_gallery(target: Path, stamp: str) -> None:
     the figures are deterministic.
     """
     target = Path(target)
+    stamp += hashlib.sha256(Path(__file__).read_bytes()).hexdigest()[:16]  # and this page's layout
     stamp_file = target / ".numkin-source"
     if stamp_file.exists() and stamp_file.read_text() == stamp and (target / "index.md").exists():
         return
@@ -130,6 +135,7 @@ def build_gallery(target: Path, stamp: str) -> None:
     ]
     for scene, files in entries.items():
         lines += [f"## `{scene}`", "", scenes.get(scene, ""), "", f"`numkin figures {scene} --out figures/`", ""]
+        lines += ["::::{container} numkin-gallery", ""]
         for rel in files:
             stem = Path(rel).stem
             lines += [
@@ -141,6 +147,7 @@ def build_gallery(target: Path, stamp: str) -> None:
                 ":::",
                 "",
             ]
+        lines += ["::::", ""]
     missing = [s for s in scenes if s not in entries]
     if missing:
         lines += ["## Scenes without figures", "",
@@ -248,6 +255,16 @@ class ApiIndex:
                 out.append(canonical)
         return out
 
+    def data(self, fullname: str) -> list[str]:
+        """Names in the ``__all__`` of module `fullname` that are neither modules, classes nor functions."""
+        module = self._index().get(fullname)
+        out = []
+        for name in getattr(module, "__all__", ()):
+            obj = getattr(module, name, None)
+            if not (inspect.ismodule(obj) or inspect.isclass(obj) or inspect.isfunction(obj) or callable(obj)):
+                out.append(name)
+        return out
+
     def filename_map(self) -> dict[str, str]:
         """Page names for objects whose name differs from a module's only in case (``numkin.Sweep``)."""
         modules = {m.lower() for m in self._index()}
@@ -257,6 +274,43 @@ class ApiIndex:
             if full.lower() in modules:
                 out[full] = f"{full}-object"
         return out
+
+
+# ------------------------------------------------------------------------ CLI
+def _rst_help(text: str | None) -> str | None:
+    """argparse help laid out for a terminal, as reStructuredText.
+
+    ``numkin``'s descriptions and epilogs are pre-formatted: a line ending with
+    ``:`` followed by indented lines (``examples:``) becomes a literal block.
+    """
+    if not text:
+        return text
+    lines = text.split("\n")
+    out = []
+    for k, line in enumerate(lines):
+        following = lines[k + 1] if k + 1 < len(lines) else ""
+        if line.rstrip().endswith(":") and not line.startswith(" ") and following.startswith("  "):
+            out += [line.rstrip() + ":", ""]
+        else:
+            out.append(line)
+    return "\n".join(out)
+
+
+def cli_parser():
+    """``numkin.cli.build_parser()`` with its help texts as reStructuredText (for sphinx-argparse)."""
+    import argparse
+
+    from numkin.cli import build_parser
+
+    parser = build_parser()
+    todo = [parser]
+    while todo:
+        p = todo.pop()
+        p.description, p.epilog = _rst_help(p.description), _rst_help(p.epilog)
+        for action in p._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                todo += list(action.choices.values())
+    return parser
 
 
 # ------------------------------------------------------------------------ Sphinx
@@ -274,12 +328,91 @@ def _include_read(app, relative_path, parent_docname, content) -> None:
     content[0] = text
 
 
+class _Links(HTMLParser):
+    """The ids a page defines and the local links it makes."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.ids: set[str] = set()
+        self.links: list[str] = []
+        self._last_tag = ""
+
+    def handle_starttag(self, tag, attrs) -> None:
+        attrs = dict(attrs)
+        if "problematic" in (attrs.get("class") or "").split() and self._last_tag == "a" and self.links:
+            # docutils' link from a markup error in a docstring to its message,
+            # which is listed among the docstring defects instead
+            self.links.pop()
+        self._last_tag = tag
+        for key in ("id", "name"):
+            if attrs.get(key):
+                self.ids.add(attrs[key])
+        for key in ("href", "src"):
+            value = attrs.get(key)
+            if value and not urlsplit(value).scheme and not value.startswith("//"):
+                self.links.append(value)
+
+
+def broken_links(html_dir: Path) -> list[str]:
+    """Every link between the built pages whose file or ``#anchor`` does not exist."""
+    html_dir = Path(html_dir)
+    pages: dict[Path, _Links] = {}
+    for path in sorted(html_dir.rglob("*.html")):
+        if "_static" in path.relative_to(html_dir).parts:
+            continue
+        parser = _Links()
+        parser.feed(path.read_text(encoding="utf-8", errors="replace"))
+        pages[path.resolve()] = parser
+    broken = []
+    for page, parser in pages.items():
+        for link in parser.links:
+            parts = urlsplit(link)
+            target = (page.parent / unquote(parts.path)).resolve() if parts.path else page
+            if target.is_dir():
+                target = target / "index.html"
+            where = page.relative_to(html_dir.resolve())
+            if not target.exists():
+                broken.append(f"{where}: {link} (no such file)")
+            elif parts.fragment and target in pages and unquote(parts.fragment) not in pages[target].ids:
+                broken.append(f"{where}: {link} (no such anchor)")
+    return sorted(set(broken))
+
+
+def _check_links(app, exception) -> None:
+    """After an HTML build: a warning (an error under -W) for each broken internal link."""
+    if exception is None and app.builder.format == "html":
+        log = sphinx_logging.getLogger(__name__)
+        for text in broken_links(Path(app.outdir)):
+            log.warning(f"broken internal link: {text}", type="numkin", subtype="link")
+
+
+def _resolve_short_name(app, env, node, contnode):
+    """A Python reference written with a short name (``Mechanism.sweep``) resolves to the
+    one documented object whose full name ends with it, wherever the docstring is."""
+    if node.get("refdomain") != "py":
+        return None
+    target = node.get("reftarget", "").lstrip("~.")
+    if not target:
+        return None
+    domain = env.get_domain("py")
+    matches = [name for name in domain.objects if name == target or name.endswith("." + target)]
+    canonical = {domain.objects[name].node_id: name for name in matches if not domain.objects[name].aliased}
+    if len(canonical) != 1:
+        return None
+    full = next(iter(canonical.values()))
+    obj = domain.objects[full]
+    from sphinx.util.nodes import make_refnode
+
+    return make_refnode(app.builder, node.get("refdoc", ""), obj.docname, obj.node_id, contnode, full)
+
+
 class DocstringDefects(logging.Filter):
     """Markup errors inside numkin's docstrings, printed as notes instead of failing ``-W``.
 
     A docstring whose reStructuredText does not parse (an undefined
     ``|substitution|`` from an absolute value written ``|x|``, a malformed
-    table) is listed, with its place, after the build; the build fails on it
+    table) or that refers to a name documented nowhere is listed, with its
+    place, after the build; the build fails on it
     only when ``NUMKIN_DOCS_STRICT_DOCSTRINGS=1``. Every other warning, and
     any problem in the pages of docs/ and in the lessons, fails the build.
     """
@@ -289,8 +422,14 @@ class DocstringDefects(logging.Filter):
         self.found: list[str] = []
 
     def filter(self, record: logging.LogRecord) -> bool:
-        location = str(getattr(record, "location", "") or "")
-        if getattr(record, "type", "") == "docutils" and ("docstring of" in location or "<autosummary>" in location):
+        location = getattr(record, "location", "") or ""
+        if isinstance(location, nodes.Node):
+            source, line = get_source_line(location)
+            location = f"{source}:{line}"
+        location = str(location)
+        kind = getattr(record, "type", "")
+        if kind in ("docutils", "ref") and ("docstring of" in location or "<autosummary>" in location):
+            location = location.replace(os.getcwd() + os.sep, "")
             text = f"{location}: {record.getMessage()}".splitlines()[0]
             if text not in self.found:
                 self.found.append(text)
@@ -302,7 +441,7 @@ def _report_defects(app, exception) -> None:
     defects = app.numkin_docstring_defects.found
     if defects:
         log = sphinx_logging.getLogger(__name__)
-        log.info(f"\ndocstring markup defects ({len(defects)}; NUMKIN_DOCS_STRICT_DOCSTRINGS=1 makes them errors):")
+        log.info(f"\ndocstring defects ({len(defects)}; NUMKIN_DOCS_STRICT_DOCSTRINGS=1 makes them errors):")
         for text in defects:
             log.info(f"  {text}")
 
@@ -310,6 +449,8 @@ def _report_defects(app, exception) -> None:
 def setup(app):
     app.add_config_value("numkin_source_hash", "", "env", types=frozenset({str}))
     app.connect("include-read", _include_read)
+    app.connect("build-finished", _check_links)
+    app.connect("missing-reference", _resolve_short_name)
     if os.environ.get("NUMKIN_DOCS_STRICT_DOCSTRINGS", "") not in ("1", "yes", "true"):
         app.numkin_docstring_defects = DocstringDefects()
         for handler in logging.getLogger(sphinx_logging.NAMESPACE).handlers:
