@@ -116,7 +116,7 @@ nb_custom_formats = {".lesson.py": ["jupytext.reads", {"fmt": "py:percent"}]}
 # or numkin's code changed (numkin_source_hash), so a rebuild reuses the outputs.
 # NUMKIN_DOCS_EXECUTE=off builds the lessons without outputs (a quick look at the text).
 nb_execution_mode = os.environ.get("NUMKIN_DOCS_EXECUTE", "force")
-nb_execution_timeout = 300  # seconds per cell
+nb_execution_timeout = 180  # seconds per cell (a lesson takes 10-30 s in all)
 nb_execution_in_temp = True  # files a lesson writes go to a temporary folder
 nb_execution_raise_on_error = True  # a failing cell (or assert) fails the build
 nb_execution_show_tb = True
