@@ -177,7 +177,15 @@ class ApiIndex:
     def __getstate__(self):  # modules do not pickle; the index is rebuilt on demand
         return {"package": self.package, "_modules": None, "_canonical": {}, "shadowed": []}
 
-    def __repr__(self) -> str:  # stable, so that Sphinx sees an unchanged configuration
+    # Sphinx compares configuration values between builds: equal when of the same
+    # package, so that a rebuild does not re-read every page for this value.
+    def __eq__(self, other) -> bool:
+        return isinstance(other, ApiIndex) and other.package == self.package
+
+    def __hash__(self) -> int:
+        return hash(("ApiIndex", self.package))
+
+    def __repr__(self) -> str:
         return f"ApiIndex({self.package!r})"
 
     # -- index
