@@ -133,5 +133,5 @@ myst_dmath_double_inline = True
 # intersphinx: names of other libraries stay plain text.
 nitpicky = True
 nitpick_ignore_regex = [
-    (r"py:.*", r"(numpy|pandas|matplotlib|sympy|scipy|mpmath|PIL|tqdm|time|math|argparse|pathlib|typing|collections)(\..*)?"),
+    (r"py:.*", r"(numpy|pandas|matplotlib|sympy|scipy|mpmath|PIL|tqdm|time|math|fractions|dataclasses|argparse|pathlib|typing|collections)(\..*)?"),
 ]

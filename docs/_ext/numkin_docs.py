@@ -273,6 +273,27 @@ class ApiIndex:
                 out.append(name)
         return out
 
+    def documented_name(self, target: str) -> str | None:
+        """The name under which the object a full dotted name reaches is documented (None: not one of ours)."""
+        parts = target.split(".")
+        if parts[0] != self.package:
+            return None
+        for k in range(len(parts) - 1, 0, -1):
+            try:
+                obj = importlib.import_module(".".join(parts[:k]))
+            except ImportError:
+                continue
+            rest = parts[k:]
+            for i, attr in enumerate(rest):
+                obj = getattr(obj, attr, None)
+                canonical = self.canonical(obj)
+                if canonical:
+                    return ".".join([canonical, *rest[i + 1:]])
+                if obj is None:
+                    return None
+            return None
+        return None
+
     def filename_map(self) -> dict[str, str]:
         """Page names for objects whose name differs from a module's only in case (``numkin.Sweep``)."""
         modules = {m.lower() for m in self._index()}
@@ -396,22 +417,47 @@ def _check_links(app, exception) -> None:
 
 def _resolve_short_name(app, env, node, contnode):
     """A Python reference written with a short name (``Mechanism.sweep``) resolves to the
-    one documented object whose full name ends with it, wherever the docstring is."""
+    documented object of the role's kind whose full name ends with it, wherever the
+    docstring is; among several, the one nearest the docstring's module."""
     if node.get("refdomain") != "py":
         return None
     target = node.get("reftarget", "").lstrip("~.")
     if not target:
         return None
     domain = env.get_domain("py")
-    matches = [name for name in domain.objects if name == target or name.endswith("." + target)]
-    canonical = {domain.objects[name].node_id: name for name in matches if not domain.objects[name].aliased}
-    if len(canonical) != 1:
+    api = app.config.autosummary_context.get("api")
+    moved = api.documented_name(target) if isinstance(api, ApiIndex) else None
+    if moved and moved in domain.objects and not domain.objects[moved].aliased:
+        # a full name through a re-export (numkin.scene.load_scene): the page it is documented on
+        entry = domain.objects[moved]
+        from sphinx.util.nodes import make_refnode
+
+        return make_refnode(app.builder, node.get("refdoc", ""), entry.docname, entry.node_id, contnode, moved)
+    kinds = set(domain.objtypes_for_role(node.get("reftype", "")) or ())
+    found = {}
+    for name, entry in domain.objects.items():
+        if (name == target or name.endswith("." + target)) and not entry.aliased and (not kinds or entry.objtype in kinds):
+            found[entry.node_id] = name
+    if not found:
         return None
-    full = next(iter(canonical.values()))
-    obj = domain.objects[full]
+    context = (node.get("py:module") or "").split(".")
+
+    def shared(name: str) -> int:
+        parts = name.split(".")
+        n = 0
+        while n < min(len(parts), len(context)) and parts[n] == context[n]:
+            n += 1
+        return n
+
+    best = max(map(shared, found.values()))
+    nearest = [name for name in found.values() if shared(name) == best]
+    if len(nearest) != 1:
+        return None
+    full = nearest[0]
+    entry = domain.objects[full]
     from sphinx.util.nodes import make_refnode
 
-    return make_refnode(app.builder, node.get("refdoc", ""), obj.docname, obj.node_id, contnode, full)
+    return make_refnode(app.builder, node.get("refdoc", ""), entry.docname, entry.node_id, contnode, full)
 
 
 class DocstringDefects(logging.Filter):
