@@ -379,13 +379,13 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
     from .report.study import set_views
 
     set_views(df, [
-        ("outcome", ["case", "expected", "outcome", "as expected", "points", "max cond [-]",
-                     "Newton iterations (max)", "analytic vs complex step [-]"]),
+        ("outcome", ["case", "expected", "outcome", "as expected"]),
+        ("the solver", ["case", "points", "max cond [-]", "Newton iterations (max)", "analytic vs complex step [-]"]),
         ("first-derivative schemes: max error of dq/dtheta over its peak", ["case", "sharpest turn [deg]"] + first),
         ("second-derivative schemes: max error of d2q/dtheta2 over its peak", ["case", "sharpest turn [deg]"] + second),
         ("what happened", ["case", "what happened"]),
         ("errors and warnings raised", ["case", "error or warning raised"]),
-    ])
+    ], row_keys=["case"])
     return df
 
 
