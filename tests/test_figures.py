@@ -452,18 +452,29 @@ def test_gif_frame_count_and_identical_bytes(tmp_path):
 
 # ----------------------------------------------------------------------------- readable figures
 def test_roundoff_optimum_lies_on_its_curve(tables):
-    """Each measured-optimum star sits at the table's optimal h, on the drawn polyline of its scheme."""
+    """Each measured-optimum star sits at the table's optimal h, on the drawn fine scan of its scheme.
+
+    The fine scan is the table's ``attrs["scan"]`` (the steps the optimum is
+    measured on), drawn as a thin line of the scheme's colour.
+    """
     table = tables["roundoff"]
+    scan = table.attrs["scan"]
     ax = figures.roundoff(table).axes[0]
     stars = [ln for ln in ax.get_lines() if ln.get_marker() == "*" and len(ln.get_xdata()) == 1]
-    curves = [ln for ln in ax.get_lines() if len(ln.get_xdata()) > 2 and ln.get_linestyle() != "None"]
     assert len(stars) == len(table)
     for star, (_, row) in zip(stars, table.iterrows()):
         h_star, e_star = float(star.get_xdata()[0]), float(star.get_ydata()[0])
         assert h_star == row["measured optimal h [rad]"]
-        curve = next(c for c in curves if c.get_color() == star.get_color() and c.get_label().startswith(
-            str(row["scheme"]).replace("_", " ")))
+        curve = next(c for c in ax.get_lines() if c.get_label() == f"_scan {row['scheme']}")
+        assert curve.get_color() == star.get_color() and curve.get_linewidth() < 1
         h, e = np.asarray(curve.get_xdata(), float), np.asarray(curve.get_ydata(), float)
+        # the thin line is the table's scan, in increasing h
+        expected_h = np.asarray(scan["h [rad]"], float)
+        order = np.argsort(expected_h)
+        assert np.array_equal(h, expected_h[order])
+        expected_e = np.asarray(scan[row["scheme"]], float)[order]
+        assert np.array_equal(np.isfinite(e), expected_e > 0)
+        assert np.array_equal(e[np.isfinite(e)], expected_e[expected_e > 0])
         ok = np.isfinite(e)
         # straight line between the two neighbouring points on log-log axes, computed here
         j = np.searchsorted(h[ok], h_star)
