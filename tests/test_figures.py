@@ -608,3 +608,51 @@ def test_cli_figures_all_twice_gives_identical_bytes(tmp_path):
     assert files and files == sorted(p.relative_to(outs[1]) for p in outs[1].rglob("*") if p.is_file())
     for rel in files:
         assert (outs[0] / rel).read_bytes() == (outs[1] / rel).read_bytes(), rel
+
+
+def test_dimension_lines_come_from_the_linkage_spec(monkeypatch):
+    """The quick-return is dimensioned by its spec's lines; a changed spec changes the drawing;
+    a linkage without dimension lines (the four-bar) labels each link with its length."""
+    import dataclasses
+
+    from numkin.figures.registries import dimensions_of
+
+    mech = linkages.quick_return()
+    assert dimensions_of(mech) == [tuple(d) for d in linkages.spec("quick_return").dimension_lines]
+    assert dimensions_of(linkages.four_bar(4, 1, 3, 3)) is None
+    changed = dataclasses.replace(linkages.spec("quick_return"), dimension_lines=(("O1", "O2", "d_{12}", 1.0),))
+    monkeypatch.setitem(linkages.SPECS, "quick_return", changed)
+    sweep = mech.sweep(np.radians(np.arange(0, 361)))
+    text = all_text(figures.mechanism(sweep, 30 * DEG))
+    assert "$d_{12}$ = 60 mm" in text and "$r_1$ = 60 mm" not in text
+
+
+def test_scene_figures_are_never_timed_and_start_where_the_scene_starts(tmp_path, monkeypatch):
+    """render_figures: the work-precision figure's table is not timed even when [report] asks for
+    timing repeats (the figure plots work counts); the round-off and Newton tables start at start_deg."""
+    from numkin import report
+    from numkin.scene import load_scene, render_figures, run_scene
+
+    scene_file = tmp_path / "crank.toml"
+    scene_file.write_text(
+        '[scene]\ndescription = "crank"\n[mechanism]\nlinkage = "slider_crank"\n[mechanism.dimensions]\n'
+        'crank = 80\nrod = 200\n[input]\nspeed = "10 rad/s"\nstart_deg = -90\nstop_deg = 270\nstep_deg = 10\n'
+        '[output]\nfigures = ["work-precision", "roundoff", "newton"]\n'
+        '[report]\nquantity = "x"\ncheck_deg = 60\ngrids = [36, 72]\nschemes = ["centred"]\nrepeat = 3\n'
+    )
+    calls = {}
+    for name in ("work_precision_table", "roundoff_table", "newton_table"):
+        real = getattr(report, name)
+
+        def spy(*args, _real=real, _name=name, **kwargs):
+            calls.setdefault(_name, []).append(kwargs)
+            return _real(*args, **kwargs)
+
+        monkeypatch.setattr(report, name, spy)
+    result = run_scene(load_scene(str(scene_file)), figures=False)
+    written = render_figures(result, tmp_path / "out", formats=("png",))
+    assert sorted(p.name for p in written) == ["newton.png", "roundoff.png", "work-precision.png"]
+    assert [kw.get("repeat") for kw in calls["work_precision_table"]] == [None]
+    assert not any("time" in str(c) for c in result.report["work_precision"].columns)
+    for name in ("roundoff_table", "newton_table"):
+        assert calls[name] and all(kw["start"] == pytest.approx(math.radians(-90)) for kw in calls[name]), name
