@@ -271,32 +271,31 @@ def test_animate_writes_a_gif(capsys, tmp_path):
         assert im.n_frames == 4
 
 
+SMALL_REPORT = """
+[scene]
+description = "slider-crank report on small grids"
+[mechanism]
+linkage = "slider_crank"
+unit = "m"
+[mechanism.dimensions]
+crank = "80 mm"
+rod = "200 mm"
+[input]
+speed = "6000 rpm"
+step_deg = 10
+[[check]]
+at_deg = 0
+[report]
+quantity = "x"
+grids = [36, 72]
+schemes = ["centred", "second_difference"]
+points_per_turn = 36
+"""
+
+
 def test_report_writes_the_error_tables(capsys, tmp_path):
     pytest.importorskip("tabulate")
-    path = write(
-        tmp_path,
-        """
-        [scene]
-        description = "slider-crank report on small grids"
-        [mechanism]
-        linkage = "slider_crank"
-        unit = "m"
-        [mechanism.dimensions]
-        crank = "80 mm"
-        rod = "200 mm"
-        [input]
-        speed = "6000 rpm"
-        step_deg = 10
-        [[check]]
-        at_deg = 0
-        [report]
-        quantity = "x"
-        grids = [36, 72]
-        schemes = ["centred", "second_difference"]
-        points_per_turn = 36
-        repeat = 1
-        """,
-    )
+    path = write(tmp_path, SMALL_REPORT + "repeat = 1\n")
     out_dir = tmp_path / "report"
     code, out, err = run(capsys, "report", path, "--out", str(out_dir))
     assert code == 0, err
@@ -385,26 +384,7 @@ def test_report_of_every_builtin_scene(capsys, tmp_path, name):
 
 
 def test_report_is_timed_only_with_repeat(capsys, tmp_path):
-    path = write(
-        tmp_path,
-        """
-        [scene]
-        description = "slider-crank report on small grids"
-        [mechanism]
-        linkage = "slider_crank"
-        [mechanism.dimensions]
-        crank = 80
-        rod = 200
-        [input]
-        speed = "6000 rpm"
-        [report]
-        quantity = "x"
-        check_deg = 60
-        grids = [36, 72]
-        schemes = ["centred"]
-        points_per_turn = 36
-        """,
-    )
+    path = write(tmp_path, SMALL_REPORT)
     headers = {}
     for argv in ([], ["--repeat", "1"]):
         out_dir = tmp_path / f"out{len(argv)}"
@@ -465,12 +445,12 @@ def test_animate_options_reach_animate(capsys, tmp_path, monkeypatch):
 
 
 def test_animate_defaults_from_the_scene_and_acceleration_for_arrows(capsys, tmp_path, monkeypatch):
-    path = four_bar(tmp_path, extra=(
+    text = FOUR_BAR.format(ground=4, crank=1, coupler=3, rocker=3, speed="10 rad/s").replace(
+        "stop_deg", 'acceleration = "-2 rad/s^2"\nstop_deg')
+    path = write(tmp_path, text + (
         '\n[animation]\nframes = 6\nfps = 10\ndpi = 40\nwidth = 3\nturn = "sweep"\ntraces = ["B"]\n'
         'arrows = "acceleration"\n'
-    )).replace("\\", "/")
-    text = open(path).read().replace('speed = "10 rad/s"', 'speed = "10 rad/s"\nacceleration = "-2 rad/s^2"')
-    open(path, "w").write(text)
+    ))
     calls = _animate_calls(monkeypatch)
     code, _, err = run(capsys, "animate", path, "--out", str(tmp_path / "a.gif"), "--dpi", "60")
     assert code == 0, err
