@@ -28,6 +28,7 @@ import argparse
 import json
 import math
 import sys
+import textwrap
 import warnings
 from contextlib import contextmanager
 from pathlib import Path
@@ -151,7 +152,7 @@ def _suite_lines(suite) -> list[str]:
         raised = " ".join(str(record.get("error or warning raised", "") or "").split())
         text = "; ".join(t for t in (what, raised) if t)
         if text:
-            notes.append(f"  {record['case']}: {text}")
+            notes += textwrap.wrap(f"{record['case']}: {text}", width=118, initial_indent="  ", subsequent_indent="    ")
     return lines + ([""] + notes if notes else [])
 
 
