@@ -65,7 +65,8 @@ are optional. ::
     omega_theta4 = 10.633    # agrees to the decimals written, or give
     tolerance = 1e-3         # an absolute tolerance
 
-    [report]                 # settings of the error-analysis tables (numkin.report):
+    [report]                 # settings of the error-analysis tables (numkin.report; without
+                             # [input] speed they are per rad/s of input speed):
     quantity = "theta4"      # the unknown studied (default: the first reported)
     check_deg = 100          # check angle (default: the first [[check]])
     grids = [36, 72, 180, 360]   # points per turn of the convergence tables

@@ -450,9 +450,7 @@ def _validate(data: dict, *, name: str, source: str) -> Scene:
                 if not _is_int(rep[key], least):
                     r.fail(f"[report] {key}", f"must be an integer >= {least}, got {rep[key]!r}")
                 report[key] = rep[key]
-        if not scene.speed:
-            r.fail("[report]", "needs [input] speed (the error tables are of velocities and accelerations)")
-        scene.report = report
+        scene.report = report  # without [input] speed the report is per rad/s (numkin.report.scene_report)
     if "animation" in data:
         scene.animation = _read_animation(r, scene, r.table(data["animation"], "[animation]"))
     return scene

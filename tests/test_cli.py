@@ -383,6 +383,18 @@ def test_report_of_every_builtin_scene(capsys, tmp_path, name):
     assert "nan" not in out.lower().split()
 
 
+def test_report_settings_of_a_scene_without_speed(capsys, tmp_path):
+    """[report] settings apply without an input speed: the tables are per rad/s of input speed."""
+    path = write(tmp_path, SMALL_REPORT.replace('speed = "6000 rpm"\n', ""))
+    code, out, err = run(capsys, "report", path, "--out", str(tmp_path))
+    assert code == 0, err
+    with open(tmp_path / "scene-convergence.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert {r["scheme"] for r in rows} == {"centred", "second_difference"}
+    assert {r["points per turn"] for r in rows} == {"36", "72"}
+    assert "per rad/s of input speed" in out
+
+
 def test_report_is_timed_only_with_repeat(capsys, tmp_path):
     path = write(tmp_path, SMALL_REPORT)
     headers = {}
