@@ -4,9 +4,10 @@
 
     numkin scenes                                   list the built-in scenes
     numkin run SCENE [--out DIR] [--at ANGLE_DEG] [--format text|json]
-    numkin report SCENE [--out DIR]                 error-analysis tables
+    numkin report SCENE [--out DIR] [--repeat N]    error-analysis tables
     numkin figures [SCENE ... | --all] --out DIR    regenerate figures
-    numkin animate SCENE --out FILE.gif [--frames N]
+    numkin animate SCENE --out FILE.gif [--frames N] [--fps F] [--dpi D] [--width IN]
+                   [--turn full|sweep] [--trace P ...] [--arrows velocity|acceleration]
     numkin bench [--repeat N]                       speed comparison
 
 SCENE is a built-in name (``numkin scenes``) or the path of a scene file
@@ -27,6 +28,7 @@ import argparse
 import json
 import math
 import sys
+import textwrap
 import warnings
 from contextlib import contextmanager
 from pathlib import Path
@@ -132,7 +134,7 @@ def _suite_lines(suite) -> list[str]:
         ("case", "case", str), ("outcome", "outcome", str),
         ("as expected", "as expected", lambda v: "yes" if v else "NO"),
         ("max cond [-]", "max cond", lambda v: _fmt(float(v))),
-        ("Newton iterations (max)", "iterations", lambda v: "-" if int(v) < 0 else str(int(v))),
+        ("Newton iterations (max)", "iterations", lambda v: "-" if v != v else str(int(v))),
         ("centred max rel error [-]", "centred rel err", lambda v: "-" if v != v else f"{float(v):.2e}"),
         ("second_difference max rel error [-]", "2nd diff rel err", lambda v: "-" if v != v else f"{float(v):.2e}"),
     ]
@@ -150,7 +152,7 @@ def _suite_lines(suite) -> list[str]:
         raised = " ".join(str(record.get("error or warning raised", "") or "").split())
         text = "; ".join(t for t in (what, raised) if t)
         if text:
-            notes.append(f"  {record['case']}: {text}")
+            notes += textwrap.wrap(f"{record['case']}: {text}", width=118, initial_indent="  ", subsequent_indent="    ")
     return lines + ([""] + notes if notes else [])
 
 
@@ -243,44 +245,24 @@ def _cmd_run(args) -> int:
 
 
 def _cmd_report(args) -> int:
+    from .report import format_text, scene_report
     from .scene import load_scene
 
     scene = load_scene(args.scene)
-    if scene.kind == "stability":
-        tables = _stability_report(scene)
-    elif not scene.speed:
-        raise ValueError(f"{scene.source}: [input] has no speed: the error tables are of velocities and accelerations")
-    else:
-        from . import report
-
-        with _progress(f"{scene.name} report") as step, _about(scene):
-            step("mechanism")
-            mech = scene.build_mechanism()
-            step("tables")
-            tables = report.full_report(mech, **scene.report_options(mech))
+    with _progress(f"{scene.name} report") as step, _about(scene):
+        step("tables")
+        tables = scene_report(scene, repeat=args.repeat)
     written = []
     if args.out:
         from .report import write_tables
 
         named = {f"{scene.name}-{k}": v for k, v in tables.items()}
         written = list(write_tables(named, Path(args.out)))
-    import pandas as pd
-
-    with pd.option_context("display.width", 200, "display.max_columns", 50):
-        for name, table in tables.items():
-            print(f"## {name}\n{table.to_string(index=not isinstance(table.index, pd.RangeIndex))}\n")
+    for name, table in tables.items():
+        print(f"## {name}\n{format_text(table)}\n")
     for path in written:
         print(f"written: {path}")
     return 0
-
-
-def _stability_report(scene) -> dict:
-    """The stability scene's report: its suite's table (:func:`numkin.stability.run_suite`)."""
-    from .scene import run_scene
-
-    with _progress(f"{scene.name} report") as step, _about(scene):
-        result = run_scene(scene, progress=step)
-    return {"stability": result.suite}
 
 
 def _scenes_for_figures(args) -> list[str]:
@@ -319,22 +301,41 @@ def _cmd_figures(args) -> int:
     return 0
 
 
+def _animation_options(args, scene) -> dict:
+    """Keyword arguments of :func:`numkin.animate.animate`: the command's options, else the scene's ``[animation]``."""
+    defaults = scene.animation
+    options = {"frames": args.frames or defaults.get("frames", 72)}
+    for key, value in (("fps", args.fps), ("dpi", args.dpi), ("width", args.width), ("turn", args.turn),
+                       ("traces", args.trace), ("arrows", args.arrows)):
+        value = defaults.get(key) if value is None else value
+        if value is not None:
+            options[key] = list(value) if key == "traces" else value
+    if options.get("arrows"):
+        if not scene.speed:
+            raise ValueError(f"--arrows {options['arrows']}: scene '{scene.name}' has no [input] speed")
+        options["omega"] = scene.speed
+        if scene.acceleration:
+            options["alpha"] = scene.acceleration
+    return options
+
+
 def _cmd_animate(args) -> int:
     from .scene import load_scene, run_scene
 
-    scene = load_scene(args.scene).positions_only()
+    scene = load_scene(args.scene)
     if scene.kind != "mechanism":
         raise ValueError(f"scene '{scene.name}' has no mechanism to animate")
     path = Path(args.out)
     if path.suffix.lower() != ".gif":
         raise ValueError(f"--out {args.out!r}: the animation is written as a GIF (Pillow); give a .gif file")
-    frames = args.frames or scene.animation.get("frames", 72)
+    options = _animation_options(args, scene)  # the input speed read before positions_only()
+    scene = scene.positions_only()
     with _progress(f"{scene.name} animation") as step, _about(scene):
         result = run_scene(scene, progress=step)
         step("frames")
         from . import animate
 
-        written = animate.animate(result.sweep, path, frames=frames)
+        written = animate.animate(result.sweep, path, **options)
     print(written if written is not None else path)
     return 0
 
@@ -363,6 +364,24 @@ def _positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
     return value
+
+
+def _bounded(kind, low, high, *, low_open: bool = False):
+    """An argparse type: a number of `kind` (int or float) in [low, high] ((low, high] if `low_open`)."""
+    noun = "an integer" if kind is int else "a number"
+
+    def parse(text: str):
+        try:
+            value = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not {noun}") from None
+        if not math.isfinite(value) or value < low or value > high or (low_open and value == low):
+            span = f"({low:g}, {high:g}]" if low_open else f"from {low:g} to {high:g}"
+            raise argparse.ArgumentTypeError(f"must be {span}, got {text}")
+        return value
+
+    parse.__name__ = kind.__name__
+    return parse
 
 
 def _finite_float(text: str) -> float:
@@ -450,13 +469,17 @@ def build_parser() -> argparse.ArgumentParser:
         sub, "report", _cmd_report, help="write the error-analysis tables of a scene",
         description=(
             "Error-analysis tables of a scene: convergence with the step, error against run time,\n"
-            "the roundoff floor, Newton's iterations and Jacobians, the solver tolerance. Prints\n"
-            "them; with --out also writes them as Markdown, CSV and LaTeX. Timings vary between runs."
+            "the roundoff floor, Newton's iterations and Jacobians, the solver tolerance; for the\n"
+            "stability scene, its suite. Prints them (wide tables in parts); with --out also writes\n"
+            "them as Markdown, CSV and LaTeX. Not timed unless --repeat is given (timings vary\n"
+            "between runs; everything else is the same on every run)."
         ),
-        epilog="example:\n  numkin report homework --out report/",
+        epilog="examples:\n  numkin report homework --out report/\n  numkin report homework --repeat 5\n  numkin report stability",
     )
     _add_scene_argument(p)
     p.add_argument("--out", metavar="DIR", help="write the tables into DIR")
+    p.add_argument("--repeat", metavar="N", type=_positive_int,
+                   help="time the work-precision and Jacobian tables with N repeats (default: not timed)")
 
     p = _add_command(
         sub, "figures", _cmd_figures, help="regenerate the figures of scenes",
@@ -478,11 +501,26 @@ def build_parser() -> argparse.ArgumentParser:
             "Animate a scene's mechanism over its input sweep: links, joints and ground pivots, the\n"
             "input angle stamped on each frame. Written as a GIF with Pillow (no ffmpeg needed)."
         ),
-        epilog="example:\n  numkin animate quick-return --out quick-return.gif --frames 90",
+        epilog=(
+            "examples:\n  numkin animate quick-return --out quick-return.gif --frames 90\n"
+            "  numkin animate six-bar --out six-bar.gif --trace B --arrows velocity --dpi 100\n"
+            "\nDefaults of the options come from the scene's [animation] section when it gives them."
+        ),
     )
     _add_scene_argument(p)
     p.add_argument("--out", metavar="FILE.gif", required=True, help="the GIF to write")
     p.add_argument("--frames", metavar="N", type=_positive_int, help="frame count (default: the scene's, else 72)")
+    p.add_argument("--fps", metavar="F", type=_bounded(float, 0.0, 100.0, low_open=True),
+                   help="frames per second (default: the scene's, else 24)")
+    p.add_argument("--dpi", metavar="D", type=_bounded(int, 10, 600),
+                   help="dots per inch, 10 to 600 (default: the scene's, else 80)")
+    p.add_argument("--width", metavar="INCHES", type=_bounded(float, 1.0, 40.0),
+                   help="frame width in inches, 1 to 40; the GIF is width * dpi pixels wide (default 5.6)")
+    p.add_argument("--turn", choices=("full", "sweep"),
+                   help="full: one full turn when the input can turn fully (default); sweep: the scene's sweep")
+    p.add_argument("--trace", metavar="P", nargs="+", help="named points whose paths are drawn")
+    p.add_argument("--arrows", choices=("velocity", "acceleration"),
+                   help="velocity or acceleration arrows on the moving points (the scene's input speed)")
 
     p = _add_command(
         sub, "bench", _cmd_bench, help="time numkin's sweep against the textbook way",

@@ -260,7 +260,9 @@ def render_figures(result: SceneResult, out_dir, *, formats=("png", "svg"), prog
 
     The error-analysis tables that some figures are drawn from (convergence,
     work-precision, roundoff, Newton) are computed here, only those asked for,
-    with the scene's ``[report]`` settings, and kept in ``result.report``.
+    with the scene's ``[report]`` settings, and kept in ``result.report``;
+    nothing is timed (the work-precision figure plots exact work counts), so
+    the figures are the same bytes on every run.
     """
     from . import figures as fig
 
@@ -281,15 +283,19 @@ def render_figures(result: SceneResult, out_dir, *, formats=("png", "svg"), prog
                 table = report.convergence_table(
                     result.mechanism, omega=scene.speed, check_angle=options["check_angle"], **common, **sweep_opts,
                 )
-            elif kind == "work-precision":
-                extra = {"repeat": options["repeat"]} if "repeat" in options else {}
-                table = report.work_precision_table(result.mechanism, omega=scene.speed, **common, **sweep_opts, **extra)
+            elif kind == "work-precision":  # the figure plots work counts: never timed
+                table = report.work_precision_table(
+                    result.mechanism, omega=scene.speed, **common, **sweep_opts, repeat=None,
+                )
             elif kind == "roundoff":
-                table = report.roundoff_table(result.mechanism, check_angle=options["check_angle"], **common)
+                table = report.roundoff_table(
+                    result.mechanism, check_angle=options["check_angle"], start=options["start"], **common,
+                )
             else:
                 for jacobian in ("symbolic", "forward", "central"):
                     result.report[f"newton_{jacobian}"] = report.newton_table(
                         result.mechanism, check_angle=options["check_angle"], jacobian=jacobian, guess=options["guess"],
+                        start=options["start"],
                     )
                 continue
             result.report[_REPORT_FIGURES[kind]] = table

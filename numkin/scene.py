@@ -65,7 +65,8 @@ are optional. ::
     omega_theta4 = 10.633    # agrees to the decimals written, or give
     tolerance = 1e-3         # an absolute tolerance
 
-    [report]                 # settings of the error-analysis tables (numkin.report):
+    [report]                 # settings of the error-analysis tables (numkin.report; without
+                             # [input] speed they are per rad/s of input speed):
     quantity = "theta4"      # the unknown studied (default: the first reported)
     check_deg = 100          # check angle (default: the first [[check]])
     grids = [36, 72, 180, 360]   # points per turn of the convergence tables
@@ -73,8 +74,14 @@ are optional. ::
     points_per_turn = 360    # grid of the Jacobian and tolerance tables
     repeat = 3               # timing repeats
 
-    [animation]
-    frames = 72              # frame count of `numkin animate`
+    [animation]              # defaults of `numkin animate`'s options (all optional)
+    frames = 72              # frame count
+    fps = 24                 # frames per second
+    dpi = 80                 # dots per inch, 10 to 600: the GIF is width * dpi pixels wide
+    width = 5.6              # frame width in inches, 1 to 40
+    turn = "full"            # "full": a full turn when the input can turn fully; "sweep": the sweep
+    traces = ["B"]           # named points whose paths (coupler curves) are drawn
+    arrows = "velocity"      # "velocity" or "acceleration" arrows (needs [input] speed)
 
 Mechanism written as loops (instead of ``linkage``)::
 

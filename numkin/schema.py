@@ -75,7 +75,7 @@ _SECTIONS = {
     "output": ("quantities", "unknowns", "points", "tables", "table_formats", "figures"),
     "compare": ("schemes", "second_schemes"),
     "report": ("quantity", "check_deg", "schemes", "grids", "points_per_turn", "repeat"),
-    "animation": ("frames",),
+    "animation": ("frames", "fps", "dpi", "width", "turn", "traces", "arrows"),
     "stability": ("cases",),
 }
 
@@ -450,15 +450,56 @@ def _validate(data: dict, *, name: str, source: str) -> Scene:
                 if not _is_int(rep[key], least):
                     r.fail(f"[report] {key}", f"must be an integer >= {least}, got {rep[key]!r}")
                 report[key] = rep[key]
-        if not scene.speed:
-            r.fail("[report]", "needs [input] speed (the error tables are of velocities and accelerations)")
-        scene.report = report
+        scene.report = report  # without [input] speed the report is per rad/s (numkin.report.scene_report)
     if "animation" in data:
-        frames = data["animation"].get("frames", 72)
-        if isinstance(frames, bool) or not isinstance(frames, int) or frames < 2:
-            r.fail("[animation] frames", f"must be an integer >= 2, got {frames!r}")
-        scene.animation = {"frames": frames}
+        scene.animation = _read_animation(r, scene, r.table(data["animation"], "[animation]"))
     return scene
+
+
+#: Choices of ``[animation] turn`` and ``arrows`` (as ``numkin animate`` takes them).
+ANIMATION_TURNS = ("full", "sweep")
+ANIMATION_ARROWS = ("velocity", "acceleration")
+#: Ranges of ``[animation]`` (and ``numkin animate``) dpi and width [in].
+ANIMATION_DPI = (10, 600)
+ANIMATION_WIDTH_IN = (1.0, 40.0)
+
+
+def _read_animation(r: SceneReader, scene, table: dict) -> dict:
+    """The ``[animation]`` section: defaults of ``numkin animate``'s options (only the keys given, and frames)."""
+    out = {}
+    frames = table.get("frames", 72)
+    if not _is_int(frames, 2):
+        r.fail("[animation] frames", f"must be an integer >= 2, got {frames!r}")
+    out["frames"] = frames
+    if "fps" in table:
+        fps = r.number(table["fps"], "[animation] fps")
+        if not 0 < fps <= 100:
+            r.fail("[animation] fps", f"must be a number of frames per second in (0, 100], got {table['fps']!r}")
+        out["fps"] = fps
+    if "dpi" in table:
+        low, high = ANIMATION_DPI
+        if not (_is_int(table["dpi"], low) and table["dpi"] <= high):
+            r.fail("[animation] dpi", f"must be an integer from {low} to {high} (dots per inch), got {table['dpi']!r}")
+        out["dpi"] = table["dpi"]
+    if "width" in table:
+        low, high = ANIMATION_WIDTH_IN
+        width = r.number(table["width"], "[animation] width")
+        if not low <= width <= high:
+            r.fail("[animation] width", f"must be from {low:g} to {high:g} (inches), got {table['width']!r}")
+        out["width"] = width
+    if "turn" in table:
+        if not isinstance(table["turn"], str):
+            r.fail("[animation] turn", f"must be one of {', '.join(ANIMATION_TURNS)}, got {table['turn']!r}")
+        out["turn"] = r.strings(table["turn"], "[animation] turn", ANIMATION_TURNS)[0]
+    if "traces" in table:
+        out["traces"] = r.strings(table["traces"], "[animation] traces")
+    if "arrows" in table:
+        if not isinstance(table["arrows"], str):
+            r.fail("[animation] arrows", f"must be one of {', '.join(ANIMATION_ARROWS)}, got {table['arrows']!r}")
+        out["arrows"] = r.strings(table["arrows"], "[animation] arrows", ANIMATION_ARROWS)[0]
+        if not scene.speed:
+            r.fail("[animation] arrows", "needs [input] speed (the arrows are velocities or accelerations)")
+    return out
 
 
 def _is_int(value, least: int) -> bool:

@@ -271,32 +271,31 @@ def test_animate_writes_a_gif(capsys, tmp_path):
         assert im.n_frames == 4
 
 
+SMALL_REPORT = """
+[scene]
+description = "slider-crank report on small grids"
+[mechanism]
+linkage = "slider_crank"
+unit = "m"
+[mechanism.dimensions]
+crank = "80 mm"
+rod = "200 mm"
+[input]
+speed = "6000 rpm"
+step_deg = 10
+[[check]]
+at_deg = 0
+[report]
+quantity = "x"
+grids = [36, 72]
+schemes = ["centred", "second_difference"]
+points_per_turn = 36
+"""
+
+
 def test_report_writes_the_error_tables(capsys, tmp_path):
     pytest.importorskip("tabulate")
-    path = write(
-        tmp_path,
-        """
-        [scene]
-        description = "slider-crank report on small grids"
-        [mechanism]
-        linkage = "slider_crank"
-        unit = "m"
-        [mechanism.dimensions]
-        crank = "80 mm"
-        rod = "200 mm"
-        [input]
-        speed = "6000 rpm"
-        step_deg = 10
-        [[check]]
-        at_deg = 0
-        [report]
-        quantity = "x"
-        grids = [36, 72]
-        schemes = ["centred", "second_difference"]
-        points_per_turn = 36
-        repeat = 1
-        """,
-    )
+    path = write(tmp_path, SMALL_REPORT + "repeat = 1\n")
     out_dir = tmp_path / "report"
     code, out, err = run(capsys, "report", path, "--out", str(out_dir))
     assert code == 0, err
@@ -369,9 +368,130 @@ def test_report_of_a_stability_scene_is_its_suite(capsys, tmp_path):
     assert (out_dir / "scene-stability.md").is_file() and (out_dir / "scene-stability.tex").is_file()
 
 
-def test_report_without_a_speed_is_one_line(capsys):
-    code, _, err = run(capsys, "report", "quick-return")
-    assert code == 2 and "has no speed" in one_line_error(err)
+@pytest.mark.parametrize("name", BUILTINS)
+def test_report_of_every_builtin_scene(capsys, tmp_path, name):
+    """``numkin report`` works for every built-in scene (one without input speed, the stability suite)
+    and writes each table as Markdown, CSV and LaTeX; the terminal shows lines of at most 120 characters."""
+    code, out, err = run(capsys, "report", name, "--out", str(tmp_path))
+    assert code == 0, err
+    tables = sorted(line[3:] for line in out.splitlines() if line.startswith("## "))
+    assert tables
+    for table in tables:
+        for suffix in ("md", "csv", "tex"):
+            assert (tmp_path / f"{name}-{table}.{suffix}").is_file(), (table, suffix)
+    assert max(len(line) for line in out.splitlines()) <= 120
+    assert "nan" not in out.lower().split()
+
+
+def test_report_settings_of_a_scene_without_speed(capsys, tmp_path):
+    """[report] settings apply without an input speed: the tables are per rad/s of input speed."""
+    path = write(tmp_path, SMALL_REPORT.replace('speed = "6000 rpm"\n', ""))
+    code, out, err = run(capsys, "report", path, "--out", str(tmp_path))
+    assert code == 0, err
+    with open(tmp_path / "scene-convergence.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert {r["scheme"] for r in rows} == {"centred", "second_difference"}
+    assert {r["points per turn"] for r in rows} == {"36", "72"}
+    assert "per rad/s of input speed" in out
+
+
+def test_report_is_timed_only_with_repeat(capsys, tmp_path):
+    path = write(tmp_path, SMALL_REPORT)
+    headers = {}
+    for argv in ([], ["--repeat", "1"]):
+        out_dir = tmp_path / f"out{len(argv)}"
+        code, out, err = run(capsys, "report", path, "--out", str(out_dir), *argv)
+        assert code == 0, err
+        with open(out_dir / "scene-work_precision.csv") as fh:
+            headers[len(argv)] = next(csv.reader(fh))
+    timed = [h for h in headers[2] if "time [ms]" in h]
+    assert timed and all("(varies)" in h for h in timed)
+    assert not any("time" in h for h in headers[0])
+    code, _, err = run(capsys, "report", path, "--repeat", "0")
+    assert code == 2 and err.startswith("numkin report: error: argument --repeat") and len(err.splitlines()) == 1
+
+
+def test_stability_iterations_blank_where_nothing_was_solved(capsys, tmp_path):
+    cases = ["cannot assemble (10, 6, 1, 1)", "slider-crank 80/200 at 6000 rpm"]
+    path = write(tmp_path, f'[scene]\ndescription = "two cases"\n[stability]\ncases = {json.dumps(cases)}\n')
+    code, out, err = run(capsys, "report", path, "--out", str(tmp_path))
+    assert code == 0, err
+    with open(tmp_path / "scene-stability.csv") as fh:
+        rows = {r["case"]: r for r in csv.DictReader(fh)}
+    assert rows[cases[0]]["Newton iterations (max)"] == ""
+    assert int(float(rows[cases[1]]["Newton iterations (max)"])) >= 1
+    code, out, err = run(capsys, "run", path)
+    assert code == 0, err
+    line = next(ln for ln in out.splitlines() if ln.strip().startswith(cases[0]))
+    assert "AssemblyError" in line and " - " in line and "-1" not in line
+
+
+# ------------------------------------------------- animate options
+def _animate_calls(monkeypatch):
+    import numkin.animate
+
+    calls = []
+
+    def fake(sweep, path, **kwargs):
+        calls.append((sweep, kwargs))
+        return path
+
+    monkeypatch.setattr(numkin.animate, "animate", fake)
+    return calls
+
+
+def test_animate_options_reach_animate(capsys, tmp_path, monkeypatch):
+    calls = _animate_calls(monkeypatch)
+    code, _, err = run(capsys, "animate", "homework", "--out", str(tmp_path / "h.gif"), "--frames", "8", "--fps", "12.5",
+                       "--dpi", "50", "--width", "4", "--turn", "sweep", "--trace", "B", "C", "--arrows", "velocity")
+    assert code == 0, err
+    sweep, kwargs = calls[0]
+    # the homework's speed is 450 rad/min = 7.5 rad/s, kept though the animation solves positions only
+    assert kwargs == {"frames": 8, "fps": 12.5, "dpi": 50, "width": 4.0, "turn": "sweep", "traces": ["B", "C"],
+                      "arrows": "velocity", "omega": pytest.approx(7.5, rel=1e-15)}
+    assert sweep.inputs.size == 361
+    calls.clear()
+    code, _, err = run(capsys, "animate", "homework", "--out", str(tmp_path / "h.gif"))
+    assert code == 0, err
+    assert calls[0][1] == {"frames": 72}  # nothing but the scene's frame count: animate's own defaults
+
+
+def test_animate_defaults_from_the_scene_and_acceleration_for_arrows(capsys, tmp_path, monkeypatch):
+    text = FOUR_BAR.format(ground=4, crank=1, coupler=3, rocker=3, speed="10 rad/s").replace(
+        "stop_deg", 'acceleration = "-2 rad/s^2"\nstop_deg')
+    path = write(tmp_path, text + (
+        '\n[animation]\nframes = 6\nfps = 10\ndpi = 40\nwidth = 3\nturn = "sweep"\ntraces = ["B"]\n'
+        'arrows = "acceleration"\n'
+    ))
+    calls = _animate_calls(monkeypatch)
+    code, _, err = run(capsys, "animate", path, "--out", str(tmp_path / "a.gif"), "--dpi", "60")
+    assert code == 0, err
+    assert calls[0][1] == {"frames": 6, "fps": 10.0, "dpi": 60, "width": 3.0, "turn": "sweep", "traces": ["B"],
+                           "arrows": "acceleration", "omega": 10.0, "alpha": -2.0}
+
+
+def test_animate_gif_size_follows_width_and_dpi(capsys, tmp_path):
+    from PIL import Image
+
+    gif = tmp_path / "sc.gif"
+    code, _, err = run(capsys, "animate", "slider-crank", "--out", str(gif), "--frames", "3", "--dpi", "20",
+                       "--width", "6", "--arrows", "velocity", "--trace", "A")
+    assert code == 0, err
+    with Image.open(gif) as im:
+        assert (im.n_frames, im.size[0]) == (3, 120)
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["--dpi", "601"], "--dpi"), (["--dpi", "9"], "--dpi"), (["--width", "0.5"], "--width"),
+    (["--width", "41"], "--width"), (["--fps", "0"], "--fps"), (["--turn", "half"], "--turn"),
+    (["--arrows", "speed"], "--arrows"), (["--arrows", "velocity"], "no [input] speed"),
+])
+def test_animate_option_mistakes_exit_2(capsys, tmp_path, argv, words):
+    code, _, err = run(capsys, "animate", "quick-return", "--out", str(tmp_path / "q.gif"), *argv)
+    lines = err.strip().splitlines()
+    assert code == 2 and len(lines) == 1 and "Traceback" not in err
+    assert lines[0].startswith(("numkin: error: ", "numkin animate: error: ")) and words in lines[0]
+    assert not (tmp_path / "q.gif").exists()
 
 
 @pytest.mark.parametrize("argv", [[], ["--help"], ["scenes"]])

@@ -452,18 +452,29 @@ def test_gif_frame_count_and_identical_bytes(tmp_path):
 
 # ----------------------------------------------------------------------------- readable figures
 def test_roundoff_optimum_lies_on_its_curve(tables):
-    """Each measured-optimum star sits at the table's optimal h, on the drawn polyline of its scheme."""
+    """Each measured-optimum star sits at the table's optimal h, on the drawn fine scan of its scheme.
+
+    The fine scan is the table's ``attrs["scan"]`` (the steps the optimum is
+    measured on), drawn as a thin line of the scheme's colour.
+    """
     table = tables["roundoff"]
+    scan = table.attrs["scan"]
     ax = figures.roundoff(table).axes[0]
     stars = [ln for ln in ax.get_lines() if ln.get_marker() == "*" and len(ln.get_xdata()) == 1]
-    curves = [ln for ln in ax.get_lines() if len(ln.get_xdata()) > 2 and ln.get_linestyle() != "None"]
     assert len(stars) == len(table)
     for star, (_, row) in zip(stars, table.iterrows()):
         h_star, e_star = float(star.get_xdata()[0]), float(star.get_ydata()[0])
         assert h_star == row["measured optimal h [rad]"]
-        curve = next(c for c in curves if c.get_color() == star.get_color() and c.get_label().startswith(
-            str(row["scheme"]).replace("_", " ")))
+        curve = next(c for c in ax.get_lines() if c.get_label() == f"_scan {row['scheme']}")
+        assert curve.get_color() == star.get_color() and curve.get_linewidth() < 1
         h, e = np.asarray(curve.get_xdata(), float), np.asarray(curve.get_ydata(), float)
+        # the thin line is the table's scan, in increasing h
+        expected_h = np.asarray(scan["h [rad]"], float)
+        order = np.argsort(expected_h)
+        assert np.array_equal(h, expected_h[order])
+        expected_e = np.asarray(scan[row["scheme"]], float)[order]
+        assert np.array_equal(np.isfinite(e), expected_e > 0)
+        assert np.array_equal(e[np.isfinite(e)], expected_e[expected_e > 0])
         ok = np.isfinite(e)
         # straight line between the two neighbouring points on log-log axes, computed here
         j = np.searchsorted(h[ok], h_star)
@@ -597,3 +608,51 @@ def test_cli_figures_all_twice_gives_identical_bytes(tmp_path):
     assert files and files == sorted(p.relative_to(outs[1]) for p in outs[1].rglob("*") if p.is_file())
     for rel in files:
         assert (outs[0] / rel).read_bytes() == (outs[1] / rel).read_bytes(), rel
+
+
+def test_dimension_lines_come_from_the_linkage_spec(monkeypatch):
+    """The quick-return is dimensioned by its spec's lines; a changed spec changes the drawing;
+    a linkage without dimension lines (the four-bar) labels each link with its length."""
+    import dataclasses
+
+    from numkin.figures.registries import dimensions_of
+
+    mech = linkages.quick_return()
+    assert dimensions_of(mech) == [tuple(d) for d in linkages.spec("quick_return").dimension_lines]
+    assert dimensions_of(linkages.four_bar(4, 1, 3, 3)) is None
+    changed = dataclasses.replace(linkages.spec("quick_return"), dimension_lines=(("O1", "O2", "d_{12}", 1.0),))
+    monkeypatch.setitem(linkages.SPECS, "quick_return", changed)
+    sweep = mech.sweep(np.radians(np.arange(0, 361)))
+    text = all_text(figures.mechanism(sweep, 30 * DEG))
+    assert "$d_{12}$ = 60 mm" in text and "$r_1$ = 60 mm" not in text
+
+
+def test_scene_figures_are_never_timed_and_start_where_the_scene_starts(tmp_path, monkeypatch):
+    """render_figures: the work-precision figure's table is not timed even when [report] asks for
+    timing repeats (the figure plots work counts); the round-off and Newton tables start at start_deg."""
+    from numkin import report
+    from numkin.scene import load_scene, render_figures, run_scene
+
+    scene_file = tmp_path / "crank.toml"
+    scene_file.write_text(
+        '[scene]\ndescription = "crank"\n[mechanism]\nlinkage = "slider_crank"\n[mechanism.dimensions]\n'
+        'crank = 80\nrod = 200\n[input]\nspeed = "10 rad/s"\nstart_deg = -90\nstop_deg = 270\nstep_deg = 10\n'
+        '[output]\nfigures = ["work-precision", "roundoff", "newton"]\n'
+        '[report]\nquantity = "x"\ncheck_deg = 60\ngrids = [36, 72]\nschemes = ["centred"]\nrepeat = 3\n'
+    )
+    calls = {}
+    for name in ("work_precision_table", "roundoff_table", "newton_table"):
+        real = getattr(report, name)
+
+        def spy(*args, _real=real, _name=name, **kwargs):
+            calls.setdefault(_name, []).append(kwargs)
+            return _real(*args, **kwargs)
+
+        monkeypatch.setattr(report, name, spy)
+    result = run_scene(load_scene(str(scene_file)), figures=False)
+    written = render_figures(result, tmp_path / "out", formats=("png",))
+    assert sorted(p.name for p in written) == ["newton.png", "roundoff.png", "work-precision.png"]
+    assert [kw.get("repeat") for kw in calls["work_precision_table"]] == [None]
+    assert not any("time" in str(c) for c in result.report["work_precision"].columns)
+    for name in ("roundoff_table", "newton_table"):
+        assert calls[name] and all(kw["start"] == pytest.approx(math.radians(-90)) for kw in calls[name]), name

@@ -392,6 +392,17 @@ quantities = ["velocity"]
         ("[output]", "[compare]\nschemes = [\"centered\", \"second_difference\"]\n[output]", ["second_difference", "second_schemes"]),
         ("[output]", "[[check]]\nat_deg = 400\n[output]", ["at_deg", "outside the sweep"]),
         ('speed = "10 rad/s"', 'speed = "10 rad/s"\nstep_deg = 7', ["[input] step_deg", "not a multiple of step_deg = 7"]),
+        ("[output]", "[animation]\nfsp = 10\n[output]", ["[animation]", "'fsp'", "did you mean 'fps'"]),
+        ("[output]", "[animation]\ntrace = [\"B\"]\n[output]", ["'trace'", "did you mean 'traces'"]),
+        ("[output]", "[animation]\ndpi = 601\n[output]", ["[animation] dpi", "10 to 600"]),
+        ("[output]", "[animation]\ndpi = 50.5\n[output]", ["[animation] dpi", "integer"]),
+        ("[output]", "[animation]\nwidth = 0.5\n[output]", ["[animation] width", "1 to 40"]),
+        ("[output]", "[animation]\nfps = 0\n[output]", ["[animation] fps", "(0, 100]"]),
+        ("[output]", "[animation]\nturn = \"ful\"\n[output]", ["[animation] turn", "did you mean 'full'"]),
+        ("[output]", "[animation]\narrows = \"velocty\"\n[output]", ["[animation] arrows", "did you mean 'velocity'"]),
+        ("[output]", "[animation]\ntraces = \"B\"\ntraces2 = 1\n[output]", ["'traces2'"]),
+        ('[input]\nspeed = "10 rad/s"\n[output]\nquantities = ["velocity"]',
+         '[animation]\narrows = "velocity"', ["[animation] arrows", "needs [input] speed"]),
     ],
 )
 def test_scene_mistakes_name_the_key(tmp_path, old, new, words):
@@ -431,3 +442,11 @@ def test_unknown_scene_and_malformed_toml(tmp_path):
         load_scene(write(tmp_path, "[scene\ndescription = 1"))
     with pytest.raises(SceneError, match="not found"):
         load_scene(tmp_path / "absent.toml")
+
+
+def test_animation_section_gives_the_animate_defaults(tmp_path):
+    text = GOOD + '[animation]\nframes = 12\nfps = 10\ndpi = 100\nwidth = 4\nturn = "sweep"\ntraces = ["B"]\narrows = "velocity"\n'
+    scene = load_scene(write(tmp_path, text))
+    assert scene.animation == {"frames": 12, "fps": 10.0, "dpi": 100, "width": 4.0, "turn": "sweep",
+                               "traces": ("B",), "arrows": "velocity"}
+    assert load_scene(write(tmp_path, GOOD + "[animation]\n")).animation == {"frames": 72}

@@ -400,7 +400,7 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
     values = {input_name(sweep): at, **dict(zip(sweep.unknowns, q))}
 
     if dimensions is None:
-        dimensions = dimensions_of(mech.name)
+        dimensions = dimensions_of(mech)
     dims = []
     for d in dimensions or ():
         p, r, label = d[0], d[1], d[2]

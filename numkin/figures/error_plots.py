@@ -342,9 +342,10 @@ def on_curve(h, errors, at: float) -> float:
 def roundoff(table):
     """Relative error against the step h at one angle: truncation error above, rounding below.
 
-    Each scheme's V-curve, its measured optimal step (filled marker) and
-    the textbook estimate ``h* ~ eps**(1/(p+n))`` (open marker); machine
-    epsilon dotted.
+    Each scheme's V-curve at the table's steps, the fine scan its optimum is
+    measured on (``attrs["scan"]``, a thin line of the same colour), its
+    measured optimal step on that scan (star) and the textbook estimate
+    ``h* ~ eps**(1/(p+n))`` (open marker); machine epsilon dotted.
 
     Parameters
     ----------
@@ -376,6 +377,11 @@ def roundoff(table):
     cols.sort()
     hs = np.array([h for h, _ in cols])
     eps = float(np.finfo(float).eps)
+    scan = dict(table.attrs.get("scan") or {})
+    scan_h = np.asarray(scan.pop("h [rad]", []), dtype=float)
+    scan_order = np.argsort(scan_h)
+    scan_h = scan_h[scan_order]
+    scan = {k: np.asarray(v, dtype=float) for k, v in scan.items() if len(v) == scan_h.size}
     with style():
         fig, axes = new_figure(size=(6.4, 5.2))
         ax = axes[0, 0]
@@ -395,10 +401,16 @@ def roundoff(table):
             mk = marker_style(scheme, st["color"])
             mk["markersize"] = 0.7 * mk["markersize"]
             ax.plot(hs, errs, label=label, **mk, **st)
+            fine_h, fine_e = hs, errs
+            if scheme in scan:  # the fine scan the optimum is measured on, as a thin line
+                fine_h, fine_e = scan_h, _positive(scan[scheme])[scan_order]
+                allv.extend(fine_e)
+                ax.plot(fine_h, fine_e, color=st["color"], linestyle=st["linestyle"], linewidth=0.6, alpha=0.75,
+                        label=f"_scan {scheme}", zorder=1.5)
             if "measured optimal h [rad]" in row.index:
-                # the optimum at the table's step, at the error of the drawn curve there
+                # the optimum at the table's step, on the drawn fine scan (else the coarse curve) there
                 h_opt = float(row["measured optimal h [rad]"])
-                ax.plot(h_opt, on_curve(hs, errs, h_opt), marker="*", markersize=11, color=st["color"],
+                ax.plot(h_opt, on_curve(fine_h, fine_e, h_opt), marker="*", markersize=11, color=st["color"],
                         markeredgecolor="black", markeredgewidth=0.5, linestyle="none", zorder=5)
             if "textbook optimal h [rad]" in row.index and scheme not in ("complex step", "complex_step"):
                 ax.plot(row["textbook optimal h [rad]"], row.get("textbook error [-]", np.nan), marker="D",
@@ -411,6 +423,8 @@ def roundoff(table):
                 linestyle="none", label="measured optimum")
         ax.plot([], [], marker="D", markersize=6, markerfacecolor="white", markeredgecolor="0.3",
                 linestyle="none", label=r"textbook $h^* \sim \varepsilon^{1/(p+n)}$")
+        if scan:
+            ax.plot([], [], color="0.4", linewidth=0.6, label=f"fine scan ({scan_h.size} steps)")
         ax.set_xscale("log")
         ax.set_yscale("log")
         lo, hi = _log_limits(allv + [eps])

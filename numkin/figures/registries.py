@@ -1,9 +1,10 @@
-"""What figures know about schemes and linkages: the two tables to read from registries later.
+"""What figures know about schemes and linkages.
 
 :data:`SCHEME_FAMILY` maps a second-derivative scheme to the first-derivative
 scheme it is drawn like (same colour); it agrees with
-:data:`numkin.kinematics.PARTNER`. :data:`LINKAGE_DIMENSIONS` holds the
-dimension lines drawn on the ready-made linkages, by name prefix.
+:data:`numkin.kinematics.PARTNER`. The dimension lines drawn on a
+ready-made linkage are its spec's (:func:`dimensions_of`, from
+:func:`numkin.linkages.spec_of`).
 
 Examples
 --------
@@ -14,17 +15,7 @@ True
 
 from __future__ import annotations
 
-__all__ = ["LINKAGE_DIMENSIONS", "SCHEME_FAMILY", "dimensions_of", "family_of"]
-
-
-#: Dimension lines drawn on the ready-made linkages, by the start of the mechanism's name:
-#: (from point, to point, symbol, side and size of the offset).
-LINKAGE_DIMENSIONS = {
-    "quick-return": [
-        ("O1", "O2", "r_1", 1.0), ("O2", "C", "r_6", 1.0), ("O2", "A", "r_2", 1.0),
-        ("O1", "A", "r_3", -1.0), ("O1", "B", "r_4", -2.2), ("C", "B", "r_5", 1.0),
-    ],
-}
+__all__ = ["SCHEME_FAMILY", "dimensions_of", "family_of"]
 
 #: Second-derivative scheme (or complex step) -> the source it is coloured like: its partner
 #: first-derivative scheme of :data:`numkin.kinematics.PARTNER`.
@@ -46,14 +37,23 @@ def family_of(source: str) -> str:
     return SCHEME_FAMILY.get(str(source), str(source))
 
 
-def dimensions_of(mechanism_name: str):
-    """The dimension lines of a ready-made linkage (see :data:`LINKAGE_DIMENSIONS`), or None.
+def dimensions_of(mechanism):
+    """The dimension lines of a ready-made linkage, or None (then each link is labelled with its length).
+
+    Read from the linkage's spec (:attr:`numkin.linkages.LinkageSpec.dimension_lines`:
+    from point, to point, symbol, side and size of the offset); None for a
+    mechanism written as loops, or a linkage whose spec has no dimension lines.
 
     Examples
     --------
-    >>> [d[2] for d in dimensions_of("quick-return (Example 2)")][:2]
+    >>> from numkin import linkages
+    >>> [d[2] for d in dimensions_of(linkages.quick_return())][:2]
     ['r_1', 'r_6']
-    >>> dimensions_of("four-bar") is None
+    >>> dimensions_of(linkages.four_bar(4, 1, 3, 3)) is None
     True
     """
-    return next((v for key, v in LINKAGE_DIMENSIONS.items() if str(mechanism_name).startswith(key)), None)
+    from ..linkages import spec_of
+
+    linkage_spec = spec_of(mechanism)
+    lines = linkage_spec.dimension_lines if linkage_spec is not None else ()
+    return [tuple(line) for line in lines] or None

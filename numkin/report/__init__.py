@@ -122,9 +122,6 @@ __all__ = [
     "write_tables",
 ]
 
-#: The input speed parser under its former name (``numkin.stability`` imports it).
-_omega = input_speed
-
 
 def full_report(
     mechanism,

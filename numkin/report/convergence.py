@@ -119,11 +119,11 @@ def convergence_table(
 
     df = pd.DataFrame(rows)
     set_views(df, [
-        ("error over the sweep", ["scheme", "formal order", "quantity", "points per turn", "h [deg]",
+        ("error over the sweep", ["scheme", "formal order", "points per turn", "h [deg]",
                                   f"max abs error {UNIT}", "max rel error [-]", "observed order [-]"]),
         ("RMS error, and the error at the check angle", ["scheme", "quantity", "points per turn",
                                                          f"RMS abs error {UNIT}", check_col]),
-    ])
+    ], row_keys=["scheme", "points per turn"])
     return set_caption(
         df,
         f"Convergence: {mechanism.name}, {quantity}, input speed {w:g} rad/s; error of each scheme "

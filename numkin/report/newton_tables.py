@@ -235,7 +235,7 @@ def jacobian_table(
                        "final residual (one solve) [-]", "final error (one solve) [-]"]),
         ("a sweep", ["Jacobian", f"sweep time [ms] {VARIES}", "Newton iterations (sweep total)",
                      "max difference from symbolic sweep [-]"]),
-    ])
+    ], row_keys=["Jacobian"])
     return set_caption(
         df,
         f"Jacobian choice: {mechanism.name}; one solve at {deg_text(check_angle)} deg and a sweep of "

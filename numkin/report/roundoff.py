@@ -298,14 +298,16 @@ def roundoff_table(
         )
     key = ["scheme", "formal order", "quantity"]
     cols = [c for c in df.columns if c.startswith("rel error at h =")]
-    half = (len(cols) + 1) // 2
+    third = (len(cols) + 2) // 3
     set_views(df, [
-        ("relative error against the step h: the larger steps", key[:1] + cols[:half]),
-        ("relative error against the step h: the smaller steps", key[:1] + cols[half:]),
-        ("optimal step: measured (fitted lines) and textbook", key + [
+        ("relative error against the step h: the larger steps", key[:1] + cols[:third]),
+        ("relative error against the step h: the middle steps", key[:1] + cols[third:2 * third]),
+        ("relative error against the step h: the smaller steps", key[:1] + cols[2 * third:]),
+        ("optimal step: measured (fitted lines)", key[:1] + key[2:] + [
             f"exact value {UNIT}", "measured optimal h [rad]", "rel error at measured optimal h [-]",
-            "rel error measured at that h [-]", "textbook rule", "textbook optimal h [rad]", "textbook error [-]"]),
-    ])
+            "rel error measured at that h [-]"]),
+        ("optimal step: textbook", key[:2] + ["textbook rule", "textbook optimal h [rad]", "textbook error [-]"]),
+    ], row_keys=["scheme"])
     df.attrs["scan"] = {"h [rad]": [float(h) for h in eff], **scan_errors}
     return set_caption(df, caption, [position_record("check angle", mechanism, theta, x0)])
 

@@ -339,7 +339,7 @@ def tolerance_table(
                                                f"position error estimate max|J^-1 F| [{lab['unit']}]", "note"]),
         (f"velocity and acceleration {at}", ["rule", cols["w"], cols["we"], cols["a"], cols["ae"]]),
         ("largest errors over the sweep", ["rule", cols["wm"], cols["am"], cols["where"]]),
-    ])
+    ], row_keys=["rule"])
     return set_caption(
         df,
         f"Solver tolerance: {mechanism.name}, {quantity}, {int(points_per_turn)} points per turn, input speed {w:g} rad/s; "

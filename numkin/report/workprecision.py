@@ -209,7 +209,7 @@ def work_precision_table(
         ("run time (varies between runs)", key + [
             f"sweep time [ms] {VARIES}", f"derivative time [ms] {VARIES}", f"sweep + derivative time [ms] {VARIES}",
             f"Pareto front {VARIES}"]),
-    ])
+    ], row_keys=key)
     timing = (f"; median times of {int(repeat)} repeats (vary between runs)" if repeat
               else "; not timed (pass repeat to time each row)")
     return set_caption(

@@ -33,8 +33,8 @@ def _cell(value) -> str:
 def column_format(column: str) -> str:
     """The number format of a column, chosen from its name (Python format spec, or ``"int"``).
 
-    Errors, residuals, norms, condition numbers and times: 3 significant
-    figures; orders: 2 decimals; counts (iterations, points, evaluations):
+    Errors, residuals, norms, condition numbers, differences (``a vs b``),
+    measured widths (``sharpest turn``) and times: 3 significant figures; orders: 2 decimals; counts (iterations, points, evaluations):
     integers, a mean of them 1 decimal; estimated optimal steps 2
     significant figures; exact values and other quantities 7 significant
     figures, exact values 6 decimals (7 significant figures outside
@@ -58,7 +58,8 @@ def column_format(column: str) -> str:
         return ".1f"
     if any(w in c for w in ("iteration", "points", "evaluations", "count")):
         return "int"
-    if any(w in c for w in ("error", "residual", "norm", "cond", "difference", "|f|", "j^-1", "time", "[%]")):
+    if any(w in c for w in ("error", "residual", "norm", "cond", "difference", "|f|", "j^-1", "time", "[%]", " vs ",
+                            "sharpest")):
         return ".3g"
     if c.startswith("h ") or c.startswith("tol") or "wanted" in c or "[deg]" in c or c.startswith("delta"):
         return ".6g"
@@ -121,13 +122,15 @@ def _markdown_table(df) -> str:
     return "\n".join(lines) + "\n"
 
 
-def format_text(df, *, width: int = 100) -> str:
+def format_text(df, *, width: int = 100, max_width: int = 120) -> str:
     """A table for the terminal: its caption wrapped to `width`, then each view as a plain text table.
 
     Numbers as in Markdown (:func:`format_cell`), NaN blank, one view per
     block, so that a wide table is read in parts no wider than its view;
     headers wrap at 14 characters over numbers, 24 over text, and text
-    cells at 40.
+    cells at 40. A view wider than `max_width` characters is shown in parts
+    that each repeat the columns naming a row (``attrs["row_keys"]``, else
+    the first column).
 
     Examples
     --------
@@ -138,25 +141,57 @@ def format_text(df, *, width: int = 100) -> str:
                       [rad/s]               [-]
     --------  ---------------  ----------------
     centred           0.00025              2.00
+    >>> wide = pd.DataFrame({"case": ["a"], **{f"error of scheme {k} [-]": [0.5] for k in range(12)}})
+    >>> text = format_text(wide, max_width=60)
+    >>> max(len(line) for line in text.splitlines()) <= 60, text.count("case") > 1   # parts, each with its key
+    (True, True)
     """
     import textwrap
-
-    from tabulate import tabulate
 
     blocks = []
     caption = df.attrs.get("caption")
     if caption:
         blocks.append(textwrap.fill(str(caption), width=width))
+    keys = [c for c in df.attrs.get("row_keys") or [] if c in df.columns]
     for title, view in table_views(df):
-        cells = [[format_cell(v, c) for v, c in zip(row, view.columns)] for row in view.itertuples(index=False)]
-        align = ["right" if view[c].dtype.kind in "iuf" else "left" for c in view.columns]
-        text = tabulate(
-            cells, headers=list(view.columns), disable_numparse=True, colalign=align,
-            maxcolwidths=[None if a == "right" else 40 for a in align],
-            maxheadercolwidths=[14 if a == "right" else 24 for a in align],
-        )
-        blocks.append((f"{title}\n" if title else "") + text)
+        parts = _fitting_parts(view, [k for k in keys if k in view.columns] or list(view.columns[:1]), max_width)
+        for n, part in enumerate(parts):
+            head = title + (f" ({n + 1} of {len(parts)})" if len(parts) > 1 else "")
+            blocks.append((f"{head}\n" if head else "") + _text_table(part))
     return "\n\n".join(blocks)
+
+
+def _text_table(view) -> str:
+    """One view as a plain text table (tabulate), numbers by their column's format."""
+    from tabulate import tabulate
+
+    cells = [[format_cell(v, c) for v, c in zip(row, view.columns)] for row in view.itertuples(index=False)]
+    align = ["right" if view[c].dtype.kind in "iuf" else "left" for c in view.columns]
+    return tabulate(
+        cells, headers=list(view.columns), disable_numparse=True, colalign=align,
+        maxcolwidths=[None if a == "right" else 40 for a in align],
+        maxheadercolwidths=[14 if a == "right" else 24 for a in align],
+    )
+
+
+def _text_width(view) -> int:
+    return max(len(line) for line in _text_table(view).splitlines())
+
+
+def _fitting_parts(view, keys: list, max_width: int) -> list:
+    """`view` as it is if no wider than `max_width`, else in parts: the key columns, then as many more as fit."""
+    if _text_width(view) <= max_width:
+        return [view]
+    rest = [c for c in view.columns if c not in keys]
+    parts, current = [], []
+    for column in rest:
+        if current and _text_width(view[keys + current + [column]]) > max_width:
+            parts.append(view[keys + current])
+            current = []
+        current.append(column)
+    if current:
+        parts.append(view[keys + current])
+    return parts
 
 
 _TEX_SPECIAL = {
