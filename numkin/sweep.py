@@ -99,6 +99,11 @@ class Sweep:
         How Newton's Jacobian was computed.
     tol : float
         Stopping tolerance used.
+    jacobian_rows : list or None
+        The Jacobian at ``values`` as the sweep left it, n*n rows ((N,)
+        arrays or numbers; entry (i, j) is row ``i * n + j``), reused by the
+        exact derivatives of :mod:`numkin.analytic`; None for a sweep put
+        together otherwise (its Jacobian is then computed when needed).
 
     Examples
     --------
@@ -120,6 +125,7 @@ class Sweep:
     events: list = field(default_factory=list)
     jacobian: str = "symbolic"
     tol: float = 1e-12
+    jacobian_rows: list | None = field(default=None, repr=False, compare=False)
 
     @property
     def unknowns(self) -> tuple:
