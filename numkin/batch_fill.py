@@ -44,34 +44,26 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
     fine_mask[nodes] = False
     # every column's left and right node (a node is its own left node, at s = 0)
     k = np.searchsorted(nodes, np.arange(N), side="right") - 1
-    a = nodes.take(k)
-    b = nodes.take(np.minimum(k + 1, nodes.size - 1))
-    ta = t.take(a)
-    delta = t.take(b) - ta
-    delta[a == b] = 1.0
-    s = (t - ta) / delta
-    s2 = s * s
-    s3 = s2 * s
-    h01 = 3 * s2 - 2 * s3
-    h10, h11 = (s3 - 2 * s2 + s) * delta, (s3 - s2) * delta
-    xa = X.take(a, axis=1)
-    x_pred = xa + h01 * (X.take(b, axis=1) - xa) + h10 * D.take(a, axis=1) + h11 * D.take(b, axis=1)
+    x_pred = _hermite(t, X, D, nodes, k)
     # the round-off floor of the residual: sines of the largest angles and inputs of the sweep
     big = float(np.abs(X.take(nodes, axis=1)).max() * max(ctx.inv_xs))
     ctx.floor = residual_floor([big], max(abs(float(t[0])), abs(float(t[-1]))))
-    x, converged, it, f, jac = ctx.newton_batch(x_pred, t, fine_mask)
+    x, converged, it, f, jac = ctx.newton_batch(x_pred.copy(), t, fine_mask, overwrite=True)
     # accept a point if Newton converged on the turn of its prediction, the correction is
     # small and no loop changed orientation
     corr = np.abs(x - x_pred)
     if not all(w == 1.0 for w in ctx.inv_xs):
         corr *= np.asarray(ctx.inv_xs)[:, None]
     ok = converged & (_colmax(corr) <= MAX_CORRECTION)
+    del corr, x_pred
     o = ctx.blocks.signs(jac, N)
     On = O.take(nodes, axis=1)
     if (On == On[:, :1]).all():  # one orientation at all nodes: compare with it
         for kk in range(O.shape[0]):
             ok &= o[kk] == On[kk, 0]
     else:
+        a = nodes.take(k)
+        b = nodes.take(np.minimum(k + 1, nodes.size - 1))
         Oa, Ob = O.take(a, axis=1), O.take(b, axis=1)
         for kk in range(O.shape[0]):
             ok &= (o[kk] == Oa[kk]) & (Oa[kk] == Ob[kk])
@@ -104,6 +96,47 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
         jac = stack_rows(jac, N)
         jac[:, redo] = stack_rows(jac_redo, redo.size)
     return f, jac
+
+def _hermite(t, X, D, nodes, k):
+    """The cubic Hermite predictor at every grid point from its nodes' values and tangents (n, N).
+
+    ``k`` is every column's left node (its index in ``nodes``); built row by
+    row, so that few (N,) temporaries are alive at once.
+    """
+    a = nodes.take(k)
+    b = nodes.take(np.minimum(k + 1, nodes.size - 1))
+    ta = t.take(a)
+    delta = t.take(b) - ta
+    delta[a == b] = 1.0
+    s = t - ta
+    s /= delta
+    del ta
+    s2 = s * s
+    h01 = s2 * (3.0 - 2.0 * s)  # 3 s^2 - 2 s^3
+    h11 = s2 * (s - 1.0)  # s^3 - s^2
+    h10 = h11 - s2
+    h10 += s  # s^3 - 2 s^2 + s
+    del s, s2
+    h10 *= delta
+    h11 *= delta
+    del delta
+    out = np.empty_like(X)
+    for i in range(X.shape[0]):
+        xa = X[i].take(a)
+        row = X[i].take(b)
+        row -= xa
+        row *= h01
+        row += xa
+        del xa
+        dd = D[i].take(a)
+        dd *= h10
+        row += dd
+        D[i].take(b, out=dd)
+        dd *= h11
+        row += dd
+        out[i] = row
+    return out
+
 
 def report_near_singular(ctx, t, X, cond):
     singular = np.flatnonzero(is_singular(cond))

@@ -231,11 +231,9 @@ class BlockStructure:
         if self._step is None:
             dx, _, bad = self.solve(J, -stack_rows(rows, N))
             return dx, bad
-        out = self._step(J, rows)
-        dx = stack_rows(out, N)
-        total = out[0]
-        for r in out[1:]:
-            total = total + r
+        dx = np.empty((self.n, N), dtype=complex if any(map(np.iscomplexobj, rows)) or np.iscomplexobj(J[0]) else float)
+        self._step(J, rows, dx)
+        total = dx[0] if self.n == 1 else dx.sum(axis=0)
         bad = ~np.isfinite(total)
         if np.ndim(bad) == 0:
             bad = np.full(N, bool(bad))
@@ -481,7 +479,7 @@ def _unrolled_solve(n, blocks, zeros=frozenset(), batch=False):
     def term(i, j):
         return (i, j) not in zeros
 
-    lines = ["def solve(J, r):"] if not batch else ["def solve(J, f):"]
+    lines = ["def solve(J, r):"] if not batch else ["def solve(J, f, out):"]
     for k, (a, b) in enumerate(blocks):
         for i in range(a, b):
             # batch: g_i = f_i + sum J_ij d_j  (d = -J^-1 f is solved as J d = -f)
@@ -500,8 +498,10 @@ def _unrolled_solve(n, blocks, zeros=frozenset(), batch=False):
             if batch:
                 lines += [
                     f"    inv = -1.0 / det{k}",
-                    f"    d{a} = (r{a} * a11 - a01 * r{a + 1}) * inv",
-                    f"    d{a + 1} = (a00 * r{a + 1} - a10 * r{a}) * inv",
+                    f"    out[{a}] = (r{a} * a11 - a01 * r{a + 1}) * inv",
+                    f"    out[{a + 1}] = (a00 * r{a + 1} - a10 * r{a}) * inv",
+                    f"    d{a} = out[{a}]; d{a + 1} = out[{a + 1}]",
+                    f"    del inv, det{k}, r{a}, r{a + 1}",
                 ]
             else:
                 lines += [
@@ -512,7 +512,7 @@ def _unrolled_solve(n, blocks, zeros=frozenset(), batch=False):
         else:
             lines.append(f"    det{k} = J[{a * n + a}]")
             if batch:
-                lines.append(f"    d{a} = -r{a} / det{k}")
+                lines += [f"    out[{a}] = -r{a} / det{k}", f"    d{a} = out[{a}]", f"    del det{k}, r{a}"]
             else:
                 lines += [
                     f"    if not (det{k} != 0.0 and -INF < det{k} < INF): return None, None",
@@ -520,7 +520,7 @@ def _unrolled_solve(n, blocks, zeros=frozenset(), batch=False):
                 ]
     d = ", ".join(f"d{i}" for i in range(n))
     if batch:
-        lines.append(f"    return [{d}]")
+        lines.append("    return out")
     else:
         sg = ", ".join(f"(1.0 if det{k} > 0 else -1.0)" for k in range(len(blocks)))
         lines += [

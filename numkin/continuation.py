@@ -102,14 +102,13 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
     mech.check_assembly(t)
     ctx = Continuation(mech, jacobian, tol, float(max_step), on_singular)
     n, N = ctx.n, t.size
-    tl = t.tolist()
     X = np.empty((n, N))
     D = np.full((n, N), np.nan)
     O = np.zeros((len(mech.loops), N))
     iters = np.zeros(N, dtype=int)
 
     with np.errstate(all="ignore"):
-        x0, iters[0], v0 = solve_start(ctx, tl[0], guess, maxiter)
+        x0, iters[0], v0 = solve_start(ctx, float(t[0]), guess, maxiter)
         d0, o0 = ctx.local1(v0)
         X[:, 0], D[:, 0], O[:, 0] = x0, d0, o0
 
@@ -122,7 +121,7 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
 
             pairs = tqdm(pairs, total=nodes.size - 1, desc=mech.name, unit="node")
         for a, b in pairs:
-            x, d, o, iters[b] = ctx.march(tl[a], x, d, o, tl[b], ctx.last_previous)
+            x, d, o, iters[b] = ctx.march(float(t[a]), x, d, o, float(t[b]), ctx.last_previous)
             X[:, b], D[:, b], O[:, b] = x, d, o
 
         f, jac = fill(ctx, t, X, D, O, iters, nodes)
