@@ -53,7 +53,7 @@ import numpy as np
 from .batch_fill import fill, nodes_of, report_near_singular
 from .first_point import solve_start
 from .march import DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_PREDICTION, Continuation
-from .newton import JACOBIANS, check_tol, colmax as _colmax
+from .newton import JACOBIANS, check_tol
 from .sweep import Sweep
 
 __all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION"]
@@ -124,9 +124,7 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
             x, d, o, iters[b] = ctx.march(float(t[a]), x, d, o, float(t[b]), ctx.last_previous)
             X[:, b], D[:, b], O[:, b] = x, d, o
 
-        f, jac = fill(ctx, t, X, D, O, iters, nodes)
-        residual = _colmax(np.abs(f)) / ctx.fscale
-        cond = _colmax(ctx.blocks.cond(jac, N))
+        residual, cond, jac = fill(ctx, t, X, D, O, iters, nodes)
         if ctx.crossings:
             ctx.describe_crossings(t, X, O, cond)
     report_near_singular(ctx, t, X, cond)
