@@ -370,7 +370,11 @@ def rates(sweep, omega, alpha=0.0, *, at_change_point="nan") -> tuple[np.ndarray
     _, t, _ = check_sweep(sweep)
     w, a = input_rates(omega, alpha, t.size)
     dq, d2q = derivatives(sweep, at_change_point=at_change_point)
-    return w * dq, w**2 * d2q + a * dq
+    d2q *= w * w  # the arrays are this call's own: scaled in place
+    if np.any(a != 0):  # (d2q is NaN wherever dq is not finite, so a zero alpha adds nothing)
+        d2q += a * dq
+    dq *= w
+    return dq, d2q
 
 
 def _scalar_attr(values: np.ndarray):

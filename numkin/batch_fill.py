@@ -88,7 +88,7 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
         O[:, c] = np.where(fm, o, O[:, c])
         iters[c] = np.where(fm, it, iters[c])
         residual[c] = _colmax(np.abs(f)) / ctx.fscale
-        jac = _put_rows(jac, jac_c, c, N)
+        jac = jac_c if c.stop - c.start == N else _put_rows(jac, jac_c, c, N)
         del x, f, jac_c, o
     if ctx.angle_idx:
         # Both nodes of a segment are right (marched), so a run of batch points on another turn
@@ -115,8 +115,12 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
             xk, dk, ok_, iters[kk] = ctx.march(tl, xl, dl, O[:, left].tolist(), float(t[kk]))
             X[:, kk], D[:, kk], O[:, kk] = xk, dk, ok_
         f_redo, jac_redo = ctx.eval_batch(X[:, redo], t[redo])
+        if N <= CHUNK:  # the batch's own rows, which may be arrays the kernel was given: not written into
+            jac = [r.copy() if np.ndim(r) else r for r in jac]
         residual[redo] = _colmax(np.abs(f_redo)) / ctx.fscale
         jac = _put_rows(jac, jac_redo, redo, N)
+    if N <= CHUNK:
+        return residual, _colmax(ctx.blocks.cond(jac, N)), jac
     cond = np.empty(N)
     for c0 in range(0, N, CHUNK):
         c = slice(c0, min(N, c0 + CHUNK))
