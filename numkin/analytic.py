@@ -394,8 +394,12 @@ def kinematics_frame(mech, t, first, second, attrs, source="analytic", second_so
 
     attrs = {k: _scalar_attr(v) if k in ("omega", "alpha") else v for k, v in attrs.items()}
     quantities = _unknown_columns(mech, source, second_source)
-    values = [t] + [row for k in range(len(mech.unknowns)) for row in (first[k], second[k])]
-    frame = pd.DataFrame(dict(zip(quantities, values)))
+    n = len(mech.unknowns)
+    table = np.empty((t.size, 1 + 2 * n))  # one float block: the frame is built without a copy per column
+    table[:, 0] = t
+    table[:, 1::2] = np.asarray(first, dtype=float)[:n].T
+    table[:, 2::2] = np.asarray(second, dtype=float)[:n].T
+    frame = pd.DataFrame(table, columns=list(quantities), copy=False)
     _label(frame, quantities)
     frame.attrs.update(attrs)
     return frame
