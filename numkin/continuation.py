@@ -128,4 +128,6 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
         if ctx.crossings:
             ctx.describe_crossings(t, X, O, cond)
     report_near_singular(ctx, t, X, cond)
-    return Sweep(mech, t, X, iters, residual, cond, ctx.events, jacobian, tol, jac)
+    sweep = Sweep(mech, t, X, iters, residual, cond, ctx.events, jacobian, tol)
+    sweep.jacobian_rows = jac
+    return sweep
