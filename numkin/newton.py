@@ -253,7 +253,7 @@ def solve_batch(evaluate, jacobian, solve, x0, *, fscale, xscale, tol=1e-12, max
         if M * 4 > N or N < compact_min:  # whole arrays; the inactive columns do not move
             dx, bad = solve(jacobian(x, None, f, jac), f, None)
             f = jac = None  # not needed again: freed before the next evaluation
-            bad &= act
+            bad = bad & act  # (the plug's array is left as it was)
             upd = act & ~bad
             if M < N or bad.any():
                 dx[:, ~upd] = 0.0
