@@ -56,7 +56,7 @@ import weakref
 import numpy as np
 import sympy as sp
 
-from .compiled import vector_function
+from .compiled import jacobian_rows, rates as rates_of, vector_function
 from .conditioning import (
     DIGITS_RTOL,
     LostDigitsWarning,
@@ -154,14 +154,33 @@ def _singular_mask(sweep, mech, inputs, what: str, skip=()) -> np.ndarray:
     return bad
 
 
+def _sweep_jacobian(sweep, q):
+    """The Jacobian rows the sweep kept at its values, or None (then they are computed)."""
+    rows = getattr(sweep, "jacobian_rows", None)
+    if rows is None or len(rows) != q.shape[0] ** 2 or getattr(sweep, "values", None) is not q:
+        return None
+    return rows
+
+
+def _rates(sweep, mech, q, t, p):
+    """dq/dtheta and d2q/dtheta2 by block-triangular solves on the sweep's Jacobian (NaN where singular)."""
+    return rates_of(mech.compiled, mech.block_structure, q, t, p, _sweep_jacobian(sweep, q))
+
+
+def _velocity(sweep, mech, q, t, p):
+    """dq/dtheta alone by block-triangular solves on the sweep's Jacobian (NaN where singular)."""
+    comp = mech.compiled
+    jac = _sweep_jacobian(sweep, q)
+    with np.errstate(all="ignore"):
+        if jac is None:
+            jac = jacobian_rows(comp, q, t, p)
+        dq, _ = mech.block_structure.solve_negated(jac, comp.F_t(q, t, p), t.size)
+    return dq
+
+
 def _tangent(mech, q, t, p):
     """dq/dtheta from ``J q' = -F_theta`` (NaN where J is singular)."""
     return _columnwise(lambda q_, t_: mech.compiled.tangent(q_, t_, p), q, t)
-
-
-def _second(mech, q, dq, t, p):
-    """d2q/dtheta2 from ``J q'' = -(G_q q' + G_theta)`` (compiled on first use; NaN where J is singular)."""
-    return _columnwise(lambda q_, dq_, t_: mech.compiled.second_derivative(q_, dq_, t_, p), q, t, dq)
 
 
 # --------------------------------------------------------------------------- unknowns
@@ -191,7 +210,7 @@ def tangent(sweep, *, at_change_point: str = "nan") -> np.ndarray:
     cond = condition_numbers(sweep, t)
     change = change_points(sweep, mech, q, t, cond)
     bad = _singular_mask(sweep, mech, t, "dq/dtheta is", change)
-    dq = _tangent(mech, q, t, mech.parameter_values)
+    dq = _velocity(sweep, mech, q, t, mech.parameter_values)
     dq[:, bad] = np.nan
     continue_branch(mech, t, cond, change, [dq], "dq/dtheta", at_change_point)
     return dq
@@ -255,8 +274,7 @@ def derivatives(sweep, *, rtol: float = DIGITS_RTOL, at_change_point: str = "nan
     cond = condition_numbers(sweep, t)
     change = change_points(sweep, mech, q, t, cond)
     bad = _singular_mask(sweep, mech, t, "dq/dtheta and d2q/dtheta2 are", change)
-    dq = _tangent(mech, q, t, p)
-    d2q = _second(mech, q, np.nan_to_num(dq), t, p)
+    dq, d2q = _rates(sweep, mech, q, t, p)
     dq[:, bad] = np.nan
     d2q[:, bad] = np.nan
     d2q[:, ~np.all(np.isfinite(dq), axis=0)] = np.nan
@@ -352,7 +370,11 @@ def rates(sweep, omega, alpha=0.0, *, at_change_point="nan") -> tuple[np.ndarray
     _, t, _ = check_sweep(sweep)
     w, a = input_rates(omega, alpha, t.size)
     dq, d2q = derivatives(sweep, at_change_point=at_change_point)
-    return w * dq, w**2 * d2q + a * dq
+    d2q *= w * w  # the arrays are this call's own: scaled in place
+    if np.any(a != 0):  # (d2q is NaN wherever dq is not finite, so a zero alpha adds nothing)
+        d2q += a * dq
+    dq *= w
+    return dq, d2q
 
 
 def _scalar_attr(values: np.ndarray):
@@ -372,8 +394,12 @@ def kinematics_frame(mech, t, first, second, attrs, source="analytic", second_so
 
     attrs = {k: _scalar_attr(v) if k in ("omega", "alpha") else v for k, v in attrs.items()}
     quantities = _unknown_columns(mech, source, second_source)
-    values = [t] + [row for k in range(len(mech.unknowns)) for row in (first[k], second[k])]
-    frame = pd.DataFrame(dict(zip(quantities, values)))
+    n = len(mech.unknowns)
+    table = np.empty((t.size, 1 + 2 * n))  # one float block: the frame is built without a copy per column
+    table[:, 0] = t
+    table[:, 1::2] = np.asarray(first, dtype=float)[:n].T
+    table[:, 2::2] = np.asarray(second, dtype=float)[:n].T
+    frame = pd.DataFrame(table, columns=list(quantities), copy=False)
     _label(frame, quantities)
     frame.attrs.update(attrs)
     return frame

@@ -12,12 +12,11 @@ import warnings
 
 import numpy as np
 
-from .compiled import stack_rows
 from .march import COND_TANGENT, MAX_CORRECTION, Continuation, deg_text
 from .newton import COND_MAX, COND_WARN, colmax as _colmax, is_singular, residual_floor
 from .sweep import SweepEvent, SingularityWarning
 
-__all__ = ["nodes_of", "fill", "report_near_singular"]
+__all__ = ["nodes_of", "fill", "report_near_singular", "CHUNK"]
 
 
 def nodes_of(t: np.ndarray, max_step: float) -> np.ndarray:
@@ -32,69 +31,85 @@ def nodes_of(t: np.ndarray, max_step: float) -> np.ndarray:
     return idx
 
 
-def fill(ctx: Continuation, t, X, D, O, iters, nodes):
-    """Solve the grid points between nodes in one Newton batch (cubic Hermite predictor).
+#: Grid points solved together in one Newton batch: the batch's temporaries stay this
+#: many columns wide however long the sweep.
+CHUNK = 8192
 
-    Returns the residuals (n, N) and Jacobian rows at every point of the sweep.
+
+def fill(ctx: Continuation, t, X, D, O, iters, nodes):
+    """Solve the grid points between nodes by Newton batches (cubic Hermite predictor).
+
+    The points are taken :data:`CHUNK` at a time. Returns the scaled
+    residual norm (N,), the largest condition number of the loops' blocks
+    (N,) and the Jacobian rows at every point of the sweep.
     """
     N = t.size
     if nodes.size == N:
-        return ctx.eval_batch(X, t)
+        f, jac = ctx.eval_batch(X, t)
+        return _colmax(np.abs(f)) / ctx.fscale, _colmax(ctx.blocks.cond(jac, N)), jac
     fine_mask = np.ones(N, dtype=bool)
     fine_mask[nodes] = False
     # every column's left and right node (a node is its own left node, at s = 0)
     k = np.searchsorted(nodes, np.arange(N), side="right") - 1
-    a = nodes.take(k)
-    b = nodes.take(np.minimum(k + 1, nodes.size - 1))
-    ta = t.take(a)
-    delta = t.take(b) - ta
-    delta[a == b] = 1.0
-    s = (t - ta) / delta
-    s2 = s * s
-    s3 = s2 * s
-    h01 = 3 * s2 - 2 * s3
-    h10, h11 = (s3 - 2 * s2 + s) * delta, (s3 - s2) * delta
-    xa = X.take(a, axis=1)
-    x_pred = xa + h01 * (X.take(b, axis=1) - xa) + h10 * D.take(a, axis=1) + h11 * D.take(b, axis=1)
     # the round-off floor of the residual: sines of the largest angles and inputs of the sweep
     big = float(np.abs(X.take(nodes, axis=1)).max() * max(ctx.inv_xs))
     ctx.floor = residual_floor([big], max(abs(float(t[0])), abs(float(t[-1]))))
-    x, converged, it, f, jac = ctx.newton_batch(x_pred, t, fine_mask)
-    # accept a point if Newton converged on the turn of its prediction, the correction is
-    # small and no loop changed orientation
-    corr = np.abs(x - x_pred)
-    if not all(w == 1.0 for w in ctx.inv_xs):
-        corr *= np.asarray(ctx.inv_xs)[:, None]
-    ok = converged & (_colmax(corr) <= MAX_CORRECTION)
-    o = ctx.blocks.signs(jac, N)
     On = O.take(nodes, axis=1)
-    if (On == On[:, :1]).all():  # one orientation at all nodes: compare with it
-        for kk in range(O.shape[0]):
-            ok &= o[kk] == On[kk, 0]
-    else:
-        Oa, Ob = O.take(a, axis=1), O.take(b, axis=1)
-        for kk in range(O.shape[0]):
-            ok &= (o[kk] == Oa[kk]) & (Oa[kk] == Ob[kk])
-    ok |= ~fine_mask
-    X[...] = x  # the nodes were not active: unchanged
+    one_orientation = bool((On == On[:, :1]).all())
+    scale = None if all(w == 1.0 for w in ctx.inv_xs) else np.asarray(ctx.inv_xs)[:, None]
+    ok = np.empty(N, dtype=bool)
+    residual = np.empty(N)
+    jac = None
+    for c0 in range(0, N, CHUNK):
+        c = slice(c0, min(N, c0 + CHUNK))
+        fm, kc, tc = fine_mask[c], k[c], t[c]
+        x_pred = _hermite(tc, t, X, D, nodes, kc)
+        x, converged, it, f, jac_c = ctx.newton_batch(x_pred.copy(), tc, fm, overwrite=True)
+        # accept a point if Newton converged on the turn of its prediction, the correction is
+        # small and no loop changed orientation
+        x_pred -= x
+        np.abs(x_pred, out=x_pred)
+        if scale is not None:
+            x_pred *= scale
+        okc = converged & (_colmax(x_pred) <= MAX_CORRECTION)
+        del x_pred
+        o = ctx.blocks.signs(jac_c, tc.size)
+        if one_orientation:
+            for kk in range(O.shape[0]):
+                okc &= o[kk] == On[kk, 0]
+        else:
+            a = nodes.take(kc)
+            b = nodes.take(np.minimum(kc + 1, nodes.size - 1))
+            Oa, Ob = O.take(a, axis=1), O.take(b, axis=1)
+            for kk in range(O.shape[0]):
+                okc &= (o[kk] == Oa[kk]) & (Oa[kk] == Ob[kk])
+        ok[c] = okc | ~fm
+        X[:, c] = x  # the nodes were not active: unchanged
+        O[:, c] = np.where(fm, o, O[:, c])
+        iters[c] = np.where(fm, it, iters[c])
+        residual[c] = _colmax(np.abs(f)) / ctx.fscale
+        jac = jac_c if c.stop - c.start == N else _put_rows(jac, jac_c, c, N)
+        del x, f, jac_c, o
     if ctx.angle_idx:
         # Both nodes of a segment are right (marched), so a run of batch points on another turn
         # shows as a neighbour step of half a turn or more: march that whole segment.
-        ang = X if len(ctx.angle_idx) == X.shape[0] else X[ctx.angle_idx]
-        jump = np.flatnonzero(_colmax(np.abs(np.diff(ang, axis=1))) >= math.pi)
+        jump = None
+        for i in ctx.angle_idx:
+            d = np.diff(X[i])
+            np.abs(d, out=d)
+            jump = d if jump is None else np.maximum(jump, d, out=jump)
+        jump = np.flatnonzero(jump >= math.pi)
         if jump.size:
             ok &= ~(fine_mask & np.isin(k, k.take(jump)))
-    O[...] = np.where(fine_mask, o, O)
-    iters[...] = np.where(fine_mask, it, iters)
     redo = np.flatnonzero(~ok)
     if redo.size:
         # Points the batch could not place safely are reached one by one from their left neighbour.
-        tl = t.tolist()
         n = X.shape[0]
-        for k in redo.tolist():
-            left = k - 1
+        for kk in redo.tolist():
+            left = kk - 1
+            tl = float(t[left])
             xl = X[:, left].tolist()
-            v = ctx.eval1(xl, tl[left])
+            v = ctx.eval1(xl, tl)
             if v is not None and not max(ctx.blocks.cond1(v[n : n + n * n])) <= COND_TANGENT:
                 # on a singular position (a change point on the grid) the tangent is noise: the
                 # secant through the point before it continues the branch the nodes kept
@@ -103,14 +118,79 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
                 dl = D[:, left].tolist()
             else:
                 dl, _ = ctx.local1(v)
-            previous = (tl[left - 1], X[:, left - 1].tolist()) if left >= 1 else None
-            xk, dk, ok_, iters[k] = ctx.march(tl[left], xl, dl, O[:, left].tolist(), tl[k], previous)
-            X[:, k], D[:, k], O[:, k] = xk, dk, ok_
+            previous = (float(t[left - 1]), X[:, left - 1].tolist()) if left >= 1 else None
+            xk, dk, ok_, iters[kk] = ctx.march(tl, xl, dl, O[:, left].tolist(), float(t[kk]), previous)
+            X[:, kk], D[:, kk], O[:, kk] = xk, dk, ok_
         f_redo, jac_redo = ctx.eval_batch(X[:, redo], t[redo])
-        f[:, redo] = f_redo
-        jac = stack_rows(jac, N)
-        jac[:, redo] = stack_rows(jac_redo, redo.size)
-    return f, jac
+        if N <= CHUNK:  # the batch's own rows, which may be arrays the kernel was given: not written into
+            jac = [r.copy() if np.ndim(r) else r for r in jac]
+        residual[redo] = _colmax(np.abs(f_redo)) / ctx.fscale
+        jac = _put_rows(jac, jac_redo, redo, N)
+    if N <= CHUNK:
+        return residual, _colmax(ctx.blocks.cond(jac, N)), jac
+    cond = np.empty(N)
+    for c0 in range(0, N, CHUNK):
+        c = slice(c0, min(N, c0 + CHUNK))
+        cond[c] = _colmax(ctx.blocks.cond([r[c] if np.ndim(r) else r for r in jac], c.stop - c.start))
+    return residual, cond, jac
+
+
+def _put_rows(rows, sub, idx, N):
+    """Jacobian rows of every point (arrays, or numbers where constant) with the columns ``idx``
+    set from ``sub``; ``rows`` None: new rows."""
+    if rows is None:
+        rows = [np.empty(N) if np.ndim(r) else r for r in sub]
+    for i, r in enumerate(sub):
+        if np.ndim(rows[i]):
+            rows[i][idx] = r
+        elif np.ndim(r) or r != rows[i]:
+            full = np.full(N, rows[i], dtype=float)
+            full[idx] = r
+            rows[i] = full
+    return rows
+
+
+def _hermite(tc, t, X, D, nodes, k):
+    """The cubic Hermite predictor at the inputs ``tc`` from their nodes' values and tangents (n, M).
+
+    ``k`` is the left node of every input (its index in ``nodes``), ``t``
+    the sweep's inputs; built row by row, so that few temporaries are
+    alive at once.
+    """
+    a = nodes.take(k)
+    b = nodes.take(np.minimum(k + 1, nodes.size - 1))
+    ta = t.take(a)
+    delta = t.take(b) - ta
+    delta[a == b] = 1.0
+    s = tc - ta
+    s /= delta
+    del ta
+    s2 = s * s
+    h01 = s2 * (3.0 - 2.0 * s)  # 3 s^2 - 2 s^3
+    h11 = s2 * (s - 1.0)  # s^3 - s^2
+    h10 = h11 - s2
+    h10 += s  # s^3 - 2 s^2 + s
+    del s, s2
+    h10 *= delta
+    h11 *= delta
+    del delta
+    out = np.empty((X.shape[0], tc.size))
+    for i in range(X.shape[0]):
+        xa = X[i].take(a)
+        row = X[i].take(b)
+        row -= xa
+        row *= h01
+        row += xa
+        del xa
+        dd = D[i].take(a)
+        dd *= h10
+        row += dd
+        D[i].take(b, out=dd)
+        dd *= h11
+        row += dd
+        out[i] = row
+    return out
+
 
 def report_near_singular(ctx, t, X, cond):
     singular = np.flatnonzero(is_singular(cond))

@@ -23,7 +23,10 @@ from functools import cached_property, lru_cache
 import numpy as np
 import sympy as sp
 
-__all__ = ["vector_function", "scalar_function", "CompiledMechanism", "BlockStructure", "stack_rows", "MATH_ERRORS"]
+__all__ = [
+    "vector_function", "scalar_function", "CompiledMechanism", "BlockStructure", "stack_rows", "MATH_ERRORS",
+    "acceleration_rhs", "rates", "jacobian_rows",
+]
 
 #: Errors the ``math`` module raises where numpy returns NaN or inf.
 MATH_ERRORS = (ValueError, ZeroDivisionError, OverflowError)
@@ -206,15 +209,34 @@ class BlockStructure:
         it under ``numpy.errstate(all="ignore")``: a zero determinant gives
         inf or NaN, which ``bad`` reports.
         """
+        return self.solve_negated(J, f, f.shape[1])
+
+    def solve_negated(self, J, rows, N):
+        """``-J^-1 r`` at every point, block by block: J rows, ``r`` n rows -> (dx (n, N), bad (N,)).
+
+        The rows of ``J`` and ``r`` are (N,) arrays or numbers (a constant
+        entry). The cost is linear in the number of loops: one forward
+        substitution through the diagonal blocks, Cramer's rule for blocks
+        of size 1 and 2. ``bad`` marks singular or non-finite solves (their
+        dx is NaN). Call it under ``numpy.errstate(all="ignore")``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> bs = BlockStructure([slice(0, 1), slice(1, 2)], 1.0, [1.0, 1.0])
+        >>> dx, bad = bs.solve_negated([2.0, 0.0, 1.0, 4.0], [np.array([2.0, 4.0]), 0.0], 2)
+        >>> dx.tolist(), bad.tolist()
+        ([[-1.0, -2.0], [0.25, 0.5]], [False, False])
+        """
         if self._step is None:
-            dx, _, bad = self.solve(J, -f)
+            dx, _, bad = self.solve(J, -stack_rows(rows, N))
             return dx, bad
-        rows = self._step(J, f)
-        total = rows[0]
-        for r in rows[1:]:
-            total = total + r
+        dx = np.empty((self.n, N), dtype=complex if any(map(np.iscomplexobj, rows)) or np.iscomplexobj(J[0]) else float)
+        self._step(J, rows, dx)
+        total = dx[0] if self.n == 1 else dx.sum(axis=0)
         bad = ~np.isfinite(total)
-        dx = stack_rows(rows, f.shape[1])
+        if np.ndim(bad) == 0:
+            bad = np.full(N, bool(bad))
         if bad.any():
             dx[:, bad] = np.nan
         return dx, bad
@@ -457,7 +479,7 @@ def _unrolled_solve(n, blocks, zeros=frozenset(), batch=False):
     def term(i, j):
         return (i, j) not in zeros
 
-    lines = ["def solve(J, r):"] if not batch else ["def solve(J, f):"]
+    lines = ["def solve(J, r):"] if not batch else ["def solve(J, f, out):"]
     for k, (a, b) in enumerate(blocks):
         for i in range(a, b):
             # batch: g_i = f_i + sum J_ij d_j  (d = -J^-1 f is solved as J d = -f)
@@ -476,8 +498,10 @@ def _unrolled_solve(n, blocks, zeros=frozenset(), batch=False):
             if batch:
                 lines += [
                     f"    inv = -1.0 / det{k}",
-                    f"    d{a} = (r{a} * a11 - a01 * r{a + 1}) * inv",
-                    f"    d{a + 1} = (a00 * r{a + 1} - a10 * r{a}) * inv",
+                    f"    out[{a}] = (r{a} * a11 - a01 * r{a + 1}) * inv",
+                    f"    out[{a + 1}] = (a00 * r{a + 1} - a10 * r{a}) * inv",
+                    f"    d{a} = out[{a}]; d{a + 1} = out[{a + 1}]",
+                    f"    del inv, det{k}, r{a}, r{a + 1}",
                 ]
             else:
                 lines += [
@@ -488,7 +512,7 @@ def _unrolled_solve(n, blocks, zeros=frozenset(), batch=False):
         else:
             lines.append(f"    det{k} = J[{a * n + a}]")
             if batch:
-                lines.append(f"    d{a} = -r{a} / det{k}")
+                lines += [f"    out[{a}] = -r{a} / det{k}", f"    d{a} = out[{a}]", f"    del det{k}, r{a}"]
             else:
                 lines += [
                     f"    if not (det{k} != 0.0 and -INF < det{k} < INF): return None, None",
@@ -496,7 +520,7 @@ def _unrolled_solve(n, blocks, zeros=frozenset(), batch=False):
                 ]
     d = ", ".join(f"d{i}" for i in range(n))
     if batch:
-        lines.append(f"    return [{d}]")
+        lines.append("    return out")
     else:
         sg = ", ".join(f"(1.0 if det{k} > 0 else -1.0)" for k in range(len(blocks)))
         lines += [
@@ -597,19 +621,77 @@ class CompiledMechanism:
 
     @cached_property
     def _second(self):
-        """``d/dt (J q' + F_t)`` with ``q'' = 0``: the right-hand side of the acceleration equations."""
-        dq = [sp.Dummy(f"d{u}") for u in self.unknowns]
-        g = self.jacobian_matrix * sp.Matrix(dq) + self.residuals.diff(self.input_symbol)
-        h = g.jacobian(self.unknowns) * sp.Matrix(dq) + g.diff(self.input_symbol)
-        return vector_function(
-            list(h), [*self.unknowns, *dq, self.input_symbol, *self.parameters], [*self.varying, *dq]
-        )
+        """The acceleration right-hand side ``G_q q' + G_t`` (``G = J q' + F_t``) at many points:
+        ``f(*q, *dq, t, *p) -> n rows`` ((N,) arrays, or numbers where constant). Derived on
+        first use; generated code kept like every kernel's (in memory per shape, on disk)."""
+        n = self.n
+        dq = [sp.Symbol(f"_numkin_dq{k}") for k in range(n)]
+        t = self.input_symbol
+        g = self.jacobian_matrix * sp.Matrix(dq) + self.residuals.diff(t)
+        h = g.jacobian(self.unknowns) * sp.Matrix(dq) + g.diff(t)
+        return _lambdify(tuple(h), (*self.unknowns, *dq, t, *self.parameters), "numpy", True)
 
     def second_derivative(self, q, dq, t, p):
-        """d2q/dt2 along the solution, shape (n, N): solves ``J q'' = -(G_q q' + G_t)``."""
-        rhs = -self._second(*q, *dq, t, *p).T[..., None]
+        """d2q/dt2 along the solution, shape (n, N): solves ``J q'' = -(G_q q' + G_t)`` (dense LU)."""
+        N = np.shape(t)[0] if np.ndim(t) else 1
+        rhs = -stack_rows(self._second(*q, *dq, t, *p), N).T[..., None]
         return np.linalg.solve(self.J(q, t, p), rhs)[..., 0].T
 
     def point_function(self, exprs):
         """Compile expressions of (q, t, parameters), e.g. a point's coordinates."""
         return vector_function(exprs, self.args, self.varying)
+
+
+def acceleration_rhs(compiled: CompiledMechanism, q, dq, t, p) -> list:
+    """``G_q q' + G_t`` with ``G = J q' + dF/dt`` at every point, as n rows.
+
+    The acceleration equations are ``J q'' = -(G_q q' + G_t)``. Derived
+    once per shape of loop equations with sympy (on first use) and
+    generated and kept like every other kernel. Rows are (N,) arrays, or
+    numbers where an entry is constant; ``dq`` is ``q'`` (n, N).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> m = linkages.slider_crank(80, 200)
+    >>> q = np.array([[np.pi], [280.0]])
+    >>> rows = acceleration_rhs(m.compiled, q, np.zeros((2, 1)), np.zeros(1), m.parameter_values)
+    >>> [float(np.round(r[0], 9)) for r in rows]   # x'' = -r cos(theta) when q' = 0: [x: -r, y: 0]
+    [-80.0, -0.0]
+    """
+    return list(compiled._second(*q, *dq, t, *p))
+
+
+def jacobian_rows(compiled: CompiledMechanism, q, t, p):
+    """The Jacobian ``dF/dq`` at every point as n*n rows (entry (i, j) is row ``i * n + j``)."""
+    n = compiled.n
+    return compiled.J(q, t, p).reshape(-1, n * n).T
+
+
+def rates(compiled: CompiledMechanism, blocks: BlockStructure, q, t, p, jac=None):
+    """dq/dt and d2q/dt2 at every point by block-triangular solves: two (n, N) arrays.
+
+    ``J q' = -dF/dt``, then ``J q'' = -(G_q q' + G_t)``, both solved loop by
+    loop (:meth:`BlockStructure.solve_negated`): the cost is linear in the
+    number of loops and every operation runs on whole arrays. ``jac``: the
+    Jacobian rows at ``q`` if known (a sweep keeps its last), else computed.
+    Columns where a diagonal block is singular or a value not finite are NaN.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> m = linkages.slider_crank(80, 200)
+    >>> s = m.sweep(np.radians([0.0, 90.0]))
+    >>> dq, d2q = rates(m.compiled, m.block_structure, s.values, s.inputs, m.parameter_values)
+    >>> print(np.round(dq[1], 9) + 0.0, np.round(d2q[1, :1], 9))   # x' = -r at 90 deg; x'' = -r (1 + r/l) at 0
+    [  0. -80.] [-112.]
+    """
+    N = np.size(t)
+    with np.errstate(all="ignore"):
+        if jac is None:
+            jac = jacobian_rows(compiled, q, t, p)
+        dq, _ = blocks.solve_negated(jac, compiled.F_t(q, t, p), N)
+        d2q, _ = blocks.solve_negated(jac, compiled._second(*q, *dq, t, *p), N)
+    return dq, d2q

@@ -58,7 +58,7 @@ import numpy as np
 from .batch_fill import fill, nodes_of, report_near_singular
 from .first_point import solve_start
 from .march import CROSSING_STEP, DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_PREDICTION, MAX_TANGENT_TURN, Continuation
-from .newton import JACOBIANS, check_tol, colmax as _colmax
+from .newton import JACOBIANS, check_tol
 from .sweep import Sweep
 
 __all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION", "MAX_TANGENT_TURN", "CROSSING_STEP"]
@@ -107,14 +107,13 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
     mech.check_assembly(t)
     ctx = Continuation(mech, jacobian, tol, float(max_step), on_singular)
     n, N = ctx.n, t.size
-    tl = t.tolist()
     X = np.empty((n, N))
     D = np.full((n, N), np.nan)
     O = np.zeros((len(mech.loops), N))
     iters = np.zeros(N, dtype=int)
 
     with np.errstate(all="ignore"):
-        x0, iters[0], v0 = solve_start(ctx, tl[0], guess, maxiter)
+        x0, iters[0], v0 = solve_start(ctx, float(t[0]), guess, maxiter)
         d0, o0 = ctx.local1(v0)
         X[:, 0], D[:, 0], O[:, 0] = x0, d0, o0
 
@@ -127,13 +126,13 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
 
             pairs = tqdm(pairs, total=nodes.size - 1, desc=mech.name, unit="node")
         for a, b in pairs:
-            x, d, o, iters[b] = ctx.march(tl[a], x, d, o, tl[b], ctx.last_previous)
+            x, d, o, iters[b] = ctx.march(float(t[a]), x, d, o, float(t[b]), ctx.last_previous)
             X[:, b], D[:, b], O[:, b] = x, d, o
 
-        f, jac = fill(ctx, t, X, D, O, iters, nodes)
-        residual = _colmax(np.abs(f)) / ctx.fscale
-        cond = _colmax(ctx.blocks.cond(jac, N))
+        residual, cond, jac = fill(ctx, t, X, D, O, iters, nodes)
         if ctx.crossings:
             ctx.describe_crossings(t, X, O, cond)
     report_near_singular(ctx, t, X, cond)
-    return Sweep(mech, t, X, iters, residual, cond, ctx.events, jacobian, tol)
+    sweep = Sweep(mech, t, X, iters, residual, cond, ctx.events, jacobian, tol)
+    sweep.jacobian_rows = jac
+    return sweep

@@ -236,18 +236,19 @@ class Continuation:
         v = self.comp.FJ_rows(x, t, self.p, fixed)
         return stack_rows(v[: self.n], t.size), v[self.n :]
 
-    def newton_batch(self, x, t, active, maxiter=CORRECTOR_ITERATIONS):
+    def newton_batch(self, x, t, active, maxiter=CORRECTOR_ITERATIONS, overwrite=False):
         """Newton on the columns ``active`` of ``x`` (n, N) at the inputs ``t``; other columns are kept.
 
         :func:`numkin.newton.solve_batch` with the fused residual-and-Jacobian
         rows of :meth:`CompiledMechanism.FJ_rows` (the terms of the input
         alone computed once) and the block-triangular solve. Returns ``x``,
         ``converged`` (N,), ``iterations`` (N,), and the residuals (n, N) and
-        Jacobian rows at the returned ``x``. Call it under
+        Jacobian rows at the returned ``x``. ``overwrite``: iterate in ``x``
+        itself (a float array the caller no longer needs). Call it under
         ``numpy.errstate(all="ignore")``.
         """
         nn = self.nn
-        x = np.array(x, dtype=float)
+        x = np.asarray(x, dtype=float)
         comp, p = self.comp, self.p
         floor = self.floor
         if self.symbolic:
@@ -280,7 +281,7 @@ class Continuation:
             tol=self.tol, maxiter=maxiter, active=active, floor=floor, fd_cost=fd_cost, compact_min=COMPACT_MIN,
             history=False,
             take=lambda jac, idx: [r.take(idx) if np.ndim(r) else r for r in jac],
-            put=lambda jac, sub, idx: [_scatter(r, rz, idx, N) for r, rz in zip(jac, sub)],
+            put=lambda jac, sub, idx: [_scatter(r, rz, idx, N) for r, rz in zip(jac, sub)], overwrite=overwrite,
         )
         if self.symbolic:
             return out.x, out.converged, out.iterations, out.f, out.jac

@@ -178,7 +178,8 @@ def _put_dense(jac, sub, idx):
 
 
 def solve_batch(evaluate, jacobian, solve, x0, *, fscale, xscale, tol=1e-12, maxiter=50, active=None, floor=0.0,
-                record=False, history=True, take=_take_dense, put=_put_dense, fd_cost=0, compact_min=COMPACT_MIN):
+                record=False, history=True, take=_take_dense, put=_put_dense, fd_cost=0, compact_min=COMPACT_MIN,
+                overwrite=False):
     """The one Newton-Raphson iteration of numkin, on a batch of independent systems.
 
     Every Newton path (:func:`newton`, :meth:`Mechanism.solve`, the
@@ -218,13 +219,16 @@ def solve_batch(evaluate, jacobian, solve, x0, *, fscale, xscale, tol=1e-12, max
         compaction).
     fd_cost : int
         Residual evaluations per Jacobian (finite differences), for ``nfev``.
+    overwrite : bool
+        Iterate in ``x0`` itself (a float array the caller no longer needs)
+        instead of a copy.
 
     Returns
     -------
     BatchResult
         With ``jac``, the fused Jacobian at the returned ``x`` (None if not fused).
     """
-    x = np.array(x0, copy=True)
+    x = x0 if overwrite and isinstance(x0, np.ndarray) and x0.flags.writeable else np.array(x0, copy=True)
     n, N = x.shape
     inv_xs = 1.0 / np.asarray(xscale, dtype=float)[:, None]
     unit = bool(np.all(inv_xs == 1.0))
@@ -234,8 +238,8 @@ def solve_batch(evaluate, jacobian, solve, x0, *, fscale, xscale, tol=1e-12, max
     converged = np.zeros(N, dtype=bool)
     singular = np.zeros(N, dtype=bool)
     iterations = np.zeros(N, dtype=int)
-    nfev = np.ones(N, dtype=int)
-    njev = np.zeros(N, dtype=int)
+    nfev = np.ones(N, dtype=int) if history else None
+    njev = np.zeros(N, dtype=int) if history else None
     act = np.isfinite(fmax) if active is None else np.asarray(active, dtype=bool) & np.isfinite(fmax)
     res_hist = [fmax / fscale]
     step_hist = []
@@ -248,12 +252,20 @@ def solve_batch(evaluate, jacobian, solve, x0, *, fscale, xscale, tol=1e-12, max
             break
         if M * 4 > N or N < compact_min:  # whole arrays; the inactive columns do not move
             dx, bad = solve(jacobian(x, None, f, jac), f, None)
-            bad = bad & act
+            f = jac = None  # not needed again: freed before the next evaluation
+            bad = bad & act  # (the plug's array is left as it was)
             upd = act & ~bad
             if M < N or bad.any():
                 dx[:, ~upd] = 0.0
-            x = x + dx
-            step = colmax(np.abs(dx) if unit else np.abs(dx) * inv_xs)
+            if dx.dtype == x.dtype:
+                x += dx  # in place: no copy per iteration (recorded iterates are copies)
+            else:
+                x = x + dx
+            np.abs(dx, out=dx)
+            if not unit:
+                dx *= inv_xs
+            step = colmax(dx)
+            del dx
             f, jac = evaluate(x, None)
             fmax = colmax(np.abs(f))
         else:  # the active columns only

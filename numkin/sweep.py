@@ -99,6 +99,13 @@ class Sweep:
         How Newton's Jacobian was computed.
     tol : float
         Stopping tolerance used.
+    jacobian_rows : list or None
+        The Jacobian at ``values`` as the sweep left it, n*n rows ((N,)
+        arrays or numbers; entry (i, j) is row ``i * n + j``), reused by the
+        exact derivatives of :mod:`numkin.analytic`; None for a sweep put
+        together otherwise or copied with ``dataclasses.replace`` (its
+        Jacobian is then computed when needed). Set by
+        :meth:`Mechanism.sweep`; change no value in place afterwards.
 
     Examples
     --------
@@ -120,6 +127,9 @@ class Sweep:
     events: list = field(default_factory=list)
     jacobian: str = "symbolic"
     tol: float = 1e-12
+    #: The Jacobian rows at ``values`` as the sweep left them (see the class docstring). A plain
+    #: attribute, not a field: a copy with other values (``dataclasses.replace``) does not inherit it.
+    jacobian_rows = None
 
     @property
     def unknowns(self) -> tuple:
