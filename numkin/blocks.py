@@ -1,0 +1,398 @@
+"""The block lower-triangular shape of a mechanism's Jacobian, and the solves that use it.
+
+Loop ``k``'s residuals depend only on its own unknowns and those of earlier
+loops, so a Newton step, a tangent or an acceleration is a forward
+substitution through the loops, each a small solve. :class:`BlockStructure`
+does it at one point (plain floats, generated code for blocks of size 1 and
+2) or at many (numpy arrays); :func:`stack_rows` stacks Jacobian rows that
+are arrays or numbers.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["BlockStructure", "stack_rows"]
+
+
+class BlockStructure:
+    """The block lower-triangular shape of a mechanism's Jacobian, and solves that use it.
+
+    Loop ``k``'s residuals depend only on its own unknowns and those of
+    earlier loops, so ``J`` is block lower-triangular with one square
+    diagonal block per loop: a Newton step is a forward substitution through
+    the loops, each a small solve (2 x 2 for a vector loop, by Cramer's rule).
+    The orientation of a loop (the sign of its block's determinant) and the
+    condition number of its scaled block come from the same numbers.
+
+    Jacobians are passed as *rows*: ``J[i * n + j]`` is entry (i, j), a
+    float (one point) or an (N,) array or a number (many points).
+
+    Parameters
+    ----------
+    slices : list of slice
+        The unknowns of every loop (``Mechanism.loop_slices``).
+    fscale : float
+        Residual scale (a length).
+    xscale : array_like (n,)
+        Unknown scales.
+    zeros : iterable of (i, j), optional
+        Jacobian entries that are identically zero besides the upper blocks
+        (the unrolled solves skip them).
+
+    Examples
+    --------
+    >>> bs = BlockStructure([slice(0, 2)], 1.0, [1.0, 1.0])
+    >>> bs.solve1([2.0, 0.0, 0.0, 4.0], [1.0, 1.0])
+    ([0.5, 0.25], [1.0])
+    >>> [round(c, 12) for c in bs.cond1([2.0, 0.0, 0.0, 4.0])]
+    [2.0]
+    """
+
+    def __init__(self, slices, fscale, xscale, zeros=()):
+        self.xscale = np.asarray(xscale, dtype=float)
+        self.n = n = self.xscale.size
+        self.fscale = float(fscale)
+        self.blocks = [(s.start, s.stop) for s in slices]
+        self.inv_xscale = [1.0 / v for v in self.xscale.tolist()]
+        # scale of entry (i, j) of a scaled block: xscale_j / fscale
+        self._col = [v / self.fscale for v in self.xscale.tolist()]
+        # squares of unscaled entries would leave the normal float64 range
+        self._extreme = not all(1e-30 <= c <= 1e30 for c in self._col)
+        self._rows = {(a, b): [i * n + j for i in range(a, b) for j in range(a, b)] for a, b in self.blocks}
+        self._small = all(b - a <= 2 for a, b in self.blocks)
+        self._step = None
+        if self._small:
+            zeros = set(zeros)
+            self.solve1 = _unrolled_solve(n, self.blocks, zeros, batch=False)
+            self._step = _unrolled_solve(n, self.blocks, zeros, batch=True)
+            self.update1 = _unrolled_update(n, self.blocks, zeros, self.inv_xscale)
+
+    def newton_step(self, J, f):
+        """The Newton step ``-J^-1 f`` at every point: J rows, f (n, N) -> (dx (n, N), bad (N,)).
+
+        ``bad`` marks singular or non-finite solves (their dx is NaN). Call
+        it under ``numpy.errstate(all="ignore")``: a zero determinant gives
+        inf or NaN, which ``bad`` reports.
+        """
+        return self.solve_negated(J, f, f.shape[1])
+
+    def solve_negated(self, J, rows, N):
+        """``-J^-1 r`` at every point, block by block: J rows, ``r`` n rows -> (dx (n, N), bad (N,)).
+
+        The rows of ``J`` and ``r`` are (N,) arrays or numbers (a constant
+        entry). The cost is linear in the number of loops: one forward
+        substitution through the diagonal blocks, Cramer's rule for blocks
+        of size 1 and 2. ``bad`` marks singular or non-finite solves (their
+        dx is NaN). Call it under ``numpy.errstate(all="ignore")``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> bs = BlockStructure([slice(0, 1), slice(1, 2)], 1.0, [1.0, 1.0])
+        >>> dx, bad = bs.solve_negated([2.0, 0.0, 1.0, 4.0], [np.array([2.0, 4.0]), 0.0], 2)
+        >>> dx.tolist(), bad.tolist()
+        ([[-1.0, -2.0], [0.25, 0.5]], [False, False])
+        """
+        if self._step is None:
+            dx, _, bad = self.solve(J, -stack_rows(rows, N))
+            return dx, bad
+        dx = np.empty((self.n, N), dtype=complex if any(map(np.iscomplexobj, rows)) or np.iscomplexobj(J[0]) else float)
+        self._step(J, rows, dx)
+        total = dx[0] if self.n == 1 else dx.sum(axis=0)
+        bad = ~np.isfinite(total)
+        if np.ndim(bad) == 0:
+            bad = np.full(N, bool(bad))
+        if bad.any():
+            dx[:, bad] = np.nan
+        return dx, bad
+
+    # ------------------------------------------------------------ one point
+    def solve1(self, J, rhs):
+        """Solve ``J dx = rhs`` at one point; returns ``(dx, signs)`` or ``(None, None)`` if singular.
+
+        ``signs`` are the signs of the diagonal blocks' determinants. (For
+        blocks of size 1 and 2 an unrolled version replaces this method.)
+        """
+        n = self.n
+        dx = [0.0] * n
+        signs = []
+        for a, b in self.blocks:
+            r = [rhs[i] - sum(J[i * n + j] * dx[j] for j in range(a)) for i in range(a, b)]
+            k = b - a
+            m = np.array([J[i] for i in self._rows[(a, b)]], dtype=float).reshape(k, k)
+            det = float(np.linalg.det(m)) if np.all(np.isfinite(m)) else math.nan
+            if not (det != 0.0 and math.isfinite(det)):
+                return None, None
+            sol = np.linalg.solve(m, np.asarray(r, dtype=float))
+            if not np.all(np.isfinite(sol)):
+                return None, None
+            dx[a:b] = sol.tolist()
+            signs.append(1.0 if det > 0 else -1.0)
+        return dx, signs
+
+    def update1(self, v, x):
+        """One Newton update at one point from ``v = [F..., J rows..., ...]``.
+
+        Returns ``(x - J^-1 F, scaled step norm)`` or ``(None, None)`` if J
+        is singular. (For blocks of size 1 and 2 an unrolled version
+        replaces this method.)
+        """
+        n = self.n
+        dx, _ = self.solve1(v[n : n + n * n], [-a for a in v[:n]])
+        if dx is None:
+            return None, None
+        return [a + b for a, b in zip(x, dx)], max([abs(a) * w for a, w in zip(dx, self.inv_xscale)])
+
+    def cond1(self, J):
+        """Condition numbers of the scaled diagonal blocks at one point (list, one per loop)."""
+        if not self._small:
+            return self.cond(list(J), 1)[:, 0].tolist()
+        n = self.n
+        out = []
+        for a, b in self.blocks:
+            if b - a == 1:
+                j = J[a * n + a]
+                out.append(1.0 if (j != 0.0 and math.isfinite(j)) else math.inf)
+                continue
+            i0 = a * n + a
+            ca, cb = self._col[a], self._col[a + 1]
+            out.append(_cond2(J[i0] * ca, J[i0 + 1] * cb, J[i0 + n] * ca, J[i0 + n + 1] * cb))
+        return out
+
+    # ------------------------------------------------------------ many points
+    def solve(self, J, rhs):
+        """Solve ``J dx = rhs`` at every point: J rows (n*n entries, arrays or numbers), rhs (n, N).
+
+        Returns ``dx`` (n, N), ``signs`` (loops, N) and ``bad`` (N,): points
+        whose solve is singular or not finite (their dx is NaN).
+        """
+        n = self.n
+        N = rhs.shape[1]
+        dx = [None] * n
+        signs = np.empty((len(self.blocks), N))
+        bad = np.zeros(N, dtype=bool)
+        with np.errstate(all="ignore"):
+            for k, (a, b) in enumerate(self.blocks):
+                r = [rhs[i] for i in range(a, b)]
+                if a:
+                    for i in range(a, b):
+                        for j in range(a):
+                            e = J[i * n + j]
+                            if np.ndim(e) or e != 0:
+                                r[i - a] = r[i - a] - e * dx[j]
+                size = b - a
+                if size == 2:
+                    i0 = a * n + a
+                    j00, j01, j10, j11 = J[i0], J[i0 + 1], J[i0 + n], J[i0 + n + 1]
+                    det = j00 * j11 - j01 * j10
+                    inv = 1.0 / det
+                    dx[a] = (r[0] * j11 - j01 * r[1]) * inv
+                    dx[a + 1] = (j00 * r[1] - j10 * r[0]) * inv
+                elif size == 1:
+                    det = J[a * n + a]
+                    dx[a] = r[0] / det
+                else:
+                    m = np.moveaxis(stack_rows([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0)
+                    det = np.linalg.det(m)
+                    ok = np.isfinite(det) & (det != 0)
+                    sol = np.full((size, N), np.nan, dtype=np.result_type(m, rhs))
+                    if ok.any():
+                        sol[:, ok] = np.linalg.solve(m[ok], np.array(r)[:, ok].T[..., None])[..., 0].T
+                    dx[a:b] = list(sol)
+                det = np.real(det)
+                signs[k] = np.sign(det)
+                bad |= ~(det != 0)
+            out = stack_rows(dx, N)
+            bad |= ~np.isfinite(out.sum(axis=0))
+        out[:, bad] = np.nan
+        return out, signs, bad
+
+    def signs(self, J, N):
+        """Signs of the diagonal blocks' determinants (loops, N) from J rows; 0 where singular."""
+        n = self.n
+        out = np.empty((len(self.blocks), N))
+        for k, (a, b) in enumerate(self.blocks):
+            size = b - a
+            if size == 2:
+                i0 = a * n + a
+                det = J[i0] * J[i0 + n + 1] - J[i0 + 1] * J[i0 + n]
+            elif size == 1:
+                det = J[a * n + a]
+            else:
+                det = np.linalg.det(np.moveaxis(stack_rows([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0))
+            out[k] = np.sign(np.real(det))
+        return out
+
+    def cond(self, J, N):
+        """2-norm condition numbers of the scaled diagonal blocks (loops, N), from J rows.
+
+        Block rows are divided by ``fscale`` and columns multiplied by the
+        unknowns' scales. A 2 x 2 block uses the closed form
+        ``(s + sqrt((s - 2|d|)(s + 2|d|))) / (2|d|)``, ``s`` the squared
+        Frobenius norm and ``d`` the determinant, with ``s - 2|d|`` computed
+        as a sum of squares, so that well-conditioned blocks lose no digits.
+        A singular or non-finite block gives ``inf``.
+        """
+        n = self.n
+        out = np.empty((len(self.blocks), N))
+        with np.errstate(all="ignore"):
+            for k, (a, b) in enumerate(self.blocks):
+                size = b - a
+                if size == 2:
+                    i0 = a * n + a
+                    p, q, r, s = (np.real(J[i]) for i in (i0, i0 + 1, i0 + n, i0 + n + 1))
+                    ca, cb = self._col[a], self._col[a + 1]
+                    if self._extreme:  # entries of order one whatever the length scale: no overflow in the squares
+                        p, q, r, s = p * ca, q * cb, r * ca, s * cb
+                    elif ca != cb:  # scaling all entries alike leaves the condition number alone
+                        p, q, r, s = p * (ca / cb), q, r * (ca / cb), s
+                    det = p * s - q * r
+                    fro = p * p + q * q + r * r + s * s
+                    sg = np.copysign(1.0, det)
+                    u, w = p - sg * s, q + sg * r
+                    ad = np.abs(det)
+                    c = np.maximum((fro + np.sqrt((u * u + w * w) * (fro + 2 * ad))) / (2 * ad), 1.0)
+                    out[k] = c  # c < 1 only by rounding at cond 1
+                    nan = np.isnan(out[k])  # a zero or non-finite block: singular
+                    if nan.any():
+                        out[k, nan] = np.inf
+                elif size == 1:
+                    e = np.real(J[a * n + a])
+                    out[k] = np.where(np.isfinite(e) & (e != 0), 1.0, np.inf)
+                else:
+                    m = np.moveaxis(stack_rows([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0)
+                    m = np.real(m) * (np.asarray(self._col[a:b])[None, None, :])
+                    c = np.full(N, np.inf)
+                    ok = np.all(np.isfinite(m), axis=(1, 2))
+                    if ok.any():
+                        c[ok] = np.linalg.cond(m[ok])
+                    out[k] = np.where(np.isfinite(c), c, np.inf)
+        return out
+
+
+def stack_rows(rows, N):
+    """Rows that are (N,) arrays or numbers, as one (len(rows), N) array."""
+    if all(np.ndim(r) for r in rows):
+        return np.array(rows)
+    dtype = np.result_type(*rows, float)
+    out = np.empty((len(rows), N), dtype=dtype)
+    for i, r in enumerate(rows):
+        out[i] = r
+    return out
+
+
+
+def _cond2(p, q, r, s):
+    """2-norm condition number of [[p, q], [r, s]] (closed form; see ``BlockStructure.cond``)."""
+    det = p * s - q * r
+    if not (det != 0.0 and math.isfinite(det)):
+        return math.inf
+    fro = p * p + q * q + r * r + s * s
+    gap = (p - s) ** 2 + (q + r) ** 2 if det > 0 else (p + s) ** 2 + (q - r) ** 2
+    ad = abs(det)
+    c = (fro + math.sqrt(gap * (fro + 2.0 * ad))) / (2.0 * ad)
+    return c if c >= 1.0 else (1.0 if math.isfinite(c) else math.inf)
+
+
+def _unrolled_update(n, blocks, zeros, inv_xscale):
+    """Generate ``update1(v, x) -> (x_new, step)``: one Newton update at one point, written out.
+
+    ``v`` holds the residuals then the Jacobian rows (from offset n).
+    """
+    lines = ["def update1(v, x):"]
+    for k, (a, b) in enumerate(blocks):
+        for i in range(a, b):
+            terms = "".join(f" + v[{n + i * n + j}] * d{j}" for j in range(a) if (i, j) not in zeros)
+            lines.append(f"    r{i} = v[{i}]{terms}")
+        if b - a == 2:
+            i0 = n + a * n + a
+            lines += [
+                f"    a00 = v[{i0}]; a01 = v[{i0 + 1}]; a10 = v[{i0 + n}]; a11 = v[{i0 + n + 1}]",
+                "    det = a00 * a11 - a01 * a10",
+                "    if not (det != 0.0 and -INF < det < INF): return None, None",
+                f"    d{a} = (a01 * r{a + 1} - r{a} * a11) / det",
+                f"    d{a + 1} = (a10 * r{a} - a00 * r{a + 1}) / det",
+            ]
+        else:
+            lines += [
+                f"    det = v[{n + a * n + a}]",
+                "    if not (det != 0.0 and -INF < det < INF): return None, None",
+                f"    d{a} = -r{a} / det",
+            ]
+    lines.append(f"    if not -INF < {' + '.join(f'd{i}' for i in range(n))} < INF: return None, None")
+    steps = ", ".join(f"abs(d{i})" if inv_xscale[i] == 1.0 else f"abs(d{i}) * {inv_xscale[i]!r}" for i in range(n))
+    lines.append(f"    return [{', '.join(f'x[{i}] + d{i}' for i in range(n))}], max({steps}{',' if n == 1 else ''})")
+    if n == 1:
+        lines[-1] = lines[-1].replace(f"max({steps},)", steps)
+    namespace = {"INF": math.inf}
+    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers only
+    return namespace["update1"]
+
+
+def _unrolled_solve(n, blocks, zeros=frozenset(), batch=False):
+    """Generate the block forward substitution written out (blocks of size 1 or 2).
+
+    ``batch=False``: ``solve1(J, r) -> (dx, signs)`` for one point (floats),
+    ``(None, None)`` if a block is singular or a result not finite: the
+    fastest plain-Python form. ``batch=True``: ``step(J, f) -> rows of
+    -J^-1 f`` for arrays (no checks: the caller tests the result). Entries
+    in ``zeros`` are left out.
+    """
+
+    def term(i, j):
+        return (i, j) not in zeros
+
+    lines = ["def solve(J, r):"] if not batch else ["def solve(J, f, out):"]
+    for k, (a, b) in enumerate(blocks):
+        for i in range(a, b):
+            # batch: g_i = f_i + sum J_ij d_j  (d = -J^-1 f is solved as J d = -f)
+            if batch:
+                terms = "".join(f" + J[{i * n + j}] * d{j}" for j in range(a) if term(i, j))
+                lines.append(f"    r{i} = f[{i}]{terms}")
+            else:
+                terms = "".join(f" - J[{i * n + j}] * d{j}" for j in range(a) if term(i, j))
+                lines.append(f"    r{i} = r[{i}]{terms}")
+        if b - a == 2:
+            i0 = a * n + a
+            lines += [
+                f"    a00 = J[{i0}]; a01 = J[{i0 + 1}]; a10 = J[{i0 + n}]; a11 = J[{i0 + n + 1}]",
+                f"    det{k} = a00 * a11 - a01 * a10",
+            ]
+            if batch:
+                lines += [
+                    f"    inv = -1.0 / det{k}",
+                    f"    out[{a}] = (r{a} * a11 - a01 * r{a + 1}) * inv",
+                    f"    out[{a + 1}] = (a00 * r{a + 1} - a10 * r{a}) * inv",
+                    f"    d{a} = out[{a}]; d{a + 1} = out[{a + 1}]",
+                    f"    del inv, det{k}, r{a}, r{a + 1}",
+                ]
+            else:
+                lines += [
+                    f"    if not (det{k} != 0.0 and -INF < det{k} < INF): return None, None",
+                    f"    d{a} = (r{a} * a11 - a01 * r{a + 1}) / det{k}",
+                    f"    d{a + 1} = (a00 * r{a + 1} - a10 * r{a}) / det{k}",
+                ]
+        else:
+            lines.append(f"    det{k} = J[{a * n + a}]")
+            if batch:
+                lines += [f"    out[{a}] = -r{a} / det{k}", f"    d{a} = out[{a}]", f"    del det{k}, r{a}"]
+            else:
+                lines += [
+                    f"    if not (det{k} != 0.0 and -INF < det{k} < INF): return None, None",
+                    f"    d{a} = r{a} / det{k}",
+                ]
+    d = ", ".join(f"d{i}" for i in range(n))
+    if batch:
+        lines.append("    return out")
+    else:
+        sg = ", ".join(f"(1.0 if det{k} > 0 else -1.0)" for k in range(len(blocks)))
+        lines += [
+            f"    if not -INF < {' + '.join(f'd{i}' for i in range(n))} < INF: return None, None",
+            f"    return [{d}], [{sg}]",
+        ]
+    namespace = {"INF": math.inf}
+    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers only
+    return namespace["solve"]
