@@ -8,7 +8,7 @@ import re
 import numpy as np
 
 from .labels import sym, table_column, tex
-from .registries import SCHEME_FAMILY
+from .registries import is_second_derivative
 from .style import CYCLE, marker_style, new_figure, source_label, source_style, style
 
 __all__ = ["convergence", "jacobian_of", "newton_residuals", "on_curve", "quantity_of", "roundoff", "table_caption",
@@ -392,7 +392,7 @@ def roundoff(table):
             st.pop("alpha", None)
             st.pop("zorder", None)
             st["linewidth"] = 1.4
-            second = scheme in SCHEME_FAMILY and scheme not in ("complex_step", "complex step")
+            second = is_second_derivative(scheme)
             st["linestyle"] = "--" if second else "-"
             errs = _positive([row[c] for _, c in cols])
             allv.extend(errs)

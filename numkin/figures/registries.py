@@ -1,8 +1,8 @@
 """What figures know about schemes and linkages.
 
 :data:`SCHEME_FAMILY` maps a second-derivative scheme to the first-derivative
-scheme it is drawn like (same colour); it agrees with
-:data:`numkin.kinematics.PARTNER`. The dimension lines drawn on a
+scheme it is drawn like (same colour), read from :data:`numkin.schemes.FAMILY`;
+it agrees with :data:`numkin.kinematics.PARTNER`. The dimension lines drawn on a
 ready-made linkage are its spec's (:func:`dimensions_of`, from
 :func:`numkin.linkages.spec_of`).
 
@@ -15,15 +15,57 @@ True
 
 from __future__ import annotations
 
-__all__ = ["SCHEME_FAMILY", "dimensions_of", "family_of"]
+from collections.abc import Mapping
+
+__all__ = ["SCHEME_FAMILY", "dimensions_of", "family_of", "is_second_derivative"]
+
+#: Sources that are not schemes of sampled data, and the source each is drawn like.
+_OTHER_SOURCES = {"complex_step": "analytic", "complex step": "analytic"}
+
+
+class _SchemeFamily(Mapping):
+    """Second-derivative scheme (or complex step) -> the source it is coloured like.
+
+    Read from :data:`numkin.schemes.FAMILY` every time, so a scheme
+    registered at run time is drawn like its family too.
+    """
+
+    def _items(self) -> dict:
+        from ..schemes import REGISTRY
+
+        out = {name: s.family for name, s in REGISTRY.items() if s.derivative == 2 and s.kind != "complex_step"}
+        return {**out, **_OTHER_SOURCES}
+
+    def __getitem__(self, key):
+        return self._items()[key]
+
+    def __iter__(self):
+        return iter(self._items())
+
+    def __len__(self):
+        return len(self._items())
+
+    def __repr__(self):
+        return repr(self._items())
+
 
 #: Second-derivative scheme (or complex step) -> the source it is coloured like: its partner
-#: first-derivative scheme of :data:`numkin.kinematics.PARTNER`.
-SCHEME_FAMILY = {
-    "second_difference": "centred", "forward_of_forward": "forward", "centred_of_centred": "centred",
-    "five_point_second": "five_point", "spectral_second": "spectral", "complex_step": "analytic",
-    "complex step": "analytic",
-}
+#: first-derivative scheme (:data:`numkin.schemes.FAMILY`), always current.
+SCHEME_FAMILY: Mapping = _SchemeFamily()
+
+
+def is_second_derivative(source: str) -> bool:
+    """Whether a source is a second-derivative scheme of :data:`numkin.schemes.REGISTRY`.
+
+    Examples
+    --------
+    >>> is_second_derivative("five_point_second"), is_second_derivative("centred"), is_second_derivative("analytic")
+    (True, False, False)
+    """
+    from ..schemes import REGISTRY
+
+    scheme = REGISTRY.get(str(source))
+    return scheme is not None and scheme.derivative == 2
 
 
 def family_of(source: str) -> str:
@@ -34,7 +76,12 @@ def family_of(source: str) -> str:
     >>> family_of("forward_of_forward"), family_of("centred")
     ('forward', 'centred')
     """
-    return SCHEME_FAMILY.get(str(source), str(source))
+    from ..schemes import FAMILY
+
+    key = str(source)
+    if key in _OTHER_SOURCES:
+        return _OTHER_SOURCES[key]
+    return FAMILY.get(key, key)
 
 
 def dimensions_of(mechanism):
