@@ -48,8 +48,8 @@ import numpy as np
 from . import analytic, kinematics, linkages
 from .derivatives import SCHEMES
 from .errors import AssemblyError, BranchError, ConvergenceError, NumkinError
-from .report import input_speed
 from .sweep import Sweep
+from .units import input_rate
 
 __all__ = ["Case", "CASES", "run_suite", "report_tables"]
 
@@ -247,7 +247,7 @@ def _run_case(case: Case, schemes) -> dict:
                 wrong.append(f"residual {np.max(sweep.residual):.3g} above the tolerance")
             if not check <= ANALYTIC_CHECK:
                 wrong.append(f"analytic and complex-step derivatives differ by {check:.3g}")
-            w = input_speed(case.omega)
+            w = input_rate(case.omega)
             peak1, peak2 = abs(w) * np.max(np.abs(dq[j])), w * w * np.max(np.abs(d2q[j]))
             unit = "rad" if case.quantity in mech.angles else mech.length_unit
             finite = [e for e in errors.values() if np.isfinite(e)]

@@ -11,8 +11,8 @@ from .. import analytic
 from ..derivatives import get_scheme
 from ..schemes import point_stencil
 from .study import (
-    EPS, UNIT, branch_point, deg_text, exact_derivatives, order_text, position_record, quantity_labels,
-    set_caption, set_views, silenced, solve_points, unknown_index,
+    EPS, UNIT, branch_point, deg_text, exact_derivatives, order_text, position_record, quantity_labels, set_caption,
+    set_views, silenced, solve_points, table_quantities, unknown_index,
 )
 
 __all__ = [
@@ -274,6 +274,7 @@ def roundoff_table(
             row["textbook error [-]"] = EPS ** (p / (p + n))
         rows.append(row)
     df = pd.DataFrame(rows)
+    df.attrs["quantities"] = table_quantities(mechanism, quantity)
     caption = (
         f"Round-off floor: {mechanism.name}, {quantity} at {lab['input']} = {deg_text(theta)} deg on the sweep's "
         "branch; relative error against the step h, positions solved by Newton to the stopping rule's "

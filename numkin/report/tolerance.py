@@ -12,7 +12,7 @@ from ..errors import NumkinError
 from ..sweep import Sweep
 from .study import (
     TURN, check_index, deg_text, differenced, exact_derivatives, grid_inputs, input_speed, position_record,
-    quantity_labels, set_caption, set_views, solve_sweep, unknown_index,
+    quantity_labels, set_caption, set_views, solve_sweep, table_quantities, unknown_index,
 )
 
 __all__ = [
@@ -333,6 +333,7 @@ def tolerance_table(
             }
         )
     df = pd.DataFrame(rows)
+    df.attrs["quantities"] = table_quantities(mechanism, quantity)
     set_views(df, [
         ("the stopping rules", ["rule", "stopping rule", "tol"]),
         ("what each leaves in the positions", ["rule", "Newton iterations per point (mean)", f"max |F| [{lu}]",
