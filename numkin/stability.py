@@ -170,7 +170,7 @@ def _subsweep(sweep, count: int):
 
 
 def _scheme_errors(sweep, j, schemes, dq, d2q) -> dict:
-    """Max error of each scheme over max |exact| (d/dtheta, so independent of omega), NaN if not applicable."""
+    """Max error of each scheme over ``max |exact|`` (d/dtheta, so independent of omega), NaN if not applicable."""
     grid = kinematics.sweep_grid(sweep)
     out = {}
     for scheme in schemes:
@@ -184,12 +184,12 @@ def _scheme_errors(sweep, j, schemes, dq, d2q) -> dict:
 
 
 def _sharpest_turn(mech, sweep, j, samples: int = 801) -> float:
-    """Input range (deg) over which the studied unknown turns most sharply: jump of dq/dtheta over max |d2q|.
+    """Input range (deg) over which the studied unknown turns most sharply: jump of dq/dtheta over ``max |d2q|``.
 
     Where ``|d2q/dtheta2|`` is largest on the sweep, the position is solved
     again on a fine grid of `samples` points two grid steps either side
     (continued from the sweep's value there), and the range is the change of
-    dq/dtheta across that window divided by the largest |d2q/dtheta2| in it:
+    dq/dtheta across that window divided by the largest ``|d2q/dtheta2|`` in it:
     about the width of the turn, however narrow.
     """
     n = sweep.inputs.size

@@ -28,6 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
+    "finite",
     "UnitError",
     "angular_speed",
     "angular_acceleration",
@@ -307,6 +308,28 @@ def convert_length(
     from_mm, to_mm = _millimetres_per(from_unit), _millimetres_per(to_unit)
     converted = np.asarray(value, dtype=float) * from_mm / to_mm
     return float(converted) if converted.ndim == 0 else converted
+
+
+
+def finite(name: str, value) -> float:
+    """A finite number, or a ValueError naming it: the one check of numbers given by name.
+
+    Examples
+    --------
+    >>> finite("offset", -1)
+    -1.0
+    >>> finite("parameter r2", "x")
+    Traceback (most recent call last):
+    ...
+    ValueError: parameter r2 = 'x' is not a number
+    """
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} = {value!r} is not a number") from None
+    if not math.isfinite(v):
+        raise ValueError(f"{name} = {value!r} is not finite")
+    return v
 
 
 _RATE_PARSERS = {"speed": ("omega", angular_speed), "acceleration": ("alpha", angular_acceleration)}

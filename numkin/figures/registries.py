@@ -17,41 +17,17 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
+from ..schemes import RegistryView
+
 __all__ = ["SCHEME_FAMILY", "dimensions_of", "family_of", "is_second_derivative"]
 
 #: Sources that are not schemes of sampled data, and the source each is drawn like.
 _OTHER_SOURCES = {"complex_step": "analytic", "complex step": "analytic"}
 
 
-class _SchemeFamily(Mapping):
-    """Second-derivative scheme (or complex step) -> the source it is coloured like.
-
-    Read from :data:`numkin.schemes.FAMILY` every time, so a scheme
-    registered at run time is drawn like its family too.
-    """
-
-    def _items(self) -> dict:
-        from ..schemes import REGISTRY
-
-        out = {name: s.family for name, s in REGISTRY.items() if s.derivative == 2 and s.kind != "complex_step"}
-        return {**out, **_OTHER_SOURCES}
-
-    def __getitem__(self, key):
-        return self._items()[key]
-
-    def __iter__(self):
-        return iter(self._items())
-
-    def __len__(self):
-        return len(self._items())
-
-    def __repr__(self):
-        return repr(self._items())
-
-
-#: Second-derivative scheme (or complex step) -> the source it is coloured like: its partner
-#: first-derivative scheme (:data:`numkin.schemes.FAMILY`), always current.
-SCHEME_FAMILY: Mapping = _SchemeFamily()
+#: Second-derivative scheme -> the first-derivative scheme it is coloured like: its family
+#: (:data:`numkin.schemes.FAMILY`), always current.
+SCHEME_FAMILY: Mapping = RegistryView(lambda s: s.derivative == 2 and s.kind != "complex_step", lambda s: s.family)
 
 
 def is_second_derivative(source: str) -> bool:

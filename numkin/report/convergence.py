@@ -60,7 +60,7 @@ def convergence_table(
         One row per scheme and grid (scheme order, then grids as given):
         ``scheme``, ``formal order``, ``quantity``, ``points per turn``,
         ``h [deg]``, ``max abs error``, ``RMS abs error`` (both ``[unit of
-        quantity]``), ``max rel error [-]`` (over max |exact|), the abs error
+        quantity]``), ``max rel error [-]`` (over ``max |exact|``), the abs error
         at the check angle, and ``observed order [-]``
         ``log(e_prev / e) / log(h_prev / h)`` from the max error of the row
         above (same scheme).
