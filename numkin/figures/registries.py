@@ -63,7 +63,7 @@ def family_of(source: str) -> str:
 def dimensions_of(mechanism):
     """The dimension lines of a ready-made linkage, or None (then each link is labelled with its length).
 
-    Read from the linkage's spec (:attr:`numkin.linkages.LinkageSpec.dimension_lines`:
+    Read from the linkage's spec (``LinkageSpec.dimension_lines``:
     from point, to point, symbol, side and size of the offset); None for a
     mechanism written as loops, or a linkage whose spec has no dimension lines.
 

@@ -249,7 +249,7 @@ def median_time(fn: Callable[[], object], repeat: int, warmup: bool = True) -> f
 def solve_points(mechanism, x0, t, *, what: str = "position") -> np.ndarray:
     """Positions at the inputs `t` (rad, shape (M,)) by numkin's Newton from the starting points `x0` (n, M).
 
-    One batch of :func:`numkin.newton.iterate` with the mechanism's residual
+    One batch of ``numkin.newton.iterate`` with the mechanism's residual
     and symbolic Jacobian: the stopping rule of :mod:`numkin.newton` (scaled
     residual at ``tol = 1e-12``, superlinear steps down to ``tol**(2/3)``, so
     the error left is ``<= tol**(4/3)``) and its conditioning check (a
