@@ -311,12 +311,7 @@ class Mechanism:
         NewtonResult
             ``x`` in unknown order (``self.unknowns``).
         """
-        try:
-            input_value = float(input_value)
-        except (TypeError, ValueError):
-            raise ValueError(f"input_value must be a number (rad), got {input_value!r}") from None
-        if not math.isfinite(input_value):
-            raise ValueError(f"input_value must be finite, got {input_value}")
+        input_value = finite("input_value (rad)", input_value)
         tol = check_tol(tol)
         if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
             raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")

@@ -278,6 +278,7 @@ def register(name: str, offsets, derivative: int, *, partner: str | None = None,
     Returns
     -------
     Scheme
+        The new scheme, now in :data:`REGISTRY` under `name`.
 
     Raises
     ------
@@ -355,6 +356,7 @@ def get_scheme(name: str) -> Scheme:
     Returns
     -------
     Scheme
+        The registered scheme of that name.
 
     Raises
     ------
