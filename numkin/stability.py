@@ -399,7 +399,8 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
 
     set_views(df, [
         ("outcome", ["case", "expected", "outcome", "as expected"]),
-        ("the solver", ["case", "points", "max cond [-]", "Newton iterations (max)", "analytic vs complex step [-]"]),
+        ("the solver", ["case", "points", "max cond [-]", "Newton iterations (max)", "analytic vs complex step [-]",
+                        "analytic lost digits"]),
         ("first-derivative schemes: max error of dq/dtheta over its peak", ["case", "sharpest turn [deg]"] + first),
         ("second-derivative schemes: max error of d2q/dtheta2 over its peak", ["case", "sharpest turn [deg]"] + second),
         ("what happened", ["case", "what happened"]),
