@@ -32,6 +32,7 @@ __version__ = "0.1.0"
 #: Name -> module it is defined in (loaded on first use).
 _NAMES = {
     "Loop": "loops",
+    "LostDigitsWarning": "conditioning",
     "Mechanism": "mechanism",
     "NewtonResult": "newton",
     "newton": "newton",
@@ -51,6 +52,7 @@ __all__ = [
     "BranchError",
     "ConvergenceError",
     "Loop",
+    "LostDigitsWarning",
     "Mechanism",
     "NewtonResult",
     "NumkinError",

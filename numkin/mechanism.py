@@ -19,6 +19,7 @@ from .compiled import BlockStructure, CompiledMechanism
 from .errors import AssemblyError, ConvergenceError
 from .loops import Loop, as_symbol
 from .newton import JACOBIANS, TOL_MIN, NewtonResult, check_tol, iterate, residual_floor, scaled_cond
+from .units import finite
 
 __all__ = ["Mechanism", "LENGTH_SCALE_RANGE"]
 
@@ -111,12 +112,7 @@ class Mechanism:
         self.parameters = {}
         for key, value in (parameters or {}).items():
             sym = as_symbol(key)
-            try:
-                value = float(value)
-            except (TypeError, ValueError):
-                raise ValueError(f"parameter {sym} = {value!r} is not a number") from None
-            if not math.isfinite(value):
-                raise ValueError(f"parameter {sym} = {value} is not finite")
+            value = finite(f"parameter {sym}", value)
             if value < 0 and (sym.is_positive or sym.is_nonnegative):
                 raise ValueError(f"parameter {sym} = {value:g} is negative, but {sym} is declared non-negative")
             self.parameters[sym] = value
@@ -315,12 +311,7 @@ class Mechanism:
         NewtonResult
             ``x`` in unknown order (``self.unknowns``).
         """
-        try:
-            input_value = float(input_value)
-        except (TypeError, ValueError):
-            raise ValueError(f"input_value must be a number (rad), got {input_value!r}") from None
-        if not math.isfinite(input_value):
-            raise ValueError(f"input_value must be finite, got {input_value}")
+        input_value = finite("input_value (rad)", input_value)
         tol = check_tol(tol)
         if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
             raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")

@@ -10,13 +10,13 @@ column header back into a quantity.
 
 Names follow one rule:
 
-============  ==============  ==================  ===================
-of            position        velocity            acceleration
-============  ==============  ==================  ===================
-angle ``b``   ``b`` [rad]     ``omega_b`` [rad/s] ``alpha_b`` [rad/s^2]
-length ``x``  ``x`` [unit]    ``v_x`` [unit/s]    ``a_x`` [unit/s^2]
-point ``P``   ``x_P``, ``y_P`` ``vx_P``, ``vy_P`` ``ax_P``, ``ay_P``
-============  ==============  ==================  ===================
+============  ================  ===================  =====================
+of            position          velocity             acceleration
+============  ================  ===================  =====================
+angle ``b``   ``b`` [rad]       ``omega_b`` [rad/s]  ``alpha_b`` [rad/s^2]
+length ``x``  ``x`` [unit]      ``v_x`` [unit/s]     ``a_x`` [unit/s^2]
+point ``P``   ``x_P``, ``y_P``  ``vx_P``, ``vy_P``   ``ax_P``, ``ay_P``
+============  ================  ===================  =====================
 
 Derivatives with respect to the input angle ``theta`` are named
 ``dq/dtheta`` and ``d2q/dtheta2`` (``dbeta/dtheta`` [rad/rad],

@@ -116,18 +116,18 @@ Quantity names (for ``[[check]]``, ``--at``, JSON): an angle unknown's position
 The stability suite is a scene too: ``[stability] cases = [...]`` (default all
 of :data:`numkin.stability.CASES`) instead of ``[mechanism]``.
 
-============================  ======================================================  ============
-``linkage``                   dimensions (all required unless marked)                 unknowns
-============================  ======================================================  ============
-``four_bar``                  ground, crank, coupler, rocker (+ ``branch``)            theta3, theta4
-``slider_crank``              crank, rod, offset (optional, 0)                         theta3, x
-``quick_return``              r1, r2, r6 (optional: 60, 40, 60 mm)                     r3, theta3, r4, r5
-``six_bar``                   crank, coupler, o4b, bc, o4c, rod, o4 = [x, y],          theta3, theta4,
-                              slider_y (optional: the document's, in cm)               theta5, x
-``chained_four_bars``         fixed1, input1, coupler1, output1, fixed2, input2,        phi, psi,
-                              coupler2, output2, offset_deg (optional: the             beta, gamma
-                              homework's, in inches)
-============================  ======================================================  ============
+=====================  ==================================================  ==================
+``linkage``            dimensions (all required unless marked)             unknowns
+=====================  ==================================================  ==================
+``four_bar``           ground, crank, coupler, rocker (+ ``branch``)       theta3, theta4
+``slider_crank``       crank, rod, offset (optional, 0)                    theta3, x
+``quick_return``       r1, r2, r6 (optional: 60, 40, 60 mm)                r3, theta3, r4, r5
+``six_bar``            crank, coupler, o4b, bc, o4c, rod, o4 = [x, y],     theta3, theta4,
+                       slider_y (optional: the linkage's default, in cm)   theta5, x
+``chained_four_bars``  fixed1, input1, coupler1, output1, fixed2, input2,  phi, psi,
+                       coupler2, output2, offset_deg (optional: the        beta, gamma
+                       homework's, in inches)
+=====================  ==================================================  ==================
 
 The table is :data:`numkin.linkages.SPECS` (a linkage's dimensions, their
 kinds and defaults are read from its :class:`~numkin.linkages.LinkageSpec`);

@@ -507,20 +507,21 @@ def _is_int(value, least: int) -> bool:
 
 
 
-def input_rate(value, order: int) -> float:
+def input_rate(value, order: int, name: str | None = None) -> float:
     """The input's speed (``order`` 1, rad/s) or acceleration (2, rad/s^2) from a scene value.
 
-    The one place where a scene's ``[input]`` rates are parsed (by
-    :mod:`numkin.units`); everything downstream receives the float.
+    Read by :func:`numkin.units.input_rate`, the one parser of input rates;
+    everything downstream receives the float. `name` names the value in
+    messages.
 
     Examples
     --------
     >>> input_rate("450 rad/min", 1), input_rate("2 rev/s^2", 2) / math.pi
     (7.5, 4.0)
     """
-    from .units import angular_acceleration, angular_speed
+    from .units import input_rate as parse
 
-    return angular_speed(value) if order == 1 else angular_acceleration(value)
+    return parse(value, "speed" if order == 1 else "acceleration", name=name)
 
 
 def _read_input(r: SceneReader, scene: Scene, inp: dict) -> None:
@@ -531,9 +532,9 @@ def _read_input(r: SceneReader, scene: Scene, inp: dict) -> None:
             continue
         setattr(scene, f"{key}_text", str(inp[key]))
         try:
-            setattr(scene, key, input_rate(inp[key], order))
-        except (UnitError, TypeError) as error:
-            r.fail(f"[input] {key}", str(error))
+            setattr(scene, key, input_rate(inp[key], order, name=f"[input] {key}"))
+        except (UnitError, TypeError, ValueError) as error:
+            r.fail("", str(error))
     if "speed" in inp and scene.speed == 0:
         r.fail("[input] speed", f"must not be zero, got {inp['speed']!r}")
     if "speed" not in inp and scene.differentiates:

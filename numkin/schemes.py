@@ -53,6 +53,7 @@ __all__ = [
     "Scheme",
     "SCHEMES",
     "REGISTRY",
+    "RegistryView",
     "PARTNER",
     "FAMILY",
     "BUILT_IN",
@@ -177,8 +178,8 @@ def _load() -> dict[str, Scheme]:
     return _REGISTRY
 
 
-class _View(Mapping):
-    """A read-only, always current view of the registry."""
+class RegistryView(Mapping):
+    """A read-only, always current view of the registry: ``value(scheme)`` of every scheme ``select`` keeps."""
 
     def __init__(self, select, value):
         self._select, self._value = select, value
@@ -200,13 +201,13 @@ class _View(Mapping):
 
 
 #: Every scheme, complex step included: name -> :class:`Scheme`.
-REGISTRY: Mapping = _View(lambda s: True, lambda s: s)
+REGISTRY: Mapping = RegistryView(lambda s: True, lambda s: s)
 #: The schemes of sampled data (all but complex step): name -> :class:`Scheme`.
-SCHEMES: Mapping = _View(lambda s: s.kind != "complex_step", lambda s: s)
+SCHEMES: Mapping = RegistryView(lambda s: s.kind != "complex_step", lambda s: s)
 #: Second-derivative scheme -> the first-derivative scheme used with it.
-PARTNER: Mapping = _View(lambda s: s.derivative == 2 and s.partner is not None, lambda s: s.partner)
+PARTNER: Mapping = RegistryView(lambda s: s.derivative == 2 and s.partner is not None, lambda s: s.partner)
 #: Scheme -> family (the first-derivative scheme it belongs with).
-FAMILY: Mapping = _View(lambda s: True, lambda s: s.family)
+FAMILY: Mapping = RegistryView(lambda s: True, lambda s: s.family)
 
 
 def _build(name, *, derivative, offsets=(), kind="stencil", ends="one-sided", partner=None, family=None,
@@ -277,6 +278,7 @@ def register(name: str, offsets, derivative: int, *, partner: str | None = None,
     Returns
     -------
     Scheme
+        The new scheme, now in :data:`REGISTRY` under `name`.
 
     Raises
     ------
@@ -354,6 +356,7 @@ def get_scheme(name: str) -> Scheme:
     Returns
     -------
     Scheme
+        The registered scheme of that name.
 
     Raises
     ------

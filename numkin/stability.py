@@ -5,21 +5,20 @@ each in one row of a table: what happened, the largest condition number of
 the Jacobian, the Newton iterations, the error of every finite-difference
 scheme against the analytic solution, and the error or warning raised.
 
-========================================  ==============================================  =============
-case                                      what it probes                                  expected
-========================================  ==============================================  =============
-near toggle (4, 2, 4.0001, 2)             non-Grashof by 1e-4: limits at +-0.405 deg,     ok
-                                          nearly extended at 180 deg; swept 1..359 deg
-nearly aligned, delta = 1e-2, 1e-4, 1e-6  ground 4, crank 1, coupler 3, rocker 2 + delta:  ok
-                                          coupler and rocker almost in line at 180 deg
-change point (5, 2, 5, 2), from 0 deg     parallelogram, singular at the first input      BranchError
-change point (5, 2, 5, 2), through 180    the branches meet: reported, never switched     BranchError
-non-Grashof (7, 4, 3, 5), full turn       driven past its limit                           AssemblyError
-cannot assemble (10, 6, 1, 1)             no input angle works                            AssemblyError
-slider-crank 80/200 at 6000 rpm           accelerations ~4e4 m/s^2                        ok
-homework, homework x 1e-6, x 1e3          relative errors must not change with scale      ok
-homework, 12 and 100 000 points per turn  extreme grids                                   ok
-========================================  ==============================================  =============
+========================================  ======================================================  ================
+case                                      what it probes                                          expected
+========================================  ======================================================  ================
+near toggle (4, 2, 4.0001, 2)             non-Grashof by 1e-4: limits at +-0.405 deg; 1..359 deg  ok
+near toggle, 1e-6 deg from its limit      the analytic derivatives lose digits (cond ~ 1.6e5)     ok, with warning
+nearly aligned, delta = 1e-2, 1e-4, 1e-6  coupler and rocker almost in line at 180 deg            ok
+change point (5, 2, 5, 2), from 0 deg     parallelogram, singular at the first input              BranchError
+change point (5, 2, 5, 2), through 180    the branches meet: reported, never switched             BranchError
+non-Grashof (7, 4, 3, 5), full turn       driven past its limit                                   AssemblyError
+cannot assemble (10, 6, 1, 1)             no input angle works                                    AssemblyError
+slider-crank 80/200 at 6000 rpm           accelerations ~4e4 m/s^2                                ok
+homework, homework x 1e-6, x 1e3          relative errors must not change with scale              ok
+homework, 12 and 100 000 points per turn  extreme grids                                           ok
+========================================  ======================================================  ================
 
 Nothing in the suite may produce a silently wrong number: an expected
 error (:class:`~numkin.AssemblyError`, :class:`~numkin.BranchError`) is
@@ -46,10 +45,11 @@ from typing import Callable, Iterable
 import numpy as np
 
 from . import analytic, kinematics, linkages
+from .conditioning import LostDigitsWarning, lost_digits
 from .derivatives import SCHEMES
 from .errors import AssemblyError, BranchError, ConvergenceError, NumkinError
-from .report import input_speed
 from .sweep import Sweep
+from .units import input_rate
 
 __all__ = ["Case", "CASES", "run_suite", "report_tables"]
 
@@ -101,6 +101,10 @@ def _homework(scale: float = 1.0):
     return lambda: spec.build(**lengths)
 
 
+#: Limit position of the 4/2/4.0001/2 four-bar, deg: ``|A - O4| = r3 - r4``, by the law of cosines.
+_TOGGLE_LIMIT_DEG = math.degrees(math.acos((4**2 + 2**2 - (4.0001 - 2) ** 2) / (2 * 4 * 2)))
+
+
 def _cases() -> dict:
     hw = "450 rad/min"
     full = (0.0, 360.0, 361)
@@ -108,6 +112,11 @@ def _cases() -> dict:
         Case("near toggle (4, 2, 4.0001, 2)",
              "non-Grashof by 1e-4: limit positions at +-0.405 deg, nearly extended at 180 deg; swept 1..359 deg",
              lambda: linkages.four_bar(4, 2, 4.0001, 2), (1.0, 359.0, 359), "theta4", 10.0),
+        Case("near toggle, 1e-6 deg from its limit",
+             "the same four-bar swept from 1e-6 deg past its limit position: cond ~ 1.6e5, the analytic "
+             "derivatives lose digits (LostDigitsWarning)",
+             lambda: linkages.four_bar(4, 2, 4.0001, 2), (_TOGGLE_LIMIT_DEG + 1e-6, _TOGGLE_LIMIT_DEG + 1.0, 101),
+             "theta4", 10.0),
     ]
     for delta in (1e-2, 1e-4, 1e-6):
         cases.append(
@@ -161,7 +170,7 @@ def _subsweep(sweep, count: int):
 
 
 def _scheme_errors(sweep, j, schemes, dq, d2q) -> dict:
-    """Max error of each scheme over max |exact| (d/dtheta, so independent of omega), NaN if not applicable."""
+    """Max error of each scheme over ``max |exact|`` (d/dtheta, so independent of omega), NaN if not applicable."""
     grid = kinematics.sweep_grid(sweep)
     out = {}
     for scheme in schemes:
@@ -175,12 +184,12 @@ def _scheme_errors(sweep, j, schemes, dq, d2q) -> dict:
 
 
 def _sharpest_turn(mech, sweep, j, samples: int = 801) -> float:
-    """Input range (deg) over which the studied unknown turns most sharply: jump of dq/dtheta over max |d2q|.
+    """Input range (deg) over which the studied unknown turns most sharply: jump of dq/dtheta over ``max |d2q|``.
 
     Where ``|d2q/dtheta2|`` is largest on the sweep, the position is solved
     again on a fine grid of `samples` points two grid steps either side
     (continued from the sweep's value there), and the range is the change of
-    dq/dtheta across that window divided by the largest |d2q/dtheta2| in it:
+    dq/dtheta across that window divided by the largest ``|d2q/dtheta2|`` in it:
     about the width of the turn, however narrow.
     """
     n = sweep.inputs.size
@@ -218,6 +227,7 @@ def _run_case(case: Case, schemes) -> dict:
         "Newton iterations (max)": math.nan,
         "analytic vs complex step [-]": math.nan,
         "sharpest turn [deg]": math.nan,
+        "analytic lost digits": False,
     }
     for scheme in schemes:
         row[f"{scheme.name} max rel error [-]"] = math.nan
@@ -247,7 +257,7 @@ def _run_case(case: Case, schemes) -> dict:
                 wrong.append(f"residual {np.max(sweep.residual):.3g} above the tolerance")
             if not check <= ANALYTIC_CHECK:
                 wrong.append(f"analytic and complex-step derivatives differ by {check:.3g}")
-            w = input_speed(case.omega)
+            w = input_rate(case.omega)
             peak1, peak2 = abs(w) * np.max(np.abs(dq[j])), w * w * np.max(np.abs(d2q[j]))
             unit = "rad" if case.quantity in mech.angles else mech.length_unit
             finite = [e for e in errors.values() if np.isfinite(e)]
@@ -276,10 +286,16 @@ def _run_case(case: Case, schemes) -> dict:
                 )
             if best > 1e-2:
                 text += f"; the grid does not resolve the motion: every scheme is off by {100 * best:.3g}% or more"
+            lost = [w for w in caught if issubclass(w.category, LostDigitsWarning)]
+            row["analytic lost digits"] = bool(lost)
+            if lost:
+                est = float(np.max(lost_digits(sweep.cond, 2)))
+                text += (f"; the analytic derivatives lose digits near the singular position (LostDigitsWarning): "
+                         f"estimated relative error of the accelerations up to {est:.2g}")
             if wrong:
                 row["outcome"] = "WRONG: " + "; ".join(wrong)
             else:
-                row["outcome"] = "ok" if not sweep.events else "ok, with warning"
+                row["outcome"] = "ok" if not (sweep.events or lost) else "ok, with warning"
             row["what happened"] = text
         except (AssemblyError, BranchError, ConvergenceError) as exc:
             kind = type(exc).__name__
@@ -325,13 +341,16 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
         ``ok, with warning``, the name of the error raised, or ``WRONG: ...``
         if a completed sweep fails its checks), ``as expected``, ``what
         happened``, ``points``, ``max cond [-]``, ``Newton iterations
-        (max)`` (blank, NaN, if nothing was solved), ``analytic vs complex step [-]``,
-        ``sharpest turn [deg]`` (the input range over which the unknown's
-        derivative turns, measured on a fine local sweep where
-        |d2q/dtheta2| is largest; blank where wider than 3 grid steps)
-        (max relative difference of dq/dtheta, at up to :data:`CHECK_POINTS`
-        points spread evenly over the sweep), ``<scheme> max rel error
-        [-]`` (max error over the sweep divided by the max of the exact
+        (max)`` (blank, NaN, if nothing was solved), ``analytic vs complex
+        step [-]`` (max relative difference of dq/dtheta, at up to
+        ``CHECK_POINTS`` points spread evenly over the sweep), ``sharpest
+        turn [deg]`` (the input range over which the unknown's derivative
+        turns, measured on a fine local sweep where ``|d2q/dtheta2|`` is
+        largest; blank where wider than 3 grid steps), ``analytic lost
+        digits`` (whether the analytic derivatives raised
+        :class:`~numkin.conditioning.LostDigitsWarning`; ``what happened``
+        then gives the estimated error), ``<scheme> max rel error [-]``
+        (max error over the sweep divided by the max of the exact
         derivative) and ``error or warning raised``. Scale cases (with
         ``compare_to``) say in ``what happened`` how far their relative
         errors are from those of the case they scale.
@@ -380,7 +399,8 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
 
     set_views(df, [
         ("outcome", ["case", "expected", "outcome", "as expected"]),
-        ("the solver", ["case", "points", "max cond [-]", "Newton iterations (max)", "analytic vs complex step [-]"]),
+        ("the solver", ["case", "points", "max cond [-]", "Newton iterations (max)", "analytic vs complex step [-]",
+                        "analytic lost digits"]),
         ("first-derivative schemes: max error of dq/dtheta over its peak", ["case", "sharpest turn [deg]"] + first),
         ("second-derivative schemes: max error of d2q/dtheta2 over its peak", ["case", "sharpest turn [deg]"] + second),
         ("what happened", ["case", "what happened"]),

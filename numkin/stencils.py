@@ -100,7 +100,7 @@ def _moments(ks, ws, derivative):
 class Stencil:
     """``sum(weights[j] * y[i + offsets[j]]) / h**derivative`` at sample i.
 
-    Build one with :meth:`from_offsets`; offsets whose weight is zero are dropped.
+    Build one with ``Stencil.from_offsets``; offsets whose weight is zero are dropped.
 
     Attributes
     ----------
@@ -172,7 +172,7 @@ class Stencil:
         return f"({text})/{hh}" if d == 1 else f"({text})/({d}{hh})"
 
     def apply(self, values: ArrayLike, h: float) -> FloatArray:
-        """The estimate from `values` at the offsets (last axis, in :attr:`offsets` order)."""
+        """The estimate from `values` at the offsets (last axis, in ``offsets`` order)."""
         v = np.asarray(values, dtype=float)
         return np.tensordot(v, np.array(self.coefficients), axes=([-1], [0])) / check_step(h) ** self.derivative
 

@@ -28,6 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
+    "finite",
     "UnitError",
     "angular_speed",
     "angular_acceleration",
@@ -158,33 +159,47 @@ def _parse(value: str | float, quantity: str, units: dict[str, float]) -> float:
     raise UnitError(f"unknown unit {unit!r} in {value!r}; {accepted}")
 
 
-def angular_speed(value: str | float) -> float:
-    """Angular speed in rad/s.
+_RATE_DOC = """Angular {what} in {unit}.
 
     Parameters
     ----------
     value : float or str
-        A number, taken to be rad/s, or a string ``"<number> <unit>"`` (the
-        space is optional).  Units: rad/s, rad/min, rpm (= rev/min), rev/s
-        (= rps), deg/s, deg/min.  ``sec`` may be written for ``s``, case is
-        ignored, and a string without a unit is taken to be rad/s.
+{value}
 
     Returns
     -------
     float
-        The speed in rad/s.
+        The {what} in {unit}.
 
     Raises
     ------
     UnitError
         For a malformed string, an unknown unit or a unit of another
-        dimension (``"10 mm"``, ``"5 m/s"``).
+        dimension ({others}).
     TypeError
         If `value` is neither a number nor a string.
 
     Examples
     --------
-    >>> from numkin.units import angular_speed
+{examples}
+    """
+
+
+def angular_speed(value: str | float) -> float:
+    return _parse(value, "an angular speed", _ANGULAR_SPEED_UNITS)
+
+
+def angular_acceleration(value: str | float) -> float:
+    return _parse(value, "an angular acceleration", _ANGULAR_ACCELERATION_UNITS)
+
+
+angular_speed.__doc__ = _RATE_DOC.format(
+    what="speed", unit="rad/s", others='``"10 mm"``, ``"5 m/s"``',
+    value="""        A number, taken to be rad/s, or a string ``"<number> <unit>"`` (the
+        space is optional).  Units: rad/s, rad/min, rpm (= rev/min), rev/s
+        (= rps), deg/s, deg/min.  ``sec`` may be written for ``s``, case is
+        ignored, and a string without a unit is taken to be rad/s.""",
+    examples="""    >>> from numkin.units import angular_speed
     >>> angular_speed("450 rad/min")
     7.5
     >>> angular_speed("-10rad/s")
@@ -192,47 +207,23 @@ def angular_speed(value: str | float) -> float:
     >>> round(angular_speed("3 rev/s"), 6)
     18.849556
     >>> angular_speed(12)
-    12.0
-    """
-    return _parse(value, "an angular speed", _ANGULAR_SPEED_UNITS)
-
-
-def angular_acceleration(value: str | float) -> float:
-    """Angular acceleration in rad/s^2.
-
-    Parameters
-    ----------
-    value : float or str
-        A number, taken to be rad/s^2, or a string ``"<number> <unit>"``.
+    12.0""",
+)
+angular_acceleration.__doc__ = _RATE_DOC.format(
+    what="acceleration", unit="rad/s^2", others='``"10 rad/s"``, ``"9.81 m/s^2"``',
+    value="""        A number, taken to be rad/s^2, or a string ``"<number> <unit>"``.
         Units: rad/s^2, rad/min^2, rpm/s, rev/s^2, deg/s^2.  The square may
         be written ``^2``, ``2``, ``**2`` or ``²``; ``sec`` may be written
         for ``s``; case is ignored, and a string without a unit is taken to
-        be rad/s^2.
-
-    Returns
-    -------
-    float
-        The acceleration in rad/s^2.
-
-    Raises
-    ------
-    UnitError
-        For a malformed string, an unknown unit or a unit of another
-        dimension (``"10 rad/s"``, ``"9.81 m/s^2"``).
-    TypeError
-        If `value` is neither a number nor a string.
-
-    Examples
-    --------
-    >>> from numkin.units import angular_acceleration
+        be rad/s^2.""",
+    examples="""    >>> from numkin.units import angular_acceleration
     >>> angular_acceleration("3600 rad/min^2")
     1.0
     >>> angular_acceleration("-4 rad/s**2")
     -4.0
     >>> round(angular_acceleration("60 rpm/s"), 6)
-    6.283185
-    """
-    return _parse(value, "an angular acceleration", _ANGULAR_ACCELERATION_UNITS)
+    6.283185""",
+)
 
 
 def length_factor(unit: str) -> float:
@@ -307,6 +298,28 @@ def convert_length(
     from_mm, to_mm = _millimetres_per(from_unit), _millimetres_per(to_unit)
     converted = np.asarray(value, dtype=float) * from_mm / to_mm
     return float(converted) if converted.ndim == 0 else converted
+
+
+
+def finite(name: str, value) -> float:
+    """A finite number, or a ValueError naming it: the one check of numbers given by name.
+
+    Examples
+    --------
+    >>> finite("offset", -1)
+    -1.0
+    >>> finite("parameter r2", "x")
+    Traceback (most recent call last):
+    ...
+    ValueError: parameter r2 = 'x' is not a number
+    """
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} = {value!r} is not a number") from None
+    if not math.isfinite(v):
+        raise ValueError(f"{name} = {value!r} is not finite")
+    return v
 
 
 _RATE_PARSERS = {"speed": ("omega", angular_speed), "acceleration": ("alpha", angular_acceleration)}

@@ -1,5 +1,5 @@
 """Figures and animations: each figure from real data, checked against independent
-references (closed forms derived here, numbers of the source documents); byte-identical
+references (closed forms derived here, the numbers listed for the source documents); byte-identical
 output when rendered twice; no figure left open; matplotlib only imported on demand."""
 
 from __future__ import annotations
@@ -167,7 +167,6 @@ def test_position_plots_phi_in_degrees(hw):
     k = 100
     assert x[k] == pytest.approx(100.0)
     assert y[k] == pytest.approx(math.degrees(phi_exact(THETA_CHECK)), abs=1e-8)
-    assert y[k] == pytest.approx(94.4375, abs=1e-4)  # document 003 / linkages docstring value
 
 
 def test_derivative_forward_and_centred_against_closed_form(hw):
@@ -211,7 +210,7 @@ def test_kinematics_of_beta_marks_the_check_point(hw):
     for ax in (ax1, ax2):
         assert {"forward", "centred", "analytic"} <= {ln.get_label() for ln in ax.get_lines()}
     text = all_text(fig)
-    # document 003: omega_beta(100°) = 10.633 rad/s, alpha_beta(100°) = -28.375 rad/s² (exact)
+    # the exact omega_beta(100°) = 10.633 rad/s, alpha_beta(100°) = -28.375 rad/s² listed for document 003
     assert "analytic: 10.633 rad/s" in text
     assert "analytic: −28.375 rad/s²" in text
     assert r"$\beta$(100°) = 214.73 deg" in text
@@ -222,7 +221,9 @@ def test_slider_of_the_six_bar():
     sweep = linkages.six_bar().sweep(np.radians(np.arange(0, 361, 2)))
     fig = figures.slider(sweep, analytic=analytic_kinematics(sweep, "-10 rad/s"))
     _, x = fig.axes[0].get_lines()[0].get_data()
-    assert x[0] == pytest.approx(-1.77881, abs=1e-5)  # document 001
+    # x_D(0) of the default branch: the closed form of tests/test_linkages.py gives -1.77881 cm to 5 decimals
+    # (document 001 shows x_D only as plots)
+    assert x[0] == pytest.approx(-1.77881, abs=1e-5)
     assert [ax.get_ylabel() for ax in fig.axes[:3]] == ["$x$ [cm]", "$v_{x}$ [cm/s]", "$a_{x}$ [cm/s²]"]
 
 
@@ -248,7 +249,7 @@ def test_quick_return_drawn_with_its_dimensions():
     sweep = linkages.quick_return().sweep(np.radians(np.arange(0, 361)))
     fig = figures.mechanism(sweep, 30 * DEG)
     text = all_text(fig)
-    # document 000 at theta2 = 30°
+    # the values listed for document 000 at theta2 = 30°, and its dimensions
     for expected in ("$r_{3}$ = 87.178 mm", r"$\theta_{3}$ = 66.587°", "$r_{4}$ = 130.767 mm", "$r_{5}$ = 51.962 mm",
                      "$r_1$ = 60 mm", "$r_2$ = 40 mm", "$r_6$ = 60 mm", "$r_3$ = 87.178 mm", "$r_4$ = 130.767 mm"):
         assert expected in text, expected

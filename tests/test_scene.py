@@ -102,7 +102,7 @@ def test_homework_check_point_matches_exact_values(homework, homework_closed_for
     omega = 450 / 60  # rad/s
     check = homework.checks[0]
     assert check.at_deg == 100 and check.passed
-    # closed form differentiated here, and the source document's exact values
+    # closed form differentiated here, and the exact values listed for document 003
     assert check.values["omega_beta"] == pytest.approx(omega * beta(t, 1), rel=1e-9)
     assert check.values["alpha_beta"] == pytest.approx(omega**2 * beta(t, 2), rel=1e-9)
     assert round(check.values["omega_beta"], 3) == 10.633
@@ -257,7 +257,8 @@ def test_six_bar_slider_against_closed_form():
         except ValueError:  # that branch cannot be assembled
             return math.inf
 
-    # the document's branch: x_D(0) = -1.77881 cm
+    # the default branch, x_D(0) = -1.77881 cm (as tests/test_linkages.py finds it from report 001's fixed
+    # guesses; the report shows x_D only as plots): picks the signs, the closed form gives every value
     signs = min(((a, b) for a in (1, -1) for b in (1, -1)), key=distance)
     x = slider_x(th, *signs, sp)
     f = [sp.lambdify(th, sp.diff(x, th, k)) for k in range(3)]

@@ -31,7 +31,7 @@ name                       figure                                               
 =========================  ======================================================  ====================
 ``position``               unknowns against the input                              sweep
 ``derivative``             dq/dθ by forward and centred differences                sweep (uniform step)
-``difference``             Δ = |centred − forward| with d²q/dθ² on twin axes       sweep (uniform step)
+``difference``             Δ = ``|centred − forward|``, d²q/dθ² on twin axes       sweep (uniform step)
 ``kinematics``             q, q̇, q̈ against θ: schemes, analytic, check points      analytic and/or finite
 ``slider``                 x, v, a of a slider                                     analytic and/or finite
 ``acceleration``           numerical against analytic acceleration, and the error  analytic and finite

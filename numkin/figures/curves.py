@@ -11,11 +11,12 @@ from .labels import (
     check_points, check_unknown, deg_text, degree_ticks, frame_column, frame_input, input_label, input_name,
     is_angle, length_unit, mechanism_title, quantity_labels, rate_columns, sig5, sym, tex, uniform_step, unit_of,
 )
-from .style import CYCLE, SOURCE_STYLE, new_figure, source_label, source_style, style
+from .style import CYCLE, SOURCE_STYLE, new_figure, shared_doc, source_label, source_style, style
 
 __all__ = ["acceleration_comparison", "derivative", "difference", "kinematics", "position", "slider"]
 
 
+@shared_doc
 def position(sweep, names: Sequence[str] | None = None):
     """Unknowns against the input angle (angles in degrees, lengths in the sweep's unit).
 
@@ -25,15 +26,9 @@ def position(sweep, names: Sequence[str] | None = None):
     names : sequence of str, optional
         Unknowns to draw; default all. Angles and lengths go to separate panels.
 
-    Returns
-    -------
-    matplotlib.figure.Figure
+    {{returns_figure}}
 
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from numkin import linkages, figures
-    >>> sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 361)))
+    {{example_homework}}
     >>> fig = figures.position(sweep, ["phi"])
     >>> fig.axes[0].get_ylabel()
     '$\\\\phi$ [deg]'
@@ -74,6 +69,7 @@ def _derivative_units(sweep, name: str) -> tuple[str, str]:
     return f"{u}/rad", f"{u}/rad²"
 
 
+@shared_doc
 def derivative(sweep, name: str, schemes: Sequence[str] = ("forward", "centred")):
     """dq/dθ of one unknown by finite differences of the sweep, all schemes on one graph.
 
@@ -83,22 +79,13 @@ def derivative(sweep, name: str, schemes: Sequence[str] = ("forward", "centred")
 
     Parameters
     ----------
-    sweep : Sweep
-        On a uniform grid.
-    name : str
-        The unknown.
+    {{uniform_sweep_name}}
     schemes : sequence of str
         First-derivative schemes of :mod:`numkin.derivatives`.
 
-    Returns
-    -------
-    matplotlib.figure.Figure
+    {{returns_figure}}
 
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from numkin import linkages, figures
-    >>> sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 361)))
+    {{example_homework}}
     >>> fig = figures.derivative(sweep, "phi")
     >>> [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     ['forward', 'centred']
@@ -134,29 +121,21 @@ def derivative(sweep, name: str, schemes: Sequence[str] = ("forward", "centred")
     return fig
 
 
+@shared_doc
 def difference(sweep, name: str):
-    """Δ = |centred − forward| dq/dθ over θ, on twin axes with d²q/dθ².
+    """Δ = ``|centred − forward|`` dq/dθ over θ, on twin axes with d²q/dθ².
 
     The leading error of the forward difference is ``(h/2) q''``, that of
-    the centred one is of order h²; so Δ ≈ (h/2)|q''| and Δ → 0 where
+    the centred one is of order h²; so Δ ≈ ``(h/2) |q''|`` and Δ → 0 where
     q'' = 0. The zeros of q'' are marked by dotted lines.
 
     Parameters
     ----------
-    sweep : Sweep
-        On a uniform grid.
-    name : str
-        The unknown.
+    {{uniform_sweep_name}}
 
-    Returns
-    -------
-    matplotlib.figure.Figure
+    {{returns_figure}}
 
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from numkin import linkages, figures
-    >>> sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 361)))
+    {{example_homework}}
     >>> fig = figures.difference(sweep, "phi")
     >>> len(fig.axes)   # Δ and the twin axis of d2phi/dtheta2
     2
@@ -206,6 +185,7 @@ def difference(sweep, name: str):
     return fig
 
 
+@shared_doc
 def kinematics(
     sweep,
     name: str,
@@ -235,14 +215,9 @@ def kinematics(
         Inputs (rad) to mark and annotate (those outside the sweep are ignored).
     title : str, optional
 
-    Returns
-    -------
-    matplotlib.figure.Figure
+    {{returns_figure}}
 
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from numkin import linkages, figures
+    {{example_figures}}
     >>> from numkin.kinematics import finite_difference
     >>> sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 361)))
     >>> fd = {"centred": finite_difference(sweep, "450 rad/min")}
@@ -321,6 +296,7 @@ def kinematics(
     return fig
 
 
+@shared_doc
 def slider(sweep, name: str | None = None, *, analytic=None, finite: Mapping | None = None,
            check_angles: Iterable[float] = ()):
     """x, v and a of a slider (a length unknown) against the input angle.
@@ -328,10 +304,7 @@ def slider(sweep, name: str | None = None, *, analytic=None, finite: Mapping | N
     :func:`kinematics` for a length unknown: the first one of the sweep
     when `name` is not given.
 
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from numkin import linkages, figures
+    {{example_figures}}
     >>> from numkin.analytic import kinematics
     >>> sweep = linkages.six_bar().sweep(np.radians(np.arange(0, 361)))
     >>> fig = figures.slider(sweep, analytic=kinematics(sweep, "-10 rad/s"))
@@ -351,6 +324,7 @@ def slider(sweep, name: str | None = None, *, analytic=None, finite: Mapping | N
     )
 
 
+@shared_doc
 def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
     """Numerical against analytic acceleration of one unknown, and the error of each scheme.
 
@@ -367,14 +341,9 @@ def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
     finite : mapping of str to DataFrame
         Scheme name -> frame from :func:`numkin.kinematics.finite_difference`.
 
-    Returns
-    -------
-    matplotlib.figure.Figure
+    {{returns_figure}}
 
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from numkin import linkages, figures
+    {{example_figures}}
     >>> from numkin.analytic import kinematics
     >>> from numkin.kinematics import finite_difference
     >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0, 181)))

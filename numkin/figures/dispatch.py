@@ -139,6 +139,28 @@ class _Data:
         raise _Missing(f"no '{keys[0]}' table in the result (numkin.report makes it)")
 
 
+def _scheme_columns(table, inp: str, unit) -> list:
+    """``(column, scheme)`` of a comparison table's scheme estimates.
+
+    From ``table.attrs["quantities"]`` (column -> Quantity, whose source is
+    the scheme); only a table without them is read by its headers
+    ``"<scheme> [<unit>]"``.
+    """
+    from ..quantities import Quantity
+
+    known = table.attrs.get("quantities") or {}
+    if known:
+        return [(c, q.source) for c, q in known.items()
+                if isinstance(q, Quantity) and c in table.columns and q.source not in (inp, "analytic", "solved")
+                and (unit is None or q.unit == unit)]
+    out = []
+    for c in table.columns:
+        m = re.fullmatch(r"(.+?) \[(.*)\]", str(c))
+        if m and m.group(1) not in (inp, "analytic") and " " not in m.group(1) and (unit is None or m.group(2) == unit):
+            out.append((c, m.group(1)))
+    return out
+
+
 def _frames_from_comparisons(comparisons, sweep) -> dict:
     """scheme -> frame (``<input>`` in rad and the compared quantities) from numkin.compare results."""
     if not comparisons or sweep is None:
@@ -155,13 +177,7 @@ def _frames_from_comparisons(comparisons, sweep) -> dict:
         if xcol is None:
             continue
         unit = getattr(comp, "unit", None)
-        for c in table.columns:
-            m = re.fullmatch(r"(.+?) \[(.*)\]", str(c))
-            if not m or m.group(1) in (inp, "analytic") or " " in m.group(1):
-                continue
-            scheme = m.group(1)
-            if unit is not None and m.group(2) != unit:
-                continue
+        for c, scheme in _scheme_columns(table, inp, unit):
             frame = cols.setdefault(scheme, {inp: np.radians(np.asarray(table[xcol], dtype=float))})
             frame[getattr(comp, "quantity", quantity)] = np.asarray(table[c], dtype=float)
     return {k: pd.DataFrame(v) for k, v in cols.items()}

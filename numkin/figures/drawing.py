@@ -16,7 +16,7 @@ from .labels import (
     value_text,
 )
 from .registries import dimensions_of
-from .style import CYCLE, new_figure, style
+from .style import CYCLE, new_figure, shared_doc, style
 
 __all__ = [
     "arrow_scale", "arrow_vectors", "block_corners", "block_directions", "bounds", "draw_block", "draw_ground",
@@ -315,6 +315,7 @@ def _one_point(sweep, at: float, q):
     return mech.sweep(np.array([at]), guess=np.asarray(q, dtype=float))
 
 
+@shared_doc
 def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = None,
               traces: Sequence[str] | None = None, arrows: str | None = None, omega=None, alpha=0.0,
               arrow_points: Sequence[str] | None = None):
@@ -353,14 +354,9 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
         :func:`numkin.analytic.kinematics`); `omega` is needed with arrows.
     arrow_points : sequence of str, optional
 
-    Returns
-    -------
-    matplotlib.figure.Figure
+    {{returns_figure}}
 
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from numkin import linkages, figures
+    {{example_figures}}
     >>> sweep = linkages.quick_return().sweep(np.radians(np.arange(0, 361)))
     >>> fig = figures.mechanism(sweep, np.radians(30))
     >>> figures.save(fig, "/tmp/numkin-doc-qr", ["png"])[0].suffix

@@ -8,8 +8,8 @@ import re
 import numpy as np
 
 from .labels import sym, table_column, tex
-from .registries import SCHEME_FAMILY
-from .style import CYCLE, marker_style, new_figure, source_label, source_style, style
+from .registries import is_second_derivative
+from .style import CYCLE, marker_style, new_figure, shared_doc, source_label, source_style, style
 
 __all__ = ["convergence", "jacobian_of", "newton_residuals", "on_curve", "quantity_of", "roundoff", "table_caption",
            "work_precision"]
@@ -135,6 +135,7 @@ def _log_limits(values, pad: float = 3.0) -> tuple[float, float]:
     return float(v.min()) / pad, float(v.max()) * pad
 
 
+@shared_doc
 def convergence(table, *, error: str = "max abs error"):
     """Error against step h (log-log) for each scheme, with reference slopes 1, 2 and 4.
 
@@ -148,14 +149,9 @@ def convergence(table, *, error: str = "max abs error"):
         Start of the error column's name: ``"max abs error"`` (default),
         ``"RMS abs error"`` or ``"max rel error"``.
 
-    Returns
-    -------
-    matplotlib.figure.Figure
+    {{returns_figure}}
 
-    Examples
-    --------
-    >>> import math
-    >>> from numkin import linkages, report, figures
+    {{example_tables}}
     >>> conv = report.convergence_table(linkages.chained_four_bars(), omega="450 rad/min", quantity="beta",
     ...                                 grids=(36, 72, 180), schemes=("forward", "centred"))
     >>> fig = figures.convergence(conv)
@@ -225,6 +221,7 @@ def _front(x, y) -> np.ndarray:
     return out
 
 
+@shared_doc
 def work_precision(table, *, work: str = "work", time: str | None = None, error: str = "max abs error"):
     """Error against work (log-log) for each method, the Pareto front ringed; or against run time.
 
@@ -253,9 +250,7 @@ def work_precision(table, *, work: str = "work", time: str | None = None, error:
     error : str
         Start of the error column's name.
 
-    Returns
-    -------
-    matplotlib.figure.Figure
+    {{returns_figure}}
 
     Examples
     --------
@@ -339,6 +334,7 @@ def on_curve(h, errors, at: float) -> float:
     return float(10.0 ** np.interp(math.log10(at), np.log10(h), np.log10(e)))
 
 
+@shared_doc
 def roundoff(table):
     """Relative error against the step h at one angle: truncation error above, rounding below.
 
@@ -355,14 +351,9 @@ def roundoff(table):
         ``rel error at measured optimal h [-]``, ``textbook optimal h [rad]``,
         ``textbook error [-]``.
 
-    Returns
-    -------
-    matplotlib.figure.Figure
+    {{returns_figure}}
 
-    Examples
-    --------
-    >>> import math
-    >>> from numkin import linkages, report, figures
+    {{example_tables}}
     >>> ro = report.roundoff_table(linkages.chained_four_bars(), quantity="beta", check_angle=math.radians(100),
     ...                            schemes=("forward", "centred"))
     >>> figures.save(figures.roundoff(ro), "/tmp/numkin-doc-roundoff", ["png"])[0].suffix
@@ -392,7 +383,7 @@ def roundoff(table):
             st.pop("alpha", None)
             st.pop("zorder", None)
             st["linewidth"] = 1.4
-            second = scheme in SCHEME_FAMILY and scheme not in ("complex_step", "complex step")
+            second = is_second_derivative(scheme)
             st["linestyle"] = "--" if second else "-"
             errs = _positive([row[c] for _, c in cols])
             allv.extend(errs)
@@ -436,6 +427,7 @@ def roundoff(table):
     return fig
 
 
+@shared_doc
 def newton_residuals(tables):
     """Newton's residual norm per iteration (log scale), one curve per Jacobian.
 
@@ -446,14 +438,9 @@ def newton_residuals(tables):
         ``residual norm [-]``): Jacobian name -> table, or one table (a
         ``Jacobian`` column, if present, splits it into curves).
 
-    Returns
-    -------
-    matplotlib.figure.Figure
+    {{returns_figure}}
 
-    Examples
-    --------
-    >>> import math
-    >>> from numkin import linkages, report, figures
+    {{example_tables}}
     >>> mech = linkages.chained_four_bars()
     >>> tables = {j: report.newton_table(mech, check_angle=math.radians(100), jacobian=j)
     ...           for j in ("symbolic", "forward", "central")}

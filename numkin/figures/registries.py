@@ -1,8 +1,8 @@
 """What figures know about schemes and linkages.
 
 :data:`SCHEME_FAMILY` maps a second-derivative scheme to the first-derivative
-scheme it is drawn like (same colour); it agrees with
-:data:`numkin.kinematics.PARTNER`. The dimension lines drawn on a
+scheme it is drawn like (same colour), read from :data:`numkin.schemes.FAMILY`;
+it agrees with :data:`numkin.kinematics.PARTNER`. The dimension lines drawn on a
 ready-made linkage are its spec's (:func:`dimensions_of`, from
 :func:`numkin.linkages.spec_of`).
 
@@ -15,15 +15,33 @@ True
 
 from __future__ import annotations
 
-__all__ = ["SCHEME_FAMILY", "dimensions_of", "family_of"]
+from collections.abc import Mapping
 
-#: Second-derivative scheme (or complex step) -> the source it is coloured like: its partner
-#: first-derivative scheme of :data:`numkin.kinematics.PARTNER`.
-SCHEME_FAMILY = {
-    "second_difference": "centred", "forward_of_forward": "forward", "centred_of_centred": "centred",
-    "five_point_second": "five_point", "spectral_second": "spectral", "complex_step": "analytic",
-    "complex step": "analytic",
-}
+from ..schemes import RegistryView
+
+__all__ = ["SCHEME_FAMILY", "dimensions_of", "family_of", "is_second_derivative"]
+
+#: Sources that are not schemes of sampled data, and the source each is drawn like.
+_OTHER_SOURCES = {"complex_step": "analytic", "complex step": "analytic"}
+
+
+#: Second-derivative scheme -> the first-derivative scheme it is coloured like: its family
+#: (:data:`numkin.schemes.FAMILY`), always current.
+SCHEME_FAMILY: Mapping = RegistryView(lambda s: s.derivative == 2 and s.kind != "complex_step", lambda s: s.family)
+
+
+def is_second_derivative(source: str) -> bool:
+    """Whether a source is a second-derivative scheme of :data:`numkin.schemes.REGISTRY`.
+
+    Examples
+    --------
+    >>> is_second_derivative("five_point_second"), is_second_derivative("centred"), is_second_derivative("analytic")
+    (True, False, False)
+    """
+    from ..schemes import REGISTRY
+
+    scheme = REGISTRY.get(str(source))
+    return scheme is not None and scheme.derivative == 2
 
 
 def family_of(source: str) -> str:
@@ -34,13 +52,18 @@ def family_of(source: str) -> str:
     >>> family_of("forward_of_forward"), family_of("centred")
     ('forward', 'centred')
     """
-    return SCHEME_FAMILY.get(str(source), str(source))
+    from ..schemes import FAMILY
+
+    key = str(source)
+    if key in _OTHER_SOURCES:
+        return _OTHER_SOURCES[key]
+    return FAMILY.get(key, key)
 
 
 def dimensions_of(mechanism):
     """The dimension lines of a ready-made linkage, or None (then each link is labelled with its length).
 
-    Read from the linkage's spec (:attr:`numkin.linkages.LinkageSpec.dimension_lines`:
+    Read from the linkage's spec (``LinkageSpec.dimension_lines``:
     from point, to point, symbol, side and size of the offset); None for a
     mechanism written as loops, or a linkage whose spec has no dimension lines.
 

@@ -15,6 +15,7 @@ Examples
 
 from __future__ import annotations
 
+import re
 import sys
 from contextlib import contextmanager
 from pathlib import Path
@@ -23,6 +24,8 @@ from typing import Sequence
 from .registries import family_of
 
 __all__ = [
+    "DOC_PARTS",
+    "shared_doc",
     "CYCLE", "METADATA", "SOURCE_MARKERS", "SOURCE_STYLE", "STYLE", "close", "new_figure", "save", "source_label",
     "marker_style", "source_style", "style",
 ]
@@ -156,6 +159,42 @@ def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
     finally:
         close(fig)
 
+
+
+#: Docstring parts the figure functions share: a line ``{{name}}`` in a docstring
+#: decorated with :func:`shared_doc` becomes the part, at that line's indentation.
+DOC_PARTS = {
+    "uniform_sweep_name": "sweep : Sweep\n    On a uniform grid.\nname : str\n    The unknown.",
+    "returns_figure": "Returns\n-------\nmatplotlib.figure.Figure",
+    "example_figures": "Examples\n--------\n>>> import numpy as np\n>>> from numkin import linkages, figures",
+    "example_tables": "Examples\n--------\n>>> import math\n>>> from numkin import linkages, report, figures",
+}
+DOC_PARTS["example_homework"] = (
+    DOC_PARTS["example_figures"] + "\n>>> sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 361)))"
+)
+
+
+def shared_doc(fn):
+    """Fill the shared parts (:data:`DOC_PARTS`) into `fn`'s docstring; returns `fn`.
+
+    Examples
+    --------
+    >>> def f():
+    ...     '''A figure.
+    ...
+    ...     {{returns_figure}}
+    ...     '''
+    >>> shared_doc(f).__doc__.split()[-3:]
+    ['Returns', '-------', 'matplotlib.figure.Figure']
+    """
+
+    def part(m):
+        indent, key = m.group(1), m.group(2)
+        return "\n".join(indent + line if line else "" for line in DOC_PARTS[key].splitlines())
+
+    if fn.__doc__:
+        fn.__doc__ = re.sub(r"^([ \t]*)\{\{(\w+)\}\}$", part, fn.__doc__, flags=re.M)
+    return fn
 
 
 def source_label(key: str) -> str:

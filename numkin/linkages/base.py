@@ -17,9 +17,10 @@ Examples
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Callable
+
+from ..units import finite
 
 __all__ = ["Dimension", "LinkageSpec", "DIMENSION_KINDS", "length", "finite", "finish"]
 
@@ -135,7 +136,7 @@ class LinkageSpec:
         raise KeyError(f"{self.name} has no dimension {name!r}; dimensions: {', '.join(d.name for d in self.dimensions)}")
 
     def defaults(self) -> dict:
-        """The default dimensions, name -> value (lengths in :attr:`length_unit`, angles in rad)."""
+        """The default dimensions, name -> value (lengths in ``length_unit``, angles in rad)."""
         return {d.name: d.default for d in self.dimensions if d.default is not None}
 
 
@@ -162,21 +163,6 @@ def length(name: str, value) -> float:
     return v
 
 
-def finite(name: str, value) -> float:
-    """A finite number (a signed length or an angle), or a ValueError naming it.
-
-    Examples
-    --------
-    >>> finite("offset", -1)
-    -1.0
-    """
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} = {value!r} is not a number") from None
-    if not math.isfinite(v):
-        raise ValueError(f"{name} = {value!r} is not finite")
-    return v
 
 
 def finish(mechanism, spec: LinkageSpec):

@@ -29,7 +29,8 @@ def six_bar(
     -------
     Mechanism
         Input ``theta2``; unknowns ``theta3``, ``theta4``, ``theta5``, ``x``.
-        The default branch is the document's (x_D(0) = -1.77881).
+        The default branch is the one report 001's fixed guesses pick at theta2 = 0
+        (x_D(0) = -1.77881; the report shows x_D only as plots).
 
     Examples
     --------
@@ -107,7 +108,7 @@ SPEC = LinkageSpec(
     input="theta2",
     unknowns=(("theta3", "angle"), ("theta4", "angle"), ("theta5", "angle"), ("x", "length")),
     length_unit="cm",
-    guess="the document's branch (x_D(0) = -1.77881), by circle intersections at every input",
+    guess="the branch report 001's fixed guesses pick (x_D(0) = -1.77881), by circle intersections at every input",
     points=("O2", "A", "O4", "B", "C", "D"),
     links=(("O2", "A"), ("A", "B"), ("O4", "B", "C", "O4"), ("C", "D")),
     ground=("O2", "O4"),

@@ -9,7 +9,7 @@ import numpy as np
 
 from .study import (
     DEFAULT_GRIDS, TURN, UNIT, check_index, deg_text, differenced, exact_derivatives, grid_inputs, grid_positions,
-    grid_study, order_text, set_caption, set_views, solve_sweep,
+    grid_study, order_text, set_caption, set_views, solve_sweep, table_quantities,
 )
 
 __all__ = [
@@ -60,7 +60,7 @@ def convergence_table(
         One row per scheme and grid (scheme order, then grids as given):
         ``scheme``, ``formal order``, ``quantity``, ``points per turn``,
         ``h [deg]``, ``max abs error``, ``RMS abs error`` (both ``[unit of
-        quantity]``), ``max rel error [-]`` (over max |exact|), the abs error
+        quantity]``), ``max rel error [-]`` (over ``max |exact|``), the abs error
         at the check angle, and ``observed order [-]``
         ``log(e_prev / e) / log(h_prev / h)`` from the max error of the row
         above (same scheme).
@@ -118,6 +118,7 @@ def convergence_table(
     import pandas as pd
 
     df = pd.DataFrame(rows)
+    df.attrs["quantities"] = table_quantities(mechanism, quantity)
     set_views(df, [
         ("error over the sweep", ["scheme", "formal order", "points per turn", "h [deg]",
                                   f"max abs error {UNIT}", "max rel error [-]", "observed order [-]"]),

@@ -57,12 +57,9 @@ def _step_orders(steps: np.ndarray, floor: float = 1e-14) -> np.ndarray:
 
 
 def _one_solve(mechanism, check_angle, x_start, jacobian, tol=1e-12, maxiter=50):
-    """A solve and its iterates: (NewtonResult, iterates (n, k+1))."""
+    """A solve and its iterates: (NewtonResult, iterates (n, k+1)), as the solve recorded them."""
     res = mechanism.solve(check_angle, x_start, jacobian=jacobian, tol=tol, maxiter=maxiter)
-    iterates = [np.asarray(x_start, dtype=float)]
-    for k in range(1, res.iterations + 1):
-        iterates.append(mechanism.solve(check_angle, x_start, jacobian=jacobian, tol=tol, maxiter=k).x)
-    return res, np.array(iterates).T
+    return res, np.asarray(res.iterates, dtype=float).T
 
 
 def newton_table(

@@ -9,9 +9,10 @@ import numpy as np
 
 from .. import analytic
 from ..derivatives import get_scheme
+from ..schemes import point_stencil
 from .study import (
-    EPS, UNIT, branch_point, deg_text, exact_derivatives, order_text, position_record, quantity_labels,
-    set_caption, set_views, silenced, solve_points, unknown_index,
+    EPS, UNIT, branch_point, deg_text, exact_derivatives, order_text, position_record, quantity_labels, set_caption,
+    set_views, silenced, solve_points, table_quantities, unknown_index,
 )
 
 __all__ = [
@@ -35,17 +36,13 @@ _TEXTBOOK = {
     (2, 2): "eps^(1/4)",
     (2, 4): "eps^(1/6)",
 }
-#: Widest interior stencil :func:`stencil` looks for, in grid points either side.
-_REACH = 6
 
 
 def stencil(scheme) -> tuple:
     """Offsets and weights of a scheme's interior formula: ``d^n q/dtheta^n ~ sum(w_k q(theta + k h)) / h**n``.
 
-    Read from the scheme itself: its declared ``offsets`` and
-    ``coefficients`` if it has them, else the weights its function applies
-    at an interior point of an open grid (every scheme of
-    :data:`numkin.derivatives.SCHEMES` is linear in the samples).
+    Read from the registry (:func:`numkin.schemes.point_stencil`), so a
+    scheme added at run time with :func:`numkin.schemes.register` works too.
 
     Parameters
     ----------
@@ -64,12 +61,8 @@ def stencil(scheme) -> tuple:
     >>> k.tolist(), w.tolist()
     ([-1, 0, 1], [1.0, -2.0, 1.0])
     """
-    if getattr(scheme, "offsets", None) is not None and getattr(scheme, "coefficients", None) is not None:
-        return np.asarray(scheme.offsets, dtype=int), np.asarray(scheme.coefficients, dtype=float)
-    size = 2 * _REACH + 1
-    weights = np.array([scheme.function(np.eye(size)[k], 1.0, periodic=False)[_REACH] for k in range(size)])
-    keep = np.flatnonzero(np.abs(weights) > 1e-14)
-    return keep - _REACH, weights[keep]
+    found = point_stencil(scheme.name)
+    return np.asarray(found.offsets, dtype=int), np.asarray(found.coefficients, dtype=float)
 
 
 def fitted_optimum(h, err, order: int, derivative: int) -> tuple:
@@ -281,6 +274,7 @@ def roundoff_table(
             row["textbook error [-]"] = EPS ** (p / (p + n))
         rows.append(row)
     df = pd.DataFrame(rows)
+    df.attrs["quantities"] = table_quantities(mechanism, quantity)
     caption = (
         f"Round-off floor: {mechanism.name}, {quantity} at {lab['input']} = {deg_text(theta)} deg on the sweep's "
         "branch; relative error against the step h, positions solved by Newton to the stopping rule's "

@@ -46,6 +46,7 @@ __all__ = [
     "input_speed",
     "unknown_index",
     "quantity_labels",
+    "table_quantities",
     "deg_text",
     "scheme_list",
     "full_turn",
@@ -79,18 +80,8 @@ VARIES = "(varies)"
 
 
 def input_speed(omega) -> float:
-    """Input speed in rad/s from a number or a string with units."""
-    if isinstance(omega, str):
-        return units.angular_speed(omega)
-    if isinstance(omega, bool) or omega is None:
-        raise TypeError(f"omega must be a number (rad/s) or a string with units, got {omega!r}")
-    try:
-        w = float(omega)
-    except (TypeError, ValueError):
-        raise TypeError(f"omega must be a number (rad/s) or a string with units, got {omega!r}") from None
-    if not math.isfinite(w):
-        raise ValueError(f"omega = {omega!r} is not finite")
-    return w
+    """Input speed in rad/s from a number or a string with units (:func:`numkin.units.input_rate`)."""
+    return units.input_rate(omega, "speed")
 
 
 def unknown_index(mechanism, quantity: str) -> int:
@@ -122,6 +113,29 @@ def quantity_labels(mechanism, quantity: str) -> dict:
         "d2": f"d2{quantity}/d{t}2 [{u}/rad^2]",
         "input": t,
     }
+
+
+def table_quantities(mechanism, quantity: str) -> dict:
+    """``attrs["quantities"]`` of a table about one unknown: each label of :func:`quantity_labels` -> its Quantity.
+
+    Figures read the quantity, its symbol and unit from here, never from
+    the label's text.
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> q = table_quantities(linkages.slider_crank(80, 200), "x")
+    >>> q["v_x [mm/s]"].unit, q["d2x/dtheta2 [mm/rad^2]"].order
+    ('mm/s', 2)
+    """
+    from ..quantities import catalogue
+
+    lab = quantity_labels(mechanism, quantity)
+    t = lab["input"]
+    wanted = {lab[1]: ("time", lab["name1"]), lab[2]: ("time", lab["name2"]),
+              lab["d1"]: ("input", f"d{quantity}/d{t}"), lab["d2"]: ("input", f"d2{quantity}/d{t}2")}
+    found = {wrt: catalogue(mechanism, wrt=wrt, points=False) for wrt in ("time", "input")}
+    return {label: found[wrt][name] for label, (wrt, name) in wanted.items() if name in found[wrt]}
 
 
 def deg_text(angle: float) -> str:
@@ -235,7 +249,7 @@ def median_time(fn: Callable[[], object], repeat: int, warmup: bool = True) -> f
 def solve_points(mechanism, x0, t, *, what: str = "position") -> np.ndarray:
     """Positions at the inputs `t` (rad, shape (M,)) by numkin's Newton from the starting points `x0` (n, M).
 
-    One batch of :func:`numkin.newton.iterate` with the mechanism's residual
+    One batch of ``numkin.newton.iterate`` with the mechanism's residual
     and symbolic Jacobian: the stopping rule of :mod:`numkin.newton` (scaled
     residual at ``tol = 1e-12``, superlinear steps down to ``tol**(2/3)``, so
     the error left is ``<= tol**(4/3)``) and its conditioning check (a

@@ -12,7 +12,7 @@ from ..errors import NumkinError
 from ..sweep import Sweep
 from .study import (
     TURN, check_index, deg_text, differenced, exact_derivatives, grid_inputs, input_speed, position_record,
-    quantity_labels, set_caption, set_views, solve_sweep, unknown_index,
+    quantity_labels, set_caption, set_views, solve_sweep, table_quantities, unknown_index,
 )
 
 __all__ = [
@@ -139,7 +139,7 @@ def _student_newton(comp, p, x, tk, block: slice, rule: str, tol: float, maxiter
 
 
 def _percent(value, exact, exact_all) -> float:
-    """100 |value - exact| / |exact|; NaN where the exact value is zero (below 1e-12 of its peak)."""
+    """``100 |value - exact| / |exact|``; NaN where the exact value is zero (below 1e-12 of its peak)."""
     if not abs(exact) > 1e-12 * float(np.max(np.abs(exact_all))):
         return math.nan
     return 100.0 * float(abs(value - exact) / abs(exact))
@@ -210,7 +210,7 @@ def tolerance_table(
         still missing), the velocity and acceleration at the check angle
         with their relative errors [%] (blank where the exact value is 0),
         their largest relative errors over
-        the sweep [%] (over max |exact|) and where the acceleration error is
+        the sweep [%] (over ``max |exact|``) and where the acceleration error is
         largest [deg], and ``note`` (a branch change is named there).
 
     Examples
@@ -333,6 +333,7 @@ def tolerance_table(
             }
         )
     df = pd.DataFrame(rows)
+    df.attrs["quantities"] = table_quantities(mechanism, quantity)
     set_views(df, [
         ("the stopping rules", ["rule", "stopping rule", "tol"]),
         ("what each leaves in the positions", ["rule", "Newton iterations per point (mean)", f"max |F| [{lu}]",

@@ -11,7 +11,7 @@ from .. import analytic
 from .counting import COUNTED_FUNCTIONS, count_evaluations, stencil_evaluations
 from .study import (
     DEFAULT_GRIDS, TURN, UNIT, VARIES, differenced, exact_derivatives, grid_inputs, grid_positions, grid_study,
-    median_time, set_caption, set_views, silenced, solve_sweep, timing_repeats,
+    median_time, set_caption, set_views, silenced, solve_sweep, table_quantities, timing_repeats,
 )
 
 __all__ = [
@@ -199,6 +199,7 @@ def work_precision_table(
                 row["max rel error [-]"] = e_max / ref_peak
                 rows.append(row)
     df = pd.DataFrame(rows)
+    df.attrs["quantities"] = table_quantities(mechanism, quantity)
     if repeat:
         df[f"Pareto front {VARIES}"] = _pareto(df, f"sweep + derivative time [ms] {VARIES}")
     df[_PARETO_WORK] = _pareto(df, _WORK)
@@ -312,4 +313,6 @@ def cheapest_table(work_precision, targets: Sequence[float] = (1e-2, 1e-4, 1e-6,
                  names[0]: method, names[1]: n, names[2]: c, names[3]: e}
             )
     df = pd.DataFrame(rows)
+    if work_precision.attrs.get("quantities"):
+        df.attrs["quantities"] = dict(work_precision.attrs["quantities"])
     return set_caption(df, caption)
