@@ -543,7 +543,7 @@ def complex_step(sweep, h: float = 1e-30, *, order: int = 1) -> np.ndarray:
     """Derivatives of the unknowns by the complex-step method through the Newton solve.
 
     The loop equations are solved at the complex inputs ``theta + i h`` by
-    Newton-Raphson in complex arithmetic (:func:`numkin.newton.iterate`),
+    Newton-Raphson in complex arithmetic (``numkin.newton.iterate``),
     starting from the sweep's real solution. The solution is
     ``q(theta) + i h q'(theta) + O(h**2)``, so ``q' = Im(q) / h`` with no
     subtractive cancellation: accurate to machine precision for any tiny

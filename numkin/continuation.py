@@ -17,7 +17,7 @@ Algorithm
    (:data:`MAX_CORRECTION`) and the sign of every loop's Jacobian
    determinant (its *orientation*, constant along a branch) is unchanged
    and the tangent has not turned by more than :data:`MAX_TANGENT_TURN`
-   (1 + |q'|) (where two branches meet, the other one keeps the
+   (1 + ``|q'|``) (where two branches meet, the other one keeps the
    orientation, and only the kink in the tangent shows the switch);
    otherwise the step is halved, so a large ``max_step`` costs no safety and
    a small one loses none. A change of orientation is localised to
@@ -41,7 +41,7 @@ a singular position (a change point, where branches meet); a step that
 shrinks to nothing where the Jacobian is ill-conditioned (or has become so
 along the step) is a limit (toggle) position. Both raise
 :class:`~numkin.BranchError` (or, with ``on_singular="report"``, a change
-point is recorded in :attr:`Sweep.events` with a warning naming the branch
+point is recorded in ``Sweep.events`` with a warning naming the branch
 kept, the one whose tangent is continuous, and the sweep goes on; a toggle
 cannot be passed). A Newton that fails elsewhere raises
 :class:`~numkin.ConvergenceError`; a linkage that cannot be assembled at the

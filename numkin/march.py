@@ -3,7 +3,7 @@
 :class:`Continuation` holds what the steps of one sweep share: the scalar
 Newton kernel (plain floats, ``math``-module functions and the loops'
 block-triangular solve; the symbolic or finite-difference Jacobian plugged
-in), the batched one (:func:`numkin.newton.solve_batch` with the fused
+in), the batched one (``numkin.newton.solve_batch`` with the fused
 residual-and-Jacobian rows), the march from one node to the next with its
 acceptance tests, and the description of the change points passed. See
 :mod:`numkin.continuation` for the algorithm as a whole.
@@ -239,7 +239,7 @@ class Continuation:
     def newton_batch(self, x, t, active, maxiter=CORRECTOR_ITERATIONS, overwrite=False):
         """Newton on the columns ``active`` of ``x`` (n, N) at the inputs ``t``; other columns are kept.
 
-        :func:`numkin.newton.solve_batch` with the fused residual-and-Jacobian
+        ``numkin.newton.solve_batch`` with the fused residual-and-Jacobian
         rows of :meth:`CompiledMechanism.FJ_rows` (the terms of the input
         alone computed once) and the block-triangular solve. Returns ``x``,
         ``converged`` (N,), ``iterations`` (N,), and the residuals (n, N) and
@@ -391,7 +391,7 @@ class Continuation:
 
         ``previous`` is an earlier point ``(t, x)`` of the same branch for the
         quadratic predictor of the first step. Returns ``(x, d, o,
-        iterations)`` at t1; :attr:`last_previous` keeps the point before it.
+        iterations)`` at t1; ``last_previous`` keeps the point before it.
         """
         span = t1 - t0
         direction = 1.0 if span > 0 else -1.0
@@ -466,7 +466,7 @@ class Continuation:
         return x, d, o, iters
 
     def kinked(self, d, d_new, rate) -> bool:
-        """Whether the tangent turned by more than :data:`MAX_TANGENT_TURN` (1 + |dq/dt|) in one step."""
+        """Whether the tangent turned by more than :data:`MAX_TANGENT_TURN` (1 + ``|dq/dt|``) in one step."""
         if d_new is None:
             return False
         if self.unit_scale:
@@ -526,7 +526,7 @@ def predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate):
     """Predictor of a continuation step that cannot blow up.
 
     The tangent ``x + d s``; plus the quadratic term through the previous
-    point only when that point is at least :data:`SANE_DISTANCE` times the
+    point only when that point is at least ``SANE_DISTANCE`` times the
     step away and the term (scaled) is below the step times (1 + ``rate``),
     ``rate`` the largest scaled entry of the tangent. Without a tangent: the
     secant through a sane previous point, or ``x`` itself. ``inv_xs`` are the

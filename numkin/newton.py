@@ -85,7 +85,7 @@ class NewtonResult:
 
     @classmethod
     def from_batch(cls, out, k, cond, message):
-        """The result of column ``k`` of a :class:`BatchResult` (recorded with ``record=True``)."""
+        """The result of column ``k`` of a ``BatchResult`` (recorded with ``record=True``)."""
         it = int(out.iterations[k])
         iterates = np.array([h[:, k] for h in out.x_history])[: it + 1] if out.x_history else np.empty((0, 0))
         return cls(
@@ -319,7 +319,7 @@ def dense_solver(fscale, xscale, cond_max=COND_MAX):
 
 def iterate(F, J, x0, *, fscale, xscale, tol=1e-12, maxiter=50, cond_max=COND_MAX, check_cond=True, record=False,
             floor=0.0):
-    """Newton-Raphson on a batch of independent systems, dense linear solves (:func:`solve_batch`).
+    """Newton-Raphson on a batch of independent systems, dense linear solves (``solve_batch``).
 
     Parameters
     ----------

@@ -1,6 +1,6 @@
 """The rules every Newton path of numkin applies: stopping, conditioning, finite differences.
 
-:func:`numkin.newton.solve_batch` (and through it :func:`numkin.newton`,
+``numkin.newton.solve_batch`` (and through it :func:`numkin.newton`,
 :meth:`Mechanism.solve`, :meth:`Mechanism.polish`, the complex-step
 derivatives and the batch of a sweep) and the scalar kernel of a
 continuation (:class:`numkin.march.Continuation`) all use these.

@@ -94,7 +94,7 @@ class Sweep:
     events : list of SweepEvent
         Singular and near-singular positions met; a change point passed
         with ``on_singular="report"`` carries the kept branch's tangent
-        (:attr:`SweepEvent.tangent`).
+        (``SweepEvent.tangent``).
     jacobian : str
         How Newton's Jacobian was computed.
     tol : float
