@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import hashlib
 import os
+import shutil
 import sys
 from pathlib import Path
 
@@ -56,6 +57,9 @@ html_css_files = ["numkin.css"]
 # Every source file below docs/ is generated or written here: a change in
 # numkin's code (docstrings, figures, lesson outputs) re-reads every page.
 numkin_source_hash = numkin_docs.source_hash(ROOT / "numkin")
+
+# API pages are written anew by autosummary on every build: none left from a module that moved.
+shutil.rmtree(DOCS / "api" / "generated", ignore_errors=True)
 
 # Lessons and gallery are generated before Sphinx looks for source files.
 numkin_docs.sync_lessons(ROOT / "notebooks", DOCS / "lessons")

@@ -242,7 +242,7 @@ def derivatives(sweep, *, rtol: float = DIGITS_RTOL, at_change_point: str = "nan
     ----------------
     rtol : float, default DIGITS_RTOL
         Relative error above which the estimate of :func:`lost_digits`
-        warns (:class:`LostDigitsWarning`).
+        warns (:class:`~numkin.LostDigitsWarning`).
     at_change_point : {"nan", "continue"}, default "nan"
         The derivatives at a change point (see the notes): NaN, with the kept
         branch's values in the warning, or those values.
