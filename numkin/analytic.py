@@ -32,6 +32,16 @@ Units
 
 The unit of every column is also stored in ``frame.attrs["units"]``.
 
+Work
+----
+The derivatives record the point evaluations of compiled functions they
+spend (``"F_t"`` dF/dtheta, ``"second"`` the acceleration right-hand side,
+``"J"`` a Jacobian not kept by the sweep, ``"F"`` and ``"J"`` of the
+complex-step Newton) to any :func:`numkin.sweep.count_evaluations` open for
+the mechanism: the velocity equations reuse the sweep's Jacobian and take
+dF/dtheta at every point, the acceleration equations also their
+right-hand side.
+
 A reference independent of these formulas is :func:`complex_step`: the
 loop equations are solved at the complex input ``theta + i h`` and the
 derivative read off the imaginary part, to machine precision.
