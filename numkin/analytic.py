@@ -32,6 +32,16 @@ Units
 
 The unit of every column is also stored in ``frame.attrs["units"]``.
 
+Work
+----
+The derivatives record the point evaluations of compiled functions they
+spend (``"F_t"`` dF/dtheta, ``"second"`` the acceleration right-hand side,
+``"J"`` a Jacobian not kept by the sweep, ``"F"`` and ``"J"`` of the
+complex-step Newton) to any :func:`numkin.sweep.count_evaluations` open for
+the mechanism: the velocity equations reuse the sweep's Jacobian and take
+dF/dtheta at every point, the acceleration equations also their
+right-hand side.
+
 A reference independent of these formulas is :func:`complex_step`: the
 loop equations are solved at the complex input ``theta + i h`` and the
 derivative read off the imaginary part, to machine precision.
@@ -58,6 +68,7 @@ import sympy as sp
 
 from .compiled import jacobian_rows, rates as rates_of, vector_function
 from .conditioning import (
+    CHANGE_COND,
     DIGITS_RTOL,
     LostDigitsWarning,
     change_points,
@@ -69,7 +80,7 @@ from .conditioning import (
 from .quantities import input_quantity, point_quantities, unknown_quantities
 from .units import input_rates
 from .newton import iterate
-from .sweep import COND_MAX, SingularityWarning
+from .sweep import COND_MAX, SingularityWarning, record_evaluations
 
 __all__ = [
     "derivatives",
@@ -162,9 +173,21 @@ def _sweep_jacobian(sweep, q):
     return rows
 
 
+def _change_point_checks(mech, t, cond) -> None:
+    """Record the Jacobians :func:`~numkin.conditioning.change_points` evaluates: at both
+    neighbours of every interior sample whose condition number exceeds ``CHANGE_COND``."""
+    if t.size > 2:
+        record_evaluations(mech, "J", 2 * int(np.count_nonzero(~(cond[1:-1] <= CHANGE_COND))))
+
+
 def _rates(sweep, mech, q, t, p):
     """dq/dtheta and d2q/dtheta2 by block-triangular solves on the sweep's Jacobian (NaN where singular)."""
-    return rates_of(mech.compiled, mech.block_structure, q, t, p, _sweep_jacobian(sweep, q))
+    jac = _sweep_jacobian(sweep, q)
+    if jac is None:
+        record_evaluations(mech, "J", t.size)
+    record_evaluations(mech, "F_t", t.size)
+    record_evaluations(mech, "second", t.size)
+    return rates_of(mech.compiled, mech.block_structure, q, t, p, jac)
 
 
 def _velocity(sweep, mech, q, t, p):
@@ -173,14 +196,22 @@ def _velocity(sweep, mech, q, t, p):
     jac = _sweep_jacobian(sweep, q)
     with np.errstate(all="ignore"):
         if jac is None:
+            record_evaluations(mech, "J", t.size)
             jac = jacobian_rows(comp, q, t, p)
+        record_evaluations(mech, "F_t", t.size)
         dq, _ = mech.block_structure.solve_negated(jac, comp.F_t(q, t, p), t.size)
     return dq
 
 
 def _tangent(mech, q, t, p):
     """dq/dtheta from ``J q' = -F_theta`` (NaN where J is singular)."""
-    return _columnwise(lambda q_, t_: mech.compiled.tangent(q_, t_, p), q, t)
+
+    def solve(q_, t_):
+        record_evaluations(mech, "J", t_.size)
+        record_evaluations(mech, "F_t", t_.size)
+        return mech.compiled.tangent(q_, t_, p)
+
+    return _columnwise(solve, q, t)
 
 
 # --------------------------------------------------------------------------- unknowns
@@ -209,6 +240,7 @@ def tangent(sweep, *, at_change_point: str = "nan") -> np.ndarray:
     mech, t, q = check_sweep(sweep)
     cond = condition_numbers(sweep, t)
     change = change_points(sweep, mech, q, t, cond)
+    _change_point_checks(mech, t, cond)
     bad = _singular_mask(sweep, mech, t, "dq/dtheta is", change)
     dq = _velocity(sweep, mech, q, t, mech.parameter_values)
     dq[:, bad] = np.nan
@@ -273,6 +305,7 @@ def derivatives(sweep, *, rtol: float = DIGITS_RTOL, at_change_point: str = "nan
     p = mech.parameter_values
     cond = condition_numbers(sweep, t)
     change = change_points(sweep, mech, q, t, cond)
+    _change_point_checks(mech, t, cond)
     bad = _singular_mask(sweep, mech, t, "dq/dtheta and d2q/dtheta2 are", change)
     dq, d2q = _rates(sweep, mech, q, t, p)
     dq[:, bad] = np.nan
@@ -593,9 +626,11 @@ def complex_step(sweep, h: float = 1e-30, *, order: int = 1) -> np.ndarray:
     tc = t + 1j * float(h)
 
     def F(x, idx):
+        record_evaluations(mech, "F", x.shape[1])
         return comp.F(x, tc[idx], p)
 
     def J(x, idx):
+        record_evaluations(mech, "J", x.shape[1])
         return comp.J(x, tc[idx], p)
 
     x = q.astype(complex)

@@ -59,7 +59,7 @@ from .batch_fill import fill, nodes_of, report_near_singular
 from .first_point import solve_start
 from .march import CROSSING_STEP, DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_PREDICTION, MAX_TANGENT_TURN, Continuation
 from .newton import JACOBIANS, check_tol
-from .sweep import Sweep
+from .sweep import Sweep, record_evaluations
 
 __all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION", "MAX_TANGENT_TURN", "CROSSING_STEP"]
 
@@ -133,6 +133,8 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
         if ctx.crossings:
             ctx.describe_crossings(t, X, O, cond)
     report_near_singular(ctx, t, X, cond)
-    sweep = Sweep(mech, t, X, iters, residual, cond, ctx.events, jacobian, tol)
+    sweep = Sweep(mech, t, X, iters, residual, cond, ctx.events, jacobian, tol, ctx.nfev, ctx.njev)
+    record_evaluations(mech, "F", ctx.nfev)
+    record_evaluations(mech, "J", ctx.njev)
     sweep.jacobian_rows = jac
     return sweep

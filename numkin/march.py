@@ -108,10 +108,17 @@ class Continuation:
         self.started_on_default = False
         self.crossings: list = []  # change points passed: (input, loop)
         self.floor = 0.0  # round-off floor of the batch's residuals (set before the batch)
+        #: Point evaluations of the residuals and of the Jacobian so far (a fused evaluation counts
+        #: in both; a finite-difference Jacobian is one Jacobian and its n or 2n residuals).
+        self.nfev = 0
+        self.njev = 0
+        self.fd_cost = 0 if self.symbolic else (self.n if jacobian == "forward" else 2 * self.n)
 
     # ------------------------------------------------------------ one point
     def eval1(self, x, t):
         """Residuals, Jacobian rows and dF/dt at one point (flat list), or None where undefined."""
+        self.nfev += 1
+        self.njev += 1
         try:
             v = self._fjt(*x, t, *self.pt)
         except MATH_ERRORS:
@@ -119,6 +126,7 @@ class Continuation:
         return v if math.isfinite(sum(v)) else None
 
     def resid1(self, x, t):
+        self.nfev += 1
         try:
             f = self._f(*x, t, *self.pt)
         except MATH_ERRORS:
@@ -132,6 +140,8 @@ class Continuation:
             return None
         tt = np.array([t])
         comp, p = self.comp, self.p
+        self.nfev += self.fd_cost
+        self.njev += 1
         jac = fd_jacobian(lambda z: comp.F(z, tt, p), np.array(x, dtype=float)[:, None],
                           np.array(f, dtype=float)[:, None], self.jacobian, self.xs_arr)
         rows = jac[0].ravel().tolist()
@@ -233,6 +243,8 @@ class Continuation:
 
         ``fixed``: :meth:`CompiledMechanism.fixed_terms` at ``t``, if known.
         """
+        self.nfev += t.size
+        self.njev += t.size
         v = self.comp.FJ_rows(x, t, self.p, fixed)
         return stack_rows(v[: self.n], t.size), v[self.n :]
 
@@ -262,23 +274,24 @@ class Continuation:
             def jacobian(z, idx, fz, jz):
                 return jz
 
-            fd_cost = 0
         else:
             xs = self.xs_arr
 
             def evaluate(z, idx):
+                self.nfev += z.shape[1]
                 return comp.F(z, t if idx is None else t.take(idx), p), None
 
             def jacobian(z, idx, fz, jz):
                 tz = t if idx is None else t.take(idx)
+                self.nfev += self.fd_cost * z.shape[1]
+                self.njev += z.shape[1]
                 return list(fd_jacobian(lambda w: comp.F(w, tz, p), z, fz, self.jacobian, xs).reshape(z.shape[1], nn).T)
 
-            fd_cost = self.n if self.jacobian == "forward" else 2 * self.n
         step = self.blocks.newton_step
         N = x.shape[1]
         out = solve_batch(
             evaluate, jacobian, lambda jac, f, idx: step(jac, f), x, fscale=self.fscale, xscale=self.xs_arr,
-            tol=self.tol, maxiter=maxiter, active=active, floor=floor, fd_cost=fd_cost, compact_min=COMPACT_MIN,
+            tol=self.tol, maxiter=maxiter, active=active, floor=floor, fd_cost=self.fd_cost, compact_min=COMPACT_MIN,
             history=False,
             take=lambda jac, idx: [r.take(idx) if np.ndim(r) else r for r in jac],
             put=lambda jac, sub, idx: [_scatter(r, rz, idx, N) for r, rz in zip(jac, sub)], overwrite=overwrite,

@@ -14,13 +14,17 @@ derivatives at the singular input can be taken from that branch.
 from __future__ import annotations
 
 import math
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
+from typing import Iterator
 
 import numpy as np
 
 from .newton import COND_MAX, COND_WARN
 
-__all__ = ["Sweep", "SweepEvent", "SingularityWarning", "run_sweep", "COND_MAX", "COND_WARN"]
+__all__ = ["Sweep", "SweepEvent", "SingularityWarning", "run_sweep", "COND_MAX", "COND_WARN", "EvaluationCounter",
+           "count_evaluations", "record_evaluations"]
 
 
 class SingularityWarning(UserWarning):
@@ -99,6 +103,14 @@ class Sweep:
         How Newton's Jacobian was computed.
     tol : float
         Stopping tolerance used.
+    nfev : int
+        Point evaluations of the compiled residuals spent by the sweep: an
+        evaluation at N inputs counts N, one fused with the Jacobian counts
+        here and in ``njev``, a finite-difference Jacobian's n (forward) or
+        2n (central) residuals count here.
+    njev : int
+        Point evaluations of the Jacobian (symbolic, or one per
+        finite-difference Jacobian at one input).
     jacobian_rows : list or None
         The Jacobian at ``values`` as the sweep left it, n*n rows ((N,)
         arrays or numbers; entry (i, j) is row ``i * n + j``), reused by the
@@ -127,6 +139,8 @@ class Sweep:
     events: list = field(default_factory=list)
     jacobian: str = "symbolic"
     tol: float = 1e-12
+    nfev: int = 0
+    njev: int = 0
     #: The Jacobian rows at ``values`` as the sweep left them (see the class docstring). A plain
     #: attribute, not a field: a copy with other values (``dataclasses.replace``) does not inherit it.
     jacobian_rows = None
@@ -200,6 +214,94 @@ class Sweep:
         )
 
 
+
+class EvaluationCounter:
+    """Point evaluations of a mechanism's compiled functions, recorded by numkin as it works.
+
+    A *point evaluation* is one evaluation of one compiled function of the
+    loop equations at one input angle, real or complex: a call on N inputs
+    counts N. Kernels: ``"F"`` the residuals and ``"J"`` the Jacobian (a
+    sweep's ``nfev`` and ``njev``), ``"F_t"`` dF/dtheta and ``"second"``
+    the acceleration right-hand side of :mod:`numkin.analytic`.
+
+    Attributes
+    ----------
+    calls : dict
+        Kernel name -> number of records.
+    points : dict
+        Kernel name -> point evaluations.
+
+    Examples
+    --------
+    >>> c = EvaluationCounter()
+    >>> c.add("F", 3); c.add("J", 3); c.add("F", 1)
+    >>> c.total, c.points
+    (7, {'F': 4, 'J': 3})
+    """
+
+    def __init__(self) -> None:
+        self.calls: dict = {}
+        self.points: dict = {}
+
+    @property
+    def total(self) -> int:
+        """All point evaluations counted."""
+        return int(sum(self.points.values()))
+
+    def add(self, name: str, points: int) -> None:
+        """Add ``points`` point evaluations of the kernel ``name`` (nothing if zero)."""
+        if points:
+            self.calls[name] = self.calls.get(name, 0) + 1
+            self.points[name] = self.points.get(name, 0) + int(points)
+
+    def __repr__(self) -> str:
+        return f"EvaluationCounter(total={self.total}, points={self.points})"
+
+
+_COUNTERS: ContextVar = ContextVar("numkin_evaluation_counters", default=())
+
+
+def record_evaluations(mechanism, name: str, points: int) -> None:
+    """Add ``points`` evaluations of kernel ``name`` to every counter open for ``mechanism``.
+
+    Called by numkin's own sweeps and derivatives with the counts they keep
+    (a few integer additions per kernel call); a no-op when nothing counts.
+    """
+    for mech, counter in _COUNTERS.get():
+        if mech is mechanism:
+            counter.add(name, points)
+
+
+@contextmanager
+def count_evaluations(mechanism) -> Iterator[EvaluationCounter]:
+    """Collect, inside a ``with`` block, the evaluation counts numkin records for ``mechanism``.
+
+    Sweeps (:attr:`Sweep.nfev`, :attr:`Sweep.njev`, as kernels ``"F"`` and
+    ``"J"``) and the exact and complex-step derivatives of
+    :mod:`numkin.analytic` record the point evaluations of the compiled loop
+    equations they spend; the counts are exact and the same in every run.
+    Counters nest; other mechanisms' work is not counted.
+
+    Yields
+    ------
+    EvaluationCounter
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> mech = linkages.four_bar(4, 1, 3, 3)
+    >>> with count_evaluations(mech) as count:
+    ...     s = mech.sweep(np.radians([0.0, 10.0]))
+    >>> count.points == {"F": s.nfev, "J": s.njev}
+    True
+    """
+    counter = EvaluationCounter()
+    token = _COUNTERS.set(_COUNTERS.get() + ((mechanism, counter),))
+    try:
+        yield counter
+    finally:
+        _COUNTERS.reset(token)
 
 
 _MOVED = ("run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "CORRECTOR_ITERATIONS", "TOGGLE_COND", "TOGGLE_GROWTH")

@@ -12,6 +12,7 @@ by hand below.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import sys
 
@@ -20,7 +21,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from numkin import linkages, report
+from numkin import analytic, linkages, report
 from numkin.scene import load_scene
 from numkin.units import UnitError
 
@@ -402,18 +403,21 @@ def test_work_counts_are_exact(slider, slider_wp):
     for n in (36, 72):
         rows = a[a["points per turn"] == n]
         samples = n + 1  # a full turn: the last input repeats the first
-        # every row of a grid shares one sweep, and its count is that of the same sweep counted here
+        # every row of a grid shares one sweep, and its work is what that sweep records: nfev + njev
         inputs = 2 * np.pi * np.arange(samples) / n
         with report.count_evaluations(slider) as count:
             sweep = slider.sweep(inputs)
-        assert set(rows["sweep work [evaluations]"]) == {count.total}
-        # a converged point costs at least one evaluation per Newton step plus the first
-        assert count.total >= int(np.sum(sweep.iterations + 1))
+        assert count.points == {"F": sweep.nfev, "J": sweep.njev}
+        assert set(rows["sweep work [evaluations]"]) == {sweep.nfev + sweep.njev}
+        # a converged point costs at least one fused residual-and-Jacobian evaluation per Newton step plus the first
+        assert sweep.nfev >= int(np.sum(sweep.iterations + 1)) and sweep.njev >= int(np.sum(sweep.iterations + 1))
         work = {(r["method"], r["quantity"][0]): r["derivative work [evaluations]"] for _, r in rows.iterrows()}
-        # velocity equations J q' = -dF/dtheta: J and dF/dtheta at every input
-        assert work[("analytic", "v")] == 2 * samples
-        # acceleration: those, then J q'' = -(G_q q' + G_theta): J and the right-hand side again
-        assert work[("analytic", "a")] == 4 * samples
+        # velocity equations J q' = -dF/dtheta: J is the sweep's own (reused, not evaluated again);
+        # dF/dtheta at every input
+        assert work[("analytic", "v")] == samples
+        # acceleration: dF/dtheta for q', then J q'' = -(G_q q' + G_theta): the right-hand side at every
+        # input, on the same reused J
+        assert work[("analytic", "a")] == 2 * samples
         # finite differences evaluate no compiled function: one stencil evaluation per distinct grid point
         assert work[("forward", "v")] == work[("centred", "v")] == work[("second_difference", "a")] == n
         # the complex step runs Newton at every point, at least F and J once each: dearer than analytic
@@ -426,59 +430,46 @@ def test_work_of_an_open_grid_counts_every_sample(slider):
                                     repeat=1)
     # 0 .. 180 deg in 10 deg steps: 19 samples, the ends by one-sided stencils
     assert _row(t, method="centred")["derivative work [evaluations]"] == 19
-    assert _row(t, method="analytic", quantity="v_x [mm/s]")["derivative work [evaluations]"] == 2 * 19
+    # the velocity equations on the sweep's Jacobian: dF/dtheta at each of the 19 samples
+    assert _row(t, method="analytic", quantity="v_x [mm/s]")["derivative work [evaluations]"] == 19
 
 
-def test_count_evaluations_of_one_newton_solve(slider, homework):
+def test_newton_result_counts_of_one_solve(slider, homework):
     for mech, angle in ((slider, 0.3), (homework, CHECK)):
-        with report.count_evaluations(mech) as count:
-            res = mech.solve(angle)
+        res = mech.solve(angle)
         k = res.iterations
         assert res.converged and k >= 1
-        # Newton: the residual at the start and after each of the k steps; the Jacobian at the k iterates it
-        # steps from, and once at the solution for the condition number the result reports
-        assert count.points == {"F": k + 1, "J": k + 1}
-        assert count.total == 2 * (k + 1)
+        # Newton: the residual at the start and after each of the k steps; the Jacobian at the k iterates
+        # it steps from
+        assert (res.nfev, res.njev) == (k + 1, k)
+        assert res.iterates.shape == (k + 1, len(mech.unknowns))
 
 
-def test_count_evaluations_counts_points_and_restores(slider):
-    comp, p = slider.compiled, slider.parameter_values
-    q = np.zeros((2, 7))
-    t = np.linspace(0, 1, 7)
-    before = dict(vars(comp))
+def test_count_evaluations_collects_what_numkin_records(slider):
+    other = linkages.four_bar(4, 1, 3, 3)
+    t = np.radians(np.arange(0, 91, 10))
     with report.count_evaluations(slider) as outer:
-        comp.F(q, t, p)
-        comp.J(q, t, p)
-        comp.scalar_F(0.0, 0.0, 0.5, *p.tolist())
+        s = slider.sweep(t)
+        other.sweep(t)  # another mechanism's work is not counted
         with report.count_evaluations(slider) as inner:
-            comp.tangent(q[:, :3] + 1.0, t[:3], p)  # built on F_t and J
-    assert outer.points == {"F": 7, "J": 7 + 3, "scalar_F": 1, "F_t": 3}
-    assert outer.calls == {"F": 1, "J": 2, "scalar_F": 1, "F_t": 1}
-    assert inner.total == 6
-    assert all(vars(comp)[k] is v for k, v in before.items())  # cached functions are back
-    assert not any(getattr(v, "__name__", "") == "counted" for v in vars(comp).values())
-    assert "F" not in vars(comp) and "J" not in vars(comp)  # the class's methods again
+            analytic.derivatives(s)  # on the sweep's Jacobian: dF/dtheta and the acceleration right-hand side
+    assert inner.points == {"F_t": t.size, "second": t.size}
+    assert outer.points == {"F": s.nfev, "J": s.njev, "F_t": t.size, "second": t.size}
+    with report.count_evaluations(slider) as after:
+        pass
+    assert after.total == 0
+    # a copy of the sweep has no Jacobian kept: the exact derivatives evaluate it once per point
+    with report.count_evaluations(slider) as copied:
+        analytic.tangent(dataclasses.replace(s))
+    assert copied.points == {"J": t.size, "F_t": t.size}
 
 
 def test_counting_a_sweep_does_not_compile_the_acceleration():
     mech = linkages.four_bar(4, 1, 3.5, 3)
     with report.count_evaluations(mech) as count:
         mech.sweep(np.radians(np.arange(0, 91, 10)))
-    assert count.total > 0 and "_second" not in count.points
+    assert count.total > 0 and set(count.points) == {"F", "J"}
     assert "_second" not in vars(mech.compiled)  # position-only work never differentiates
-
-
-def test_every_evaluating_function_of_compiled_is_counted():
-    """A new compiled function must be added to report.COUNTED_FUNCTIONS (or be built on counted ones)."""
-    from functools import cached_property
-
-    from numkin.compiled import CompiledMechanism
-
-    built_on_counted = {"tangent", "second_derivative"}  # J with F_t / _second
-    not_evaluating = {"point_function", "_fast"}  # a compiler; the functions FJ_rows and fixed_terms call
-    members = {name for name, v in vars(CompiledMechanism).items()
-               if (callable(v) or isinstance(v, cached_property)) and not name.startswith("__")}
-    assert members - built_on_counted - not_evaluating == set(report.COUNTED_FUNCTIONS)
 
 
 def test_cheapest_table():

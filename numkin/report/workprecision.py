@@ -8,7 +8,7 @@ from typing import Iterable, Sequence
 import numpy as np
 
 from .. import analytic
-from .counting import COUNTED_FUNCTIONS, count_evaluations, stencil_evaluations
+from .counting import count_evaluations, stencil_evaluations, sweep_evaluations
 from .study import (
     DEFAULT_GRIDS, TURN, UNIT, VARIES, differenced, exact_derivatives, grid_inputs, grid_positions, grid_study,
     median_time, set_caption, set_views, silenced, solve_sweep, table_quantities, timing_repeats,
@@ -46,15 +46,18 @@ def work_precision_table(
       algorithms and the data, not on the machine's speed or load.
       ``sweep work`` is the number of *point evaluations* of the
       mechanism's compiled loop equations spent by ``Mechanism.sweep``:
-      calls of the compiled residuals, Jacobian, dF/dtheta (and the
-      functions combining them) times the input angles of each call,
-      counted by instrumenting them (:func:`count_evaluations`).
+      evaluations of the residuals plus evaluations of the Jacobian, each
+      at one input angle, as the sweep records them (``Sweep.nfev +
+      Sweep.njev``; an evaluation of both together counts once in each).
       ``derivative work`` is what the derivative adds: for the analytic
-      solution and the complex step, point evaluations again, counted the
-      same way (the velocity equations ``J q' = -dF/dtheta`` take J and
-      dF/dtheta at every point, the acceleration equations another J and
-      their right-hand side; the complex step runs Newton in complex
-      arithmetic at every point); for a finite-difference scheme, which
+      solution and the complex step, point evaluations again, as
+      :mod:`numkin.analytic` records them (:func:`count_evaluations`): the
+      velocity equations ``J q' = -dF/dtheta`` reuse the sweep's Jacobian
+      and take dF/dtheta at every point, the acceleration equations also
+      their right-hand side at every point; the complex step runs Newton in
+      complex arithmetic at every point (residuals and Jacobian counted as
+      in the sweep; for the second derivative also J and dF/dtheta at the
+      complex solution); for a finite-difference scheme, which
       evaluates no compiled function, the *stencil evaluations*: one per
       grid point at which its formula is applied (to all unknowns at once,
       as a compiled function is). ``work`` is their sum. It tracks the run
@@ -114,8 +117,8 @@ def work_precision_table(
     >>> list(t["method"])
     ['analytic', 'complex step', 'centred', 'analytic', 'complex step']
     >>> wd = t["derivative work [evaluations]"]
-    >>> int(wd[0]), int(wd[2])   # analytic: J and dF/dtheta at the 37 inputs; centred: 36 distinct points
-    (74, 36)
+    >>> int(wd[0]), int(wd[2])   # analytic: dF/dtheta at the 37 inputs; centred: 36 distinct points
+    (37, 36)
     """
     import pandas as pd
 
@@ -129,13 +132,7 @@ def work_precision_table(
         def run_sweep(inputs=inputs):
             return solve_sweep(mechanism, inputs, guess)
 
-        with count_evaluations(mechanism) as count:
-            s = run_sweep()
-        if count.total <= 0:  # pragma: no cover - numkin.compiled no longer goes through the counted functions
-            raise RuntimeError(
-                f"{mechanism.name}: no evaluation of the compiled loop equations was counted during the sweep; "
-                f"report.COUNTED_FUNCTIONS {sorted(COUNTED_FUNCTIONS)} no longer match numkin.compiled"
-            )
+        s = run_sweep()
         dq, d2q = exact_derivatives(s)
         done = {}  # the complex step, counted once: the reference of the analytic rows and a row of its own
         for o in (1, 2):
@@ -143,7 +140,7 @@ def work_precision_table(
                 done[o] = (silenced(analytic.complex_step, s, order=o), cs_count.total)
         cs1, cs2 = done[1][0][j], done[2][0][j]
         t_sweep = median_time(run_sweep, repeat) if repeat else math.nan
-        per_grid[n] = (run_sweep, s, dq[j], d2q[j], cs1, cs2, t_sweep, count.total,
+        per_grid[n] = (run_sweep, s, dq[j], d2q[j], cs1, cs2, t_sweep, sweep_evaluations(s),
                        stencil_evaluations(s), done)
 
     def method_fns(order):
