@@ -101,38 +101,59 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
         jump = np.flatnonzero(jump >= math.pi)
         if jump.size:
             ok &= ~(fine_mask & np.isin(k, k.take(jump)))
+    cond = _conds(ctx, jac, N)
+    n = X.shape[0]
+    redone = set()
+
+    def singular_at(i):
+        """Whether grid point i sits on a singular position (its tangent and orientation are noise)."""
+        if i not in redone:
+            return not cond[i] <= COND_TANGENT
+        v = ctx.eval1(X[:, i].tolist(), float(t[i]))
+        return v is None or not max(ctx.blocks.cond1(v[n : n + n * n])) <= COND_TANGENT
+
+    # A node on a singular position (a change point on the grid) gives the Hermite predictor
+    # and the orientation test nothing to trust: its segments are marched.
+    bad_nodes = np.flatnonzero(~(cond.take(nodes) <= COND_TANGENT))
+    if bad_nodes.size:
+        ok &= ~(fine_mask & (np.isin(k, bad_nodes) | np.isin(k + 1, bad_nodes)))
     redo = np.flatnonzero(~ok)
     if redo.size:
-        # Points the batch could not place safely are reached one by one from their left neighbour.
-        n = X.shape[0]
+        # Points the batch could not place safely are reached one by one from their left
+        # neighbour, or from the nearest point before it that is not on a singular position:
+        # the march then passes the singular one with its own tests of branch and tangent.
         for kk in redo.tolist():
             left = kk - 1
+            while left > 0 and singular_at(left):
+                left -= 1
             tl = float(t[left])
             xl = X[:, left].tolist()
-            v = ctx.eval1(xl, tl)
-            if v is not None and not max(ctx.blocks.cond1(v[n : n + n * n])) <= COND_TANGENT:
-                # on a singular position (a change point on the grid) the tangent is noise: the
-                # secant through the point before it continues the branch the nodes kept
-                dl = None
-            elif np.all(np.isfinite(D[:, left])):
+            if np.all(np.isfinite(D[:, left])):
                 dl = D[:, left].tolist()
             else:
-                dl, _ = ctx.local1(v)
+                dl, _ = ctx.local1(ctx.eval1(xl, tl))
             previous = (float(t[left - 1]), X[:, left - 1].tolist()) if left >= 1 else None
             xk, dk, ok_, iters[kk] = ctx.march(tl, xl, dl, O[:, left].tolist(), float(t[kk]), previous)
             X[:, kk], D[:, kk], O[:, kk] = xk, dk, ok_
+            redone.add(kk)
         f_redo, jac_redo = ctx.eval_batch(X[:, redo], t[redo])
         if N <= CHUNK:  # the batch's own rows, which may be arrays the kernel was given: not written into
             jac = [r.copy() if np.ndim(r) else r for r in jac]
         residual[redo] = _colmax(np.abs(f_redo)) / ctx.fscale
         jac = _put_rows(jac, jac_redo, redo, N)
+        cond[redo] = _colmax(ctx.blocks.cond(jac_redo, redo.size))
+    return residual, cond, jac
+
+
+def _conds(ctx, jac, N):
+    """The largest condition number of the loops' blocks at every point, CHUNK points at a time."""
     if N <= CHUNK:
-        return residual, _colmax(ctx.blocks.cond(jac, N)), jac
+        return _colmax(ctx.blocks.cond(jac, N))
     cond = np.empty(N)
     for c0 in range(0, N, CHUNK):
         c = slice(c0, min(N, c0 + CHUNK))
         cond[c] = _colmax(ctx.blocks.cond([r[c] if np.ndim(r) else r for r in jac], c.stop - c.start))
-    return residual, cond, jac
+    return cond
 
 
 def _put_rows(rows, sub, idx, N):
