@@ -276,7 +276,7 @@ def record_evaluations(mechanism, name: str, points: int) -> None:
 def count_evaluations(mechanism) -> Iterator[EvaluationCounter]:
     """Collect, inside a ``with`` block, the evaluation counts numkin records for ``mechanism``.
 
-    Sweeps (:attr:`Sweep.nfev`, :attr:`Sweep.njev`, as kernels ``"F"`` and
+    Sweeps (``Sweep.nfev``, ``Sweep.njev``, as kernels ``"F"`` and
     ``"J"``) and the exact and complex-step derivatives of
     :mod:`numkin.analytic` record the point evaluations of the compiled loop
     equations they spend; the counts are exact and the same in every run.

@@ -461,14 +461,15 @@ def _resolve_short_name(app, env, node, contnode):
 
 
 class DocstringDefects(logging.Filter):
-    """Markup errors inside numkin's docstrings, printed as notes instead of failing ``-W``.
+    """Markup errors inside numkin's docstrings, printed as notes instead of failing ``-W`` on request.
 
     A docstring whose reStructuredText does not parse (an undefined
     ``|substitution|`` from an absolute value written ``|x|``, a malformed
     table) or that refers to a name documented nowhere is listed, with its
-    place, after the build; the build fails on it
-    only when ``NUMKIN_DOCS_STRICT_DOCSTRINGS=1``. Every other warning, and
-    any problem in the pages of docs/ and in the lessons, fails the build.
+    place, after the build, instead of failing it, only when
+    ``NUMKIN_DOCS_STRICT_DOCSTRINGS=0`` (to see them all at once while
+    mending them). By default they fail the build, like every other warning
+    and any problem in the pages of docs/ and in the lessons.
     """
 
     def __init__(self) -> None:
@@ -495,7 +496,7 @@ def _report_defects(app, exception) -> None:
     defects = app.numkin_docstring_defects.found
     if defects:
         log = sphinx_logging.getLogger(__name__)
-        log.info(f"\ndocstring defects ({len(defects)}; NUMKIN_DOCS_STRICT_DOCSTRINGS=1 makes them errors):")
+        log.info(f"\ndocstring defects ({len(defects)}; errors unless NUMKIN_DOCS_STRICT_DOCSTRINGS=0):")
         for text in defects:
             log.info(f"  {text}")
 
@@ -505,7 +506,7 @@ def setup(app):
     app.connect("include-read", _include_read)
     app.connect("build-finished", _check_links)
     app.connect("missing-reference", _resolve_short_name)
-    if os.environ.get("NUMKIN_DOCS_STRICT_DOCSTRINGS", "") not in ("1", "yes", "true"):
+    if os.environ.get("NUMKIN_DOCS_STRICT_DOCSTRINGS", "1") in ("0", "no", "false"):
         app.numkin_docstring_defects = DocstringDefects()
         for handler in logging.getLogger(sphinx_logging.NAMESPACE).handlers:
             if isinstance(handler, sphinx_logging.WarningStreamHandler):

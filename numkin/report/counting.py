@@ -47,8 +47,8 @@ COUNTED_FUNCTIONS = {
 def sweep_evaluations(sweep: Sweep) -> int:
     """Point evaluations of the compiled loop equations spent by a sweep: ``nfev + njev``.
 
-    Read from the sweep's own record (:attr:`~numkin.Sweep.nfev`,
-    :attr:`~numkin.Sweep.njev`): exact, the same in every run.
+    Read from the sweep's own record (``Sweep.nfev``,
+    ``Sweep.njev``): exact, the same in every run.
 
     Examples
     --------
