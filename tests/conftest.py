@@ -1,4 +1,5 @@
-"""Test configuration: a private kernel cache, and reproducible property tests in continuous integration.
+"""Test configuration: a private kernel cache, reproducible property tests in continuous
+integration, and :func:`load_module` for the assignment scripts (not a package).
 
 The suite never writes the user's cache of compiled kernels: ``NUMKIN_CACHE_DIR``
 points at a temporary folder made for this test session and removed after it
@@ -9,8 +10,10 @@ variable ``CI`` set it draws the same examples every time, so a submission is
 judged on a fixed set of linkages.
 """
 
+import importlib.util
 import os
 import shutil
+import sys
 import tempfile
 
 from hypothesis import settings
@@ -26,3 +29,12 @@ def pytest_sessionfinish(session, exitstatus):
 settings.register_profile("ci", derandomize=True, print_blob=True)
 if os.environ.get("CI"):
     settings.load_profile("ci")
+
+
+def load_module(name, path):
+    """Import the Python file ``path`` as module ``name`` (the assignments folder is no package)."""
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    return module

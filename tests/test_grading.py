@@ -20,17 +20,16 @@ time.  The environment needs PyPI (or a local index) to be reachable.
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import os
 import re
 import subprocess
-import sys
 import zipfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
+from conftest import load_module
 
 pytestmark = pytest.mark.slow
 
@@ -39,12 +38,7 @@ ASSIGNMENTS = ROOT / "assignments"
 WORKERS = max(1, min(2, os.cpu_count() or 1))
 
 
-def _load(name: str, path: Path):
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    spec.loader.exec_module(module)
-    return module
+_load = load_module
 
 
 build = _load("numkin_assignments_build", ASSIGNMENTS / "build.py")

@@ -9,25 +9,19 @@ Gauss-Chebyshev values, RK4 solution and crossing are compared with them.
 
 from __future__ import annotations
 
-import importlib.util
 import math
 import runpy
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import load_module
 
 ROOT = Path(__file__).resolve().parents[1]
 LESSON = ROOT / "notebooks" / "07_quadrature_and_elastic_pendulum.py"
 
 
-def _load(name: str, path: Path):
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    spec.loader.exec_module(module)
-    return module
+_load = load_module
 
 
 exam004 = _load("numkin_assignments_exam004", ROOT / "assignments" / "exam004.py")
