@@ -84,6 +84,8 @@ Examples
 
 from __future__ import annotations
 
+import importlib
+import pkgutil
 from typing import Iterable, Sequence
 
 from .convergence import convergence_table
@@ -250,3 +252,17 @@ def scene_report(scene, *, repeat: int | None = None) -> dict:
                 "are per rad/s of input speed (d/dtheta and d2/dtheta2)."
             ).strip()
     return tables
+
+
+def __getattr__(name: str):
+    """A ``*_table`` function of any module of this package, found by its name.
+
+    A new table family is one new module here: ``numkin.report.<name>_table``
+    finds it without an import line in this file.
+    """
+    if name.endswith("_table") and not name.startswith("_"):
+        for info in pkgutil.iter_modules(__path__):
+            module = importlib.import_module(f"{__name__}.{info.name}")
+            if name in getattr(module, "__all__", ()):
+                return getattr(module, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
