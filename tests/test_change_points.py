@@ -90,6 +90,9 @@ def test_change_point_linkages_never_switch_branch(a, ratio, branch, start, coun
     meeting = (_wrap(inputs) < 1e-6) | (_wrap(inputs - np.pi) < 1e-6)
     assert (parallelogram | meeting).all() or (~parallelogram | meeting).all()
     miss = np.minimum(*[_wrap(theta4 - closed_form(inputs, a, b, a, b, sign)[1]) for sign in (1.0, -1.0)])
-    assert miss.max() < 1e-6
+    assert miss[~meeting].max(initial=0.0) < 1e-6
+    # where the branches meet the root is double: Newton halves its error per step there and
+    # stops once the residual (the error squared) is at the round-off floor
+    assert miss[meeting].max(initial=0.0) < 1e-5
     if count > 1:  # and the angles are continuous: no neighbour step near a turn
         assert np.abs(np.diff(theta4)).max() < np.pi
