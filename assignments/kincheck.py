@@ -27,6 +27,7 @@ __all__ = [
     "SUSPECTS",
     "angles",
     "array",
+    "floats",
     "at",
     "band",
     "closure",
@@ -93,6 +94,16 @@ def _not_set(x) -> bool:
     return x is None or x is Ellipsis
 
 
+def floats(x, name: str, what: str = "an array of numbers") -> np.ndarray:
+    """``x`` as a float array, or the student's message: not set yet, or not ``what``."""
+    if _not_set(x):
+        raise AssertionError(f"`{name}` is not set yet: run the cell that computes it")
+    try:
+        return np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise AssertionError(f"`{name}` should be {what}, got {type(x).__name__}") from None
+
+
 def _grid_angles(grid) -> np.ndarray:
     start, stop, step = grid
     return np.arange(start, stop + step / 2, step, dtype=float)
@@ -108,14 +119,7 @@ def array(x, name: str, grid=FULL_TURN) -> np.ndarray:
 
     A grid that stops one step short (0°, 1°, …, 359°) is accepted too.
     """
-    if _not_set(x):
-        raise AssertionError(f"`{name}` is not set yet: run the cell that computes it")
-    try:
-        values = np.asarray(x, dtype=float)
-    except (TypeError, ValueError):
-        raise AssertionError(
-            f"`{name}` should be an array of numbers, got {type(x).__name__}"
-        ) from None
+    values = floats(x, name)
     values = np.atleast_1d(np.squeeze(values))
     count = _grid_angles(grid).size
     if values.ndim != 1 or values.size not in (count, count - 1, count - 2):
@@ -139,12 +143,7 @@ def array(x, name: str, grid=FULL_TURN) -> np.ndarray:
 
 def rows(x, name: str, width: int, grid=FULL_TURN) -> np.ndarray:
     """``x`` as a float array of one row of ``width`` unknowns per grid angle, all finite."""
-    if _not_set(x):
-        raise AssertionError(f"`{name}` is not set yet: run the cell that computes it")
-    try:
-        values = np.asarray(x, dtype=float)
-    except (TypeError, ValueError):
-        raise AssertionError(f"`{name}` should be an array of numbers, got {type(x).__name__}") from None
+    values = floats(x, name)
     count = _grid_angles(grid).size
     if values.ndim == 2 and values.shape == (width, count):
         values = values.T
@@ -164,12 +163,7 @@ def rows(x, name: str, width: int, grid=FULL_TURN) -> np.ndarray:
 
 def listed(name: str, x, want, *, rtol: float = 1e-3, unit: str = "") -> None:
     """Compare a short list of numbers with ``want`` element by element (relative ``rtol``)."""
-    if _not_set(x):
-        raise AssertionError(f"`{name}` is not set yet: run the cell that computes it")
-    try:
-        got = np.atleast_1d(np.asarray(x, dtype=float)).ravel()
-    except (TypeError, ValueError):
-        raise AssertionError(f"`{name}` should be a list of numbers, got {type(x).__name__}") from None
+    got = np.atleast_1d(floats(x, name, "a list of numbers")).ravel()
     want = np.asarray(want, dtype=float)
     if got.shape != want.shape:
         raise AssertionError(f"`{name}` should hold {want.size} numbers, got {got.size}")
@@ -190,12 +184,7 @@ def _index(grid, deg: float) -> int:
 
 def at(x, name: str, deg: float, grid=FULL_TURN) -> float:
     """The value of ``x`` at θ = ``deg``: a number, or picked from an array over the grid."""
-    if _not_set(x):
-        raise AssertionError(f"`{name}` is not set yet: run the cell that computes it")
-    try:
-        values = np.asarray(x, dtype=float)
-    except (TypeError, ValueError):
-        raise AssertionError(f"`{name}` should be a number, got {type(x).__name__}") from None
+    values = floats(x, name, "a number")
     if values.size == 1:
         result = float(values.reshape(-1)[0])
     else:

@@ -41,12 +41,7 @@ def quadrature_rule(rule, *, n: int, cases) -> None:
 
 
 def _states(x, name: str, rows: int | None = None) -> np.ndarray:
-    if _not_set(x):
-        raise AssertionError(f"`{name}` is not set yet: run the cell that computes it")
-    try:
-        values = np.asarray(x, dtype=float)
-    except (TypeError, ValueError):
-        raise AssertionError(f"`{name}` should be an array of numbers, got {type(x).__name__}") from None
+    values = kc.floats(x, name)
     if values.ndim != 2 or (rows is not None and values.shape[0] != rows):
         want = f"{rows} rows" if rows is not None else "one row per time"
         raise AssertionError(f"`{name}` should have {want}, one state per row; got shape {np.shape(x)}")
