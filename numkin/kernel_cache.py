@@ -293,12 +293,18 @@ def _bundle_path(key: str) -> Path | None:
     return None if folder is None else folder / f"{key}.json"
 
 
+def _hex(key: str) -> str:
+    """A key as a file name: a key of :func:`bundle_key` as it is, any other text hashed."""
+    return key if re.fullmatch(r"[0-9a-f]{64}", key) else hashlib.sha256(key.encode()).hexdigest()
+
+
 def store_bundle(key: str, model: dict, kernels: list) -> None:
     """Keep a mechanism's description ``model`` (JSON data) and its generated functions ``kernels``
     (``f.numkin_kernel`` entries, referred to by position in ``model``) under ``key``.
 
     Their sources are written as one module, function ``k`` renamed ``_numkin_k<k>``.
     """
+    key = _hex(key)
     path = _bundle_path(key)
     if path is None:
         return
@@ -355,6 +361,7 @@ def load_bundle(key: str):
     An entry whose key, checksum or code shape is wrong is ignored (and so
     rebuilt by the caller). Loaded once per process.
     """
+    key = _hex(key)
     path = _bundle_path(key)
     if path in _BUNDLES:
         return _BUNDLES[path]

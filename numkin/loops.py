@@ -12,7 +12,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Callable, Iterable, Sequence
 
-__all__ = ["Loop", "as_symbol", "SymbolName", "LazyPoints"]
+__all__ = ["Loop", "as_symbol", "SymbolName", "LazyPoints", "describe", "check_lengths", "default_length_scale"]
 
 
 def as_symbol(name):
@@ -213,3 +213,59 @@ class LazyPoints(Mapping):
 
     def __repr__(self) -> str:
         return repr(dict(self))
+
+
+# --------------------------------------------------------- loops described by their names
+def describe(loops, input_symbol, parameters, points) -> dict:
+    """What numkin needs to know about loops besides their compiled kernels, by names only (JSON data).
+
+    ``{"input", "parameters": [[name, non-negative, sign undeclared], ...], "loops": [{"name",
+    "unknowns", "angles", "lengths"}, ...], "points": [names]}``: the kernel cache keeps it so a
+    mechanism can be checked and solved without sympy.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> t, x = sp.symbols("t x", real=True)
+    >>> r = sp.Symbol("r", positive=True)
+    >>> loop = Loop([x - r * sp.cos(t)], [x], name="shadow")
+    >>> describe([loop], t, {r: 1.0}, {"P": (x, 0)})["parameters"]
+    [['r', True, False]]
+    """
+    return {
+        "input": str(input_symbol),
+        "parameters": [[str(s), bool(s.is_positive or s.is_nonnegative), s.is_real is None] for s in parameters],
+        "loops": [{"name": lp.name, "unknowns": [str(u) for u in lp.unknowns],
+                   "angles": [str(u) for u in lp.unknowns if u in lp.angles],
+                   "lengths": sorted(str(s) for s in lp.length_symbols)} for lp in loops],
+        "points": [str(k) for k in (points or {})],
+    }
+
+
+def check_lengths(model: dict, value_of: dict) -> None:
+    """A parameter that is the length of a vector of a loop must not be negative.
+
+    A subtracted vector is written ``(-r4, theta4)``: the sign belongs in
+    the loop, not in the value. A signed distance (an offset that may be
+    negative) is declared so: ``sympy.Symbol("e", real=True)``. ``model`` is
+    :func:`describe`'s, ``value_of`` maps parameter names to values.
+    """
+    undeclared = {p for p, _, real_unknown in model["parameters"] if real_unknown}
+    for lp in model["loops"]:
+        for sym in lp["lengths"]:
+            value = value_of.get(sym)
+            if value is not None and value < 0 and sym in undeclared:
+                raise ValueError(
+                    f"loop '{lp['name']}': length {sym} = {value:g} is negative (a negative length mirrors "
+                    f"the linkage); write the vector as (-{sym}, angle) in the loop, or declare {sym} "
+                    f"real (sympy.Symbol('{sym}', real=True)) if it is a signed offset"
+                )
+
+
+def default_length_scale(model: dict, value_of: dict) -> float:
+    """The largest parameter that is a vector's length (else the largest parameter, else 1)."""
+    lengths = {s for lp in model["loops"] for s in lp["lengths"]}
+    values = [abs(v) for s, v in value_of.items() if s in lengths]
+    if not values:
+        values = [abs(v) for v in value_of.values()]
+    return max(values) if values and max(values) > 0 else 1.0

@@ -17,7 +17,7 @@ import numpy as np
 
 from .compiled import BlockStructure, CompiledMechanism, KernelNotKept, compiled_once, export_function, import_function
 from .errors import AssemblyError, ConvergenceError
-from .loops import LazyPoints, Loop, SymbolName, as_symbol
+from .loops import LazyPoints, Loop, SymbolName, as_symbol, check_lengths, default_length_scale, describe
 from .newton import JACOBIANS, TOL_MIN, NewtonResult, check_tol, iterate, residual_floor, scaled_cond
 from .units import finite
 
@@ -121,7 +121,7 @@ class Mechanism:
             self.parameters[sym] = value
         self._check_symbols()
         self.unknown_symbols = [u for lp in self.loops for u in lp.unknowns]
-        self._setup(self._describe(points), list(self.parameters.values()), name=name, guess=guess,
+        self._setup(describe(self.loops, self.input_symbol, self.parameters, points), list(self.parameters.values()), name=name, guess=guess,
                     guess_input=guess_input, links=links, ground=ground, length_unit=length_unit,
                     length_scale=length_scale, assembly_check=assembly_check, branch=branch)
         import sympy as sp
@@ -133,17 +133,6 @@ class Mechanism:
             self.input_symbol,
             list(self.parameters),
         )
-
-    def _describe(self, points) -> dict:
-        """What the cache keeps about the loops besides their kernels (names only: JSON data)."""
-        return {
-            "input": str(self.input_symbol),
-            "parameters": [[str(s), bool(s.is_positive or s.is_nonnegative), s.is_real is None] for s in self.parameters],
-            "loops": [{"name": lp.name, "unknowns": [str(u) for u in lp.unknowns],
-                       "angles": [str(u) for u in lp.unknowns if u in lp.angles],
-                       "lengths": sorted(str(s) for s in lp.length_symbols)} for lp in self.loops],
-            "points": [str(k) for k in (points or {})],
-        }
 
     def _setup(self, model: dict, values: list, *, name, guess, guess_input, links, ground, length_unit,
                length_scale, assembly_check, branch) -> None:
@@ -158,7 +147,7 @@ class Mechanism:
             if v < 0 and nonnegative:
                 raise ValueError(f"parameter {p} = {v:g} is negative, but {p} is declared non-negative")
         value_of = {p: v for (p, _, _), v in zip(params, values)}
-        self._check_lengths(model, value_of)
+        check_lengths(model, value_of)
         self.unknowns = tuple(u for lp in model["loops"] for u in lp["unknowns"])
         self.angles = tuple(u for lp in model["loops"] for u in lp["unknowns"] if u in lp["angles"])
         self.loop_slices = []
@@ -168,7 +157,7 @@ class Mechanism:
             start += len(lp["unknowns"])
         self.length_unit = length_unit
         if length_scale is None:
-            length_scale = self._default_length_scale(model, value_of)
+            length_scale = default_length_scale(model, value_of)
         self.length_scale = float(length_scale)
         if not (math.isfinite(self.length_scale) and self.length_scale > 0):
             raise ValueError(f"length_scale must be a positive number, got {self.length_scale}")
@@ -217,7 +206,7 @@ class Mechanism:
         ...     t, x = sp.symbols("t x", real=True)
         ...     r = sp.Symbol("r", real=True)
         ...     return [Loop([x - r * sp.cos(t)], [x])], t, [r], {"P": (x, 0)}
-        >>> m = Mechanism.from_model("a point on a circle's shadow", model, [2.0], name="shadow")
+        >>> m = Mechanism.from_model("a point on a circle's shadow", model, [2.0], guess={"x": 1.0})
         >>> m.unknowns, float(m.solve(0.0).x[0])
         (('x',), 2.0)
         """
@@ -247,7 +236,7 @@ class Mechanism:
             return
         kernels: list = []
         try:
-            model = self._describe(self.points)
+            model = describe(self.loops, self.input_symbol, self.parameters, self.points)
             model["kernels"] = self.compiled.export_kernels(kernels)
             if "point_function" in self.__dict__ or "point_function" in self.__dict__.get("_loaded", {}):
                 model["point_kernel"] = export_function(self.point_function, kernels)
@@ -343,33 +332,6 @@ class Mechanism:
                     "its unknowns, earlier unknowns, the input nor a parameter with a value"
                 )
             known |= set(lp.unknowns)
-
-    @staticmethod
-    def _check_lengths(model: dict, value_of: dict) -> None:
-        """A parameter that is the length of a vector of a loop must not be negative.
-
-        A subtracted vector is written ``(-r4, theta4)``: the sign belongs in
-        the loop, not in the value. A signed distance (an offset that may be
-        negative) is declared so: ``sympy.Symbol("e", real=True)``.
-        """
-        undeclared = {p for p, _, real_unknown in model["parameters"] if real_unknown}
-        for lp in model["loops"]:
-            for sym in lp["lengths"]:
-                value = value_of.get(sym)
-                if value is not None and value < 0 and sym in undeclared:
-                    raise ValueError(
-                        f"loop '{lp['name']}': length {sym} = {value:g} is negative (a negative length mirrors "
-                        f"the linkage); write the vector as (-{sym}, angle) in the loop, or declare {sym} "
-                        f"real (sympy.Symbol('{sym}', real=True)) if it is a signed offset"
-                    )
-
-    @staticmethod
-    def _default_length_scale(model: dict, value_of: dict) -> float:
-        lengths = {s for lp in model["loops"] for s in lp["lengths"]}
-        values = [abs(v) for s, v in value_of.items() if s in lengths]
-        if not values:
-            values = [abs(v) for v in value_of.values()]
-        return max(values) if values and max(values) > 0 else 1.0
 
     # --------------------------------------------------------------- numerics
     def residual_function(self, inputs):
