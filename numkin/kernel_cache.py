@@ -54,7 +54,7 @@ _FORMAT = 2
 #: Built-in names generated code may use.
 _BUILTINS = frozenset({"range", "len", "abs", "float", "complex", "int"})
 #: Modules of numkin whose code decides what a mechanism compiles to (their digest is part of a bundle's key).
-_DERIVING = ("compiled.py", "loops.py", "mechanism.py", "kernel_cache.py")
+_DERIVING = ("compiled.py", "loops.py", "mechanism.py", "kernel_cache.py", "assemble.py")
 #: Bundles loaded in this process: path -> (model, functions).
 _BUNDLES: dict = {}
 
