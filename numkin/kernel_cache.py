@@ -346,10 +346,11 @@ def _bundle_functions(key: str, entry: dict) -> list | None:
         exec(code, ns)  # noqa: S102 - checked above
         spaces[module] = ns
     functions = []
+    lines = entry["source"].splitlines(keepends=True)
     for k, (fn, (module, nargs)) in enumerate(zip(tree.body, table)):
         f = spaces[module][f"_numkin_k{k}"]
         used = {n.id for n in ast.walk(fn) if isinstance(n, ast.Name)}
-        f.numkin_kernel = {"name": fn.name, "source": ast.get_source_segment(entry["source"], fn), "nargs": nargs,
+        f.numkin_kernel = {"name": fn.name, "source": "".join(lines[fn.lineno - 1 : fn.end_lineno]), "nargs": nargs,
                            "names": {n: w for n, w in names[module].items() if n in used}, "module": module}
         functions.append(f)
     return functions

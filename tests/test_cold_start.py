@@ -275,6 +275,14 @@ def test_kernels_compiled_later_join_the_bundle(tmp_path, monkeypatch):
     assert [float(v) for v in np.ravel(second)] == [float(v) for v in np.ravel(first)]
     # with q' = 0 only d2F/dt2 is left: the first residual r cos(t) + l cos(phi) - x gives -r cos(0) = -80
     assert float(np.ravel(first)[0]) == -80.0
+    # a kernel first compiled on a mechanism from the bundle joins it, with the kernels loaded before
+    assert "scalar_F" not in kernel_cache.load_bundle(_only_bundle_key(tmp_path))[0]["kernels"]
+    f = again.compiled.scalar_F(0.0, 280.0, 0.0, *again.parameter_values)   # derived with sympy now
+    assert f == pytest.approx([0.0, 0.0], abs=1e-12)   # phi = 0, x = r + l at theta = 0 closes the loop
+    third = linkages.slider_crank(80, 200)
+    assert {"_second", "scalar_F"} <= set(vars(third.compiled)["_loaded"])   # kept, installed on first use
+    assert third.compiled.scalar_F(0.0, 280.0, 0.0, *third.parameter_values) == f
+    np.testing.assert_array_equal(third.compiled._second(*q, 0.0, 0.0, np.zeros(1), *third.parameter_values), second)
 
 
 def _only_bundle_key(tmp_path) -> str:
