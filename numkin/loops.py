@@ -219,7 +219,7 @@ class LazyPoints(Mapping):
 def describe(loops, input_symbol, parameters, points) -> dict:
     """What numkin needs to know about loops besides their compiled kernels, by names only (JSON data).
 
-    ``{"input", "parameters": [[name, non-negative, sign undeclared], ...], "loops": [{"name",
+    ``{"input", "input_assumptions", "parameters": [[name, non-negative, sign undeclared], ...], "loops": [{"name",
     "unknowns", "angles", "lengths"}, ...], "points": [names]}``: the kernel cache keeps it so a
     mechanism can be checked and solved without sympy.
 
@@ -234,6 +234,7 @@ def describe(loops, input_symbol, parameters, points) -> dict:
     """
     return {
         "input": str(input_symbol),
+        "input_assumptions": {k: bool(v) for k, v in input_symbol.assumptions0.items()},
         "parameters": [[str(s), bool(s.is_positive or s.is_nonnegative), s.is_real is None] for s in parameters],
         "loops": [{"name": lp.name, "unknowns": [str(u) for u in lp.unknowns],
                    "angles": [str(u) for u in lp.unknowns if u in lp.angles],

@@ -258,6 +258,7 @@ class Mechanism:
         self = cls.__new__(cls)
         self._setup(kept, values, name=name, length_unit=length_unit, **setup)
         self._model = model
+        self._input_assumptions = dict(kept["input_assumptions"])
         self.loops = [Loop.placeholder(lp["name"], self._materialize) for lp in kept["loops"]]
         self.points = LazyPoints(kept["points"], self._materialize)
         self._jacobian_zeros = kept["zeros"]
@@ -306,13 +307,22 @@ class Mechanism:
         sym = self.__dict__.get("_input_symbol")
         if sym is not None:
             return sym
-        if "sympy" in sys.modules or "_model" not in self.__dict__:
+        if "_model" not in self.__dict__:
             return self._input_symbol
-        return SymbolName(self.input_name, lambda: self._input_symbol)
+        if "sympy" in sys.modules:
+            return self._sympy_input()
+        return SymbolName(self.input_name, self._sympy_input)
 
     @input_symbol.setter
     def input_symbol(self, value) -> None:
         self.__dict__["_input_symbol"] = value
+
+    def _sympy_input(self):
+        """The input symbol, equal to the model's, made without deriving the model."""
+        import sympy as sp
+
+        self.input_symbol = sp.Symbol(self.input_name, **self._input_assumptions)
+        return self.input_symbol
 
     # ------------------------------------------------------------------ checks
     def _check_symbols(self):

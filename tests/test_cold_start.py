@@ -318,3 +318,28 @@ def test_bad_values_are_named_on_the_cached_path_too(tmp_path, monkeypatch):
         assert ("_model" in vars(m)) == (attempt == 1)
         x = float(m.solve(0.0).x[1])
         assert x == pytest.approx(1.0 + math.sqrt(9.0 - 0.25), abs=1e-12)
+
+
+def test_the_input_symbol_of_a_cached_mechanism_before_sympy(tmp_path):
+    code = textwrap.dedent(
+        """
+        import json, sys
+        from numkin import linkages
+        m = linkages.four_bar(4, 1, 3, 3)
+        s = m.input_symbol
+        out = {"sympy": "sympy" in sys.modules, "text": f"{s} [deg]", "name": s == "theta2"}
+        out["real"] = s.is_real                    # a symbol's attribute: sympy imported now
+        import sympy as sp
+        t = sp.Symbol("theta2", real=True)
+        out["same"] = sp.sympify(s) == t and m.input_symbol == t and isinstance(m.input_symbol, sp.Symbol)
+        out["model_derived"] = "_model" not in vars(m)   # the symbol alone derives no loops
+        out["residual"] = str(m.loops[0].residuals[0])
+        out["derived_now"] = "_model" not in vars(m)
+        print(json.dumps(out))
+        """
+    )
+    run(code, tmp_path / "kernels")
+    out = run(code, tmp_path / "kernels")
+    assert out == {"sympy": False, "text": "theta2 [deg]", "name": True, "real": True, "same": True,
+                   "model_derived": False, "derived_now": True,
+                   "residual": "-r1 + r2*cos(theta2) + r3*cos(theta3) - r4*cos(theta4)"}
