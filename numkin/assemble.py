@@ -207,19 +207,43 @@ def _build_linkage(scene: Scene):
 
 
 def _build_loops(scene: Scene):
+    """A mechanism written as loops, through the kernel cache: keyed by the scene's expressions as
+    written, so a second run of the scene needs no sympy."""
+    import json
+
+    from . import kernel_cache
+    from .mechanism import Mechanism
+
+    spec = scene.custom
+    written = {k: spec[k] for k in ("input", "loops", "points")}
+    written["dimensions"] = list(scene.dimensions)
+    key = kernel_cache.bundle_key("scene loops", json.dumps(written, sort_keys=True))
+    try:
+        return Mechanism.from_model(
+            key, lambda: _loops_model(scene), list(scene.dimensions.values()),
+            name=spec.get("name") or scene.title or scene.name, links=spec["links"], ground=spec["ground"],
+            length_unit=scene.unit,
+        )
+    except SceneError:
+        raise
+    except ValueError as error:
+        scene.fail("[mechanism]", str(error))
+
+
+def _loops_model(scene: Scene):
+    """The scene's loops, input, dimension symbols and points as sympy objects (see :meth:`Mechanism.from_model`)."""
     import sympy as sp
 
     from .loops import Loop
-    from .mechanism import Mechanism
 
     spec = scene.custom
     input_sym = sp.Symbol(spec["input"], real=True)
     names = {spec["input"]: input_sym}
-    params = {}
-    for key, value in scene.dimensions.items():
+    symbols = []
+    for key in scene.dimensions:
         sym = sp.Symbol(key, real=True)
         names[key] = sym
-        params[sym] = value
+        symbols.append(sym)
     loops = []
     for k, lp in enumerate(spec["loops"]):
         where = f"[[mechanism.loops]] {k + 1} ('{lp['name']}')"
@@ -252,13 +276,7 @@ def _build_loops(scene: Scene):
     points = {
         p: tuple(parse_expression(scene, c, names, f"[mechanism.points] {p}") for c in xy) for p, xy in spec["points"].items()
     }
-    try:
-        return Mechanism(
-            loops, input_sym, params, name=spec.get("name") or scene.title or scene.name, points=points,
-            links=spec["links"], ground=spec["ground"], length_unit=scene.unit,
-        )
-    except ValueError as error:
-        scene.fail("[mechanism]", str(error))
+    return loops, input_sym, symbols, points
 
 
 def _check_names(scene: Scene, mech) -> None:

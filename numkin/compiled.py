@@ -21,14 +21,19 @@ from __future__ import annotations
 from functools import cached_property, lru_cache
 
 import numpy as np
-import sympy as sp
 
 from .blocks import BlockStructure, stack_rows
 
 __all__ = [
     "vector_function", "scalar_function", "CompiledMechanism", "BlockStructure", "stack_rows", "MATH_ERRORS",
-    "acceleration_rhs", "rates", "jacobian_rows",
+    "acceleration_rhs", "rates", "jacobian_rows", "KERNEL_ROLES", "compiled_once", "export_function",
+    "import_function", "KernelNotKept",
 ]
+
+#: The numeric functions of a mechanism a bundle of the kernel cache keeps: role -> attribute of
+#: :class:`CompiledMechanism`. The first three are compiled with the mechanism, the others on first use.
+KERNEL_ROLES = {"F": "_F", "J": "_J", "F_t": "_Ft", "fast": "_fast", "scalar_F": "scalar_F", "scalar_FJT": "scalar_FJT",
+                "second": "_second"}
 
 #: Errors the ``math`` module raises where numpy returns NaN or inf.
 MATH_ERRORS = (ValueError, ZeroDivisionError, OverflowError)
@@ -55,6 +60,8 @@ def vector_function(exprs, args, varying=None):
     broadcast to the arrays' shape, so the result is always one stacked
     array. Its dtype follows the arguments (complex in, complex out).
     """
+    import sympy as sp
+
     exprs = [sp.sympify(e) for e in exprs]
     args = tuple(args)
     varying = set(args if varying is None else varying)
@@ -62,7 +69,14 @@ def vector_function(exprs, args, varying=None):
     fixed = [k for k in range(len(exprs)) if k not in set(moving)]
     f_moving = _lambdify(tuple(exprs[k] for k in moving), args, "numpy", True) if moving else None
     f_fixed = _lambdify(tuple(exprs[k] for k in fixed), args, "numpy", False) if fixed else None
-    m = len(exprs)
+    f = _stacked(moving, fixed, f_moving, f_fixed)
+    f.expressions = exprs
+    return f
+
+
+def _stacked(moving: list, fixed: list, f_moving, f_fixed):
+    """``f(*values)``: the rows of ``f_moving`` (arrays) and ``f_fixed`` (numbers) stacked in one array."""
+    m = len(moving) + len(fixed)
 
     if not fixed:
 
@@ -79,7 +93,7 @@ def vector_function(exprs, args, varying=None):
                 arr[moving] = f_moving(*values)
             return arr
 
-    f.expressions = exprs
+    f.parts = ("stacked", list(moving), list(fixed), f_moving, f_fixed)
     return f
 
 
@@ -98,6 +112,8 @@ def hoist_fixed_terms(exprs, unknowns):
     Returns ``(new expressions, symbols, their expressions)``: evaluate the
     latter once per sweep and pass them as extra arguments.
     """
+    import sympy as sp
+
     unknowns = set(unknowns)
     exprs = [sp.sympify(e) for e in exprs]
     trig = set().union(*(e.atoms(sp.sin, sp.cos) for e in exprs))
@@ -135,6 +151,8 @@ def scalar_function(exprs, args):
     (``math.sqrt(-1)``) are raised as ``ValueError`` etc. (:data:`MATH_ERRORS`);
     callers treat them as a non-finite result.
     """
+    import sympy as sp
+
     exprs = tuple(sp.sympify(e) for e in exprs)
     args = tuple(args)
     f = _lambdify(exprs, args, "math", True)
@@ -143,13 +161,82 @@ def scalar_function(exprs, args):
     except MATH_ERRORS:
         pass
     except Exception:  # a function the math module does not have
-        g = vector_function(exprs, args)
-
-        def f(*values):
-            return [float(v) for v in g(*values)]
-
+        f = _floats(vector_function(exprs, args))
     return f
 
+
+def _floats(g):
+    """``f(*values) -> list of floats`` from a stacked-array function ``g`` (a scalar function through numpy)."""
+
+    def f(*values):
+        return [float(v) for v in g(*values)]
+
+    f.parts = ("floats", g)
+    return f
+
+
+class KernelNotKept(Exception):
+    """A generated function that the kernel cache cannot keep (its code uses more than numpy or math)."""
+
+
+def export_function(f, kernels: list):
+    """How to rebuild ``f`` from kept kernels (JSON data); the kernels it needs are appended to ``kernels``.
+
+    Raises :class:`KernelNotKept` if a piece of ``f`` cannot be kept.
+    """
+    if f is None:
+        return None
+    parts = getattr(f, "parts", None)
+    if parts is not None and parts[0] == "stacked":
+        _, moving, fixed, f_moving, f_fixed = parts
+        return {"moving": moving, "fixed": fixed, "f_moving": export_function(f_moving, kernels),
+                "f_fixed": export_function(f_fixed, kernels)}
+    if parts is not None and parts[0] == "floats":
+        return {"floats": export_function(parts[1], kernels)}
+    entry = getattr(f, "numkin_kernel", None)
+    if entry is None:
+        raise KernelNotKept(getattr(f, "__name__", repr(f)))
+    kernels.append(entry)
+    return {"kernel": len(kernels) - 1}
+
+
+def import_function(spec, functions: list):
+    """The function :func:`export_function` described, from the loaded kernels ``functions``."""
+    if spec is None:
+        return None
+    if "kernel" in spec:
+        return functions[spec["kernel"]]
+    if "floats" in spec:
+        return _floats(import_function(spec["floats"], functions))
+    return _stacked(spec["moving"], spec["fixed"], import_function(spec["f_moving"], functions),
+                    import_function(spec["f_fixed"], functions))
+
+
+
+class compiled_once(cached_property):
+    """A cached property whose value may come ready-made from ``instance._loaded`` (the kernel
+    cache), else is computed and reported to ``instance._on_compile()`` if set (so the kernel
+    cache keeps it)."""
+
+    def __get__(self, instance, owner=None):
+        if instance is None:
+            return self
+        known = instance.__dict__
+        if self.attrname in known:
+            return known[self.attrname]
+        loaded = known.get("_loaded", {}).pop(self.attrname, None)
+        if loaded is not None:  # from the kernel cache: installed on first use, like a compiled one
+            known[self.attrname] = loaded
+            return loaded
+        value = super().__get__(instance, owner)
+        hook = known.get("_on_compile")
+        if hook is not None:
+            hook()
+        return value
+
+
+#: Attributes of a :class:`CompiledMechanism` that are sympy objects (derived on first use when loaded from a bundle).
+_SYMBOLIC = ("residuals", "unknowns", "input_symbol", "parameters", "args", "varying", "jacobian_matrix")
 
 
 class CompiledMechanism:
@@ -159,6 +246,9 @@ class CompiledMechanism:
     array of inputs, parameter values are bound when called. The position
     functions (``F``, ``J`` and ``F_t``) are compiled on construction; the
     second-order function used for accelerations only on first use.
+    :meth:`from_kernels` makes one from kept kernels without sympy: its
+    symbolic attributes (``residuals``, ``jacobian_matrix``, ``unknowns``,
+    ``args``, ...) are then derived when first read.
 
     Parameters
     ----------
@@ -170,20 +260,75 @@ class CompiledMechanism:
     """
 
     def __init__(self, residuals, unknowns, input_symbol, parameters):
-        self.residuals = sp.Matrix(residuals)
-        self.unknowns = list(unknowns)
-        self.input_symbol = input_symbol
-        self.parameters = list(parameters)
+        self._symbolic(residuals, unknowns, input_symbol, parameters)
         self.n = len(self.unknowns)
-        self.args = [*self.unknowns, input_symbol, *self.parameters]
-        jac = self.residuals.jacobian(self.unknowns)
-        self.jacobian_matrix = jac
-        self.varying = [*self.unknowns, input_symbol]
+        jac = self.jacobian_matrix
         self._F = vector_function(list(self.residuals), self.args, self.varying)
         self._J = vector_function(list(jac), self.args, self.varying)
         self._Ft = vector_function(list(self.residuals.diff(input_symbol)), self.args, self.varying)
 
-    @cached_property
+    def _symbolic(self, residuals, unknowns, input_symbol, parameters) -> None:
+        import sympy as sp
+
+        self.residuals = sp.Matrix(residuals)
+        self.unknowns = list(unknowns)
+        self.input_symbol = input_symbol
+        self.parameters = list(parameters)
+        self.args = [*self.unknowns, input_symbol, *self.parameters]
+        self.jacobian_matrix = self.residuals.jacobian(self.unknowns)
+        self.varying = [*self.unknowns, input_symbol]
+
+    @classmethod
+    def from_kernels(cls, n: int, roles: dict, functions: list, symbolic) -> "CompiledMechanism":
+        """A compiled mechanism of ``n`` unknowns from kept kernels, without sympy.
+
+        ``roles`` maps each of :data:`KERNEL_ROLES` to what :func:`export_function`
+        wrote; ``functions`` are the loaded kernels; ``symbolic()`` returns
+        ``(residuals, unknowns, input_symbol, parameters)`` when a symbolic
+        attribute is first read.
+        """
+        self = cls.__new__(cls)
+        self.n = int(n)
+        self._model = symbolic
+        self._loaded = {}
+        for role, spec in roles.items():
+            if role == "fast":
+                value = (import_function(spec["rows"], functions), import_function(spec["terms"], functions))
+            else:
+                value = import_function(spec, functions)
+            if role in ("F", "J", "F_t"):
+                self.__dict__[KERNEL_ROLES[role]] = value
+            else:
+                self._loaded[KERNEL_ROLES[role]] = value
+        for role in ("F", "J", "F_t"):
+            if KERNEL_ROLES[role] not in self.__dict__:
+                raise KeyError(role)
+        return self
+
+    def __getattr__(self, name):
+        model = self.__dict__.get("_model")
+        if name in _SYMBOLIC and model is not None:
+            del self.__dict__["_model"]
+            self._symbolic(*model())
+            return getattr(self, name)
+        raise AttributeError(f"'CompiledMechanism' object has no attribute {name!r}")
+
+    def export_kernels(self, kernels: list) -> dict:
+        """The numeric functions compiled so far, as :func:`export_function` describes them
+        (role -> JSON data; the kernels are appended to ``kernels``)."""
+        out = {}
+        known = {**self.__dict__.get("_loaded", {}), **self.__dict__}
+        for role, attr in KERNEL_ROLES.items():
+            if attr not in known:
+                continue
+            value = known[attr]
+            if role == "fast":
+                out[role] = {"rows": export_function(value[0], kernels), "terms": export_function(value[1], kernels)}
+            else:
+                out[role] = export_function(value, kernels)
+        return out
+
+    @compiled_once
     def _fast(self):
         """Residual-and-Jacobian rows compiled for many points, with what does not change
         during a Newton solve taken out: see :func:`hoist_fixed_terms`."""
@@ -210,12 +355,12 @@ class CompiledMechanism:
             fixed = self.fixed_terms(t, p)
         return self._fast[0](*q, t, *fixed, *p)
 
-    @cached_property
+    @compiled_once
     def scalar_F(self):
         """Residuals at one point: ``scalar_F(*q, t, *p) -> list`` (``math`` module, floats)."""
         return scalar_function(list(self.residuals), self.args)
 
-    @cached_property
+    @compiled_once
     def scalar_FJT(self):
         """Residuals, Jacobian rows and dF/dt at one point, one flat list of n + n*n + n floats."""
         exprs = list(self.residuals) + list(self.jacobian_matrix) + list(self.residuals.diff(self.input_symbol))
@@ -239,11 +384,13 @@ class CompiledMechanism:
         rhs = -self.F_t(q, t, p).T[..., None]
         return np.linalg.solve(self.J(q, t, p), rhs)[..., 0].T
 
-    @cached_property
+    @compiled_once
     def _second(self):
         """The acceleration right-hand side ``G_q q' + G_t`` (``G = J q' + F_t``) at many points:
         ``f(*q, *dq, t, *p) -> n rows`` ((N,) arrays, or numbers where constant). Derived on
         first use; generated code kept like every kernel's (in memory per shape, on disk)."""
+        import sympy as sp
+
         n = self.n
         dq = [sp.Symbol(f"_numkin_dq{k}") for k in range(n)]
         t = self.input_symbol

@@ -1,15 +1,29 @@
 """A disk cache of generated kernels: the code ``sympy.lambdify`` writes, kept between runs.
 
-A kernel is keyed by the expressions' structure (``sympy.srepr``), its
-arguments, the target module (``numpy`` or ``math``), whether common
-subexpressions were eliminated, and the versions of numkin, sympy, numpy and
-Python; a new version of any of them misses the cache. Only code whose every
-global name is a function or constant of numpy or math is kept. An entry is
-a small JSON file written to a temporary file and renamed into place
-(atomic: concurrent runs never see half an entry); on reading, its checksum,
-its key and the shape of its code (one function, no imports, no attribute
-access, only the recorded global names) are checked, and an entry that fails
-any check is rebuilt, never trusted.
+Two kinds of entry share one folder, each a small JSON file:
+
+* a **kernel**: one generated function, keyed by the expressions' structure
+  (``sympy.srepr``), its arguments, the target module (``numpy`` or
+  ``math``) and whether common subexpressions were eliminated;
+* a **bundle**: everything a mechanism compiles to, keyed without sympy by
+  what it is built from (a ready-made linkage's name and the source of its
+  module, or a scene's loop and point expressions as written), together with
+  what a sweep, the derivatives and a drawing need to know about it (names of
+  the unknowns, angles, loops and parameters, the Jacobian's zero pattern,
+  the length symbols). A bundle that is found lets
+  :meth:`numkin.Mechanism.from_model` build the mechanism without importing
+  sympy; its sympy expressions are derived only when someone asks for them.
+
+Both keys also hold the versions of numkin, sympy, numpy and Python and a
+digest of the modules that derive the code; a new version of any of them
+misses the cache. Only code whose every global name is a function or
+constant of numpy or math is kept. Entries are written to a temporary file
+and renamed into place (atomic: concurrent runs never see half an entry); on
+reading, the checksum, the key and the shape of the code (plain functions,
+no imports, no attribute access, only the recorded global names) are
+checked, and an entry that fails any check is rebuilt, never trusted. A
+bundle's code is parsed and compiled once per process (one ``compile`` for
+all of its functions).
 
 The folder is the user's cache folder (``platformdirs.user_cache_dir``, else
 ``$XDG_CACHE_HOME`` or ``~/.cache``) under ``numkin/kernels``; the
@@ -22,21 +36,27 @@ from __future__ import annotations
 
 import ast
 import hashlib
-import inspect
 import json
 import math
 import os
+import re
 import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["cache_dir", "cached_lambdify", "ENV_VAR"]
+__all__ = ["cache_dir", "cached_lambdify", "bundle_key", "load_bundle", "store_bundle", "ENV_VAR"]
 
 #: Environment variable naming the cache folder (``off`` disables the cache).
 ENV_VAR = "NUMKIN_CACHE_DIR"
-_FORMAT = 1
+_FORMAT = 2
+#: Built-in names generated code may use.
+_BUILTINS = frozenset({"range", "len", "abs", "float", "complex", "int"})
+#: Modules of numkin whose code decides what a mechanism compiles to (their digest is part of a bundle's key).
+_DERIVING = ("compiled.py", "loops.py", "mechanism.py", "kernel_cache.py", "assemble.py")
+#: Bundles loaded in this process: path -> (model, functions).
+_BUNDLES: dict = {}
 
 
 def cache_dir() -> Path | None:
@@ -53,12 +73,25 @@ def cache_dir() -> Path | None:
     return base / "kernels"
 
 
-def _versions() -> str:
-    import sympy
+def _sympy_version() -> str:
+    """sympy's version, read from its release file when sympy is not imported (importing it costs 0.3 s)."""
+    if "sympy" in sys.modules:
+        return sys.modules["sympy"].__version__
+    import importlib.util
 
+    try:
+        spec = importlib.util.find_spec("sympy")
+        text = Path(spec.origin).with_name("release.py").read_text(encoding="utf-8")
+    except (AttributeError, ImportError, OSError, TypeError, ValueError):
+        return "unknown"
+    found = re.search(r"__version__\s*=\s*['\"]([^'\"]+)", text)
+    return found.group(1) if found else "unknown"
+
+
+def _versions() -> str:
     from . import __version__
 
-    return f"numkin {__version__}; sympy {sympy.__version__}; numpy {np.__version__}; python {sys.version_info[:3]}"
+    return f"numkin {__version__}; sympy {_sympy_version()}; numpy {np.__version__}; python {sys.version_info[:3]}"
 
 
 def _key(exprs, args, modules, cse) -> str:
@@ -66,6 +99,28 @@ def _key(exprs, args, modules, cse) -> str:
 
     text = "\n".join([f"format {_FORMAT}", _versions(), modules, str(bool(cse)), sp.srepr(tuple(args)),
                       sp.srepr(tuple(exprs))])
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def bundle_key(kind: str, text: str) -> str:
+    """The key of a bundle: ``kind`` and ``text`` (what the mechanism is built from), the versions and
+    a digest of the modules that derive the code; no sympy needed.
+
+    Examples
+    --------
+    >>> len(bundle_key("linkage four_bar", "source of the module"))
+    64
+    >>> bundle_key("a", "x") == bundle_key("a", "y")
+    False
+    """
+    digest = hashlib.sha256()
+    here = Path(__file__).parent
+    for name in _DERIVING:
+        try:
+            digest.update((here / name).read_bytes())
+        except OSError:
+            digest.update(name.encode())
+    text = "\n".join([f"bundle format {_FORMAT}", _versions(), digest.hexdigest(), kind, text])
     return hashlib.sha256(text.encode()).hexdigest()
 
 
@@ -94,15 +149,10 @@ def _namespace(names: dict) -> dict | None:
     return ns
 
 
-def _safe(source: str, names: dict, nargs: int) -> bool:
+def _safe_function(fn, names, nargs: int) -> bool:
     """One plain function: no imports, no attribute access, no dunder names, only the recorded globals."""
-    try:
-        tree = ast.parse(source)
-    except SyntaxError:
+    if not isinstance(fn, ast.FunctionDef) or len(fn.args.args) != nargs or fn.decorator_list:
         return False
-    if len(tree.body) != 1 or not isinstance(tree.body[0], ast.FunctionDef) or len(tree.body[0].args.args) != nargs:
-        return False
-    fn = tree.body[0]
     local = {a.arg for a in fn.args.args}
     for node in ast.walk(fn):
         if isinstance(node, (ast.Import, ast.ImportFrom, ast.Attribute, ast.Global, ast.Nonlocal, ast.Lambda,
@@ -114,44 +164,20 @@ def _safe(source: str, names: dict, nargs: int) -> bool:
             if isinstance(node.ctx, ast.Store):
                 local.add(node.id)
     used = {n.id for n in ast.walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
-    return used <= local | set(names) | {"range", "len", "abs", "float", "complex", "int"}
+    return used <= local | set(names) | _BUILTINS
 
 
-def _load(path: Path, key: str, nargs: int):
+def _safe(source: str, names: dict, nargs: int) -> bool:
     try:
-        entry = json.loads(path.read_text(encoding="utf-8"))
-        source, names = entry["source"], entry["names"]
-        if entry.get("key") != key or entry.get("sha256") != hashlib.sha256(source.encode()).hexdigest():
-            return None
-        if not _safe(source, names, nargs):
-            return None
-        ns = _namespace(names)
-        if ns is None:
-            return None
-        exec(compile(source, f"<numkin kernel {key[:12]}>", "exec"), ns)  # noqa: S102 - checked above
-        return ns[entry["name"]]
-    except (OSError, ValueError, KeyError, TypeError, SyntaxError, NameError):
-        return None
+        tree = ast.parse(source)
+    except SyntaxError:
+        return False
+    return len(tree.body) == 1 and _safe_function(tree.body[0], names, nargs)
 
 
-def _store(path: Path, key: str, f, module) -> None:
-    try:
-        source = inspect.getsource(f)
-    except (OSError, TypeError):
-        return
-    names = {}
-    for name in f.__code__.co_names:
-        value = f.__globals__.get(name)
-        where = _resolve(name, value, module)
-        if where is None:
-            if name in ("range", "len", "abs", "float", "complex", "int"):
-                continue
-            return  # a helper numkin cannot rebuild without sympy: not cached
-        names[name] = where
-    if not _safe(source, names, f.__code__.co_argcount):
-        return
-    entry = {"key": key, "name": f.__name__, "source": source, "names": names,
-             "sha256": hashlib.sha256(source.encode()).hexdigest(), "versions": _versions()}
+def _write(path: Path, entry: dict) -> None:
+    """Write an entry atomically (a temporary file renamed into place); a failure only costs the cache."""
+    tmp = None
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".json")
@@ -159,14 +185,80 @@ def _store(path: Path, key: str, f, module) -> None:
             json.dump(entry, out)
         os.replace(tmp, path)
     except OSError:
-        try:
-            os.unlink(tmp)
-        except (OSError, UnboundLocalError):
-            pass
+        if tmp is not None:
+            try:
+                os.unlink(tmp)
+            except OSError:
+                pass
+
+
+def _read(path: Path, key: str) -> dict | None:
+    """The entry at ``path`` if its key and checksum hold, else None."""
+    try:
+        entry = json.loads(path.read_text(encoding="utf-8"))
+        source = entry["source"]
+        if entry.get("key") != key or entry.get("sha256") != _checksum(entry):
+            return None
+        return entry if isinstance(source, str) else None
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+
+
+def _checksum(entry: dict) -> str:
+    """sha256 of an entry's code and, for a bundle, of everything else it records."""
+    extra = {k: entry.get(k) for k in ("names", "kernels", "model")} if "model" in entry else {}
+    text = entry["source"] + (json.dumps(extra, sort_keys=True) if extra else "")
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def _load(path: Path, key: str, nargs: int):
+    entry = _read(path, key)
+    if entry is None:
+        return None
+    try:
+        source, names = entry["source"], entry["names"]
+        if not _safe(source, names, nargs):
+            return None
+        ns = _namespace(names)
+        if ns is None:
+            return None
+        exec(compile(source, f"<numkin kernel {key[:12]}>", "exec"), ns)  # noqa: S102 - checked above
+        f = ns[entry["name"]]
+    except (ValueError, KeyError, TypeError, SyntaxError, NameError):
+        return None
+    f.numkin_kernel = {"name": entry["name"], "source": source, "names": names, "nargs": nargs,
+                       "module": entry.get("module", "numpy")}
+    return f
+
+
+def _kernel_entry(f, module) -> dict | None:
+    """What keeps a generated function: its source, global names and arity; None if it cannot be kept."""
+    import inspect
+
+    try:
+        source = inspect.getsource(f)
+    except (OSError, TypeError):
+        return None
+    names = {}
+    for name in f.__code__.co_names:
+        value = f.__globals__.get(name)
+        where = _resolve(name, value, module)
+        if where is None:
+            if name in _BUILTINS:
+                continue
+            return None  # a helper numkin cannot rebuild without sympy: not kept
+        names[name] = where
+    if not _safe(source, names, f.__code__.co_argcount):
+        return None
+    return {"name": f.__name__, "source": source, "names": names, "nargs": f.__code__.co_argcount,
+            "module": module.__name__}
 
 
 def cached_lambdify(exprs: tuple, args: tuple, modules: str, cse: bool):
     """``sympy.lambdify(args, list(exprs), modules=modules, cse=cse)``, through the disk cache.
+
+    A function that can be kept carries what keeps it as ``f.numkin_kernel``
+    (for bundles).
 
     Examples
     --------
@@ -187,5 +279,103 @@ def cached_lambdify(exprs: tuple, args: tuple, modules: str, cse: bool):
     f = _load(path, key, len(args)) if path.exists() else None
     if f is None:
         f = sp.lambdify(args, list(exprs), modules=modules, cse=cse)
-        _store(path, key, f, math if modules == "math" else np)
+        entry = _kernel_entry(f, math if modules == "math" else np)
+        if entry is not None:
+            f.numkin_kernel = entry
+            _write(path, {"key": key, **{k: entry[k] for k in ("name", "source", "names", "module")},
+                          "sha256": hashlib.sha256(entry["source"].encode()).hexdigest(), "versions": _versions()})
     return f
+
+
+# ------------------------------------------------------------------------ bundles
+def _bundle_path(key: str) -> Path | None:
+    folder = cache_dir()
+    return None if folder is None else folder / f"{key}.json"
+
+
+def _hex(key: str) -> str:
+    """A key as a file name: a key of :func:`bundle_key` as it is, any other text hashed."""
+    return key if re.fullmatch(r"[0-9a-f]{64}", key) else hashlib.sha256(key.encode()).hexdigest()
+
+
+def store_bundle(key: str, model: dict, kernels: list) -> None:
+    """Keep a mechanism's description ``model`` (JSON data) and its generated functions ``kernels``
+    (``f.numkin_kernel`` entries, referred to by position in ``model``) under ``key``.
+
+    Their sources are written as one module, function ``k`` renamed ``_numkin_k<k>``.
+    """
+    key = _hex(key)
+    path = _bundle_path(key)
+    if path is None:
+        return
+    sources, table, names = [], [], {"numpy": {}, "math": {}}
+    for k, kernel in enumerate(kernels):
+        group = names.get(kernel["module"])
+        head = f"def {kernel['name']}("
+        if group is None or not kernel["source"].startswith(head):
+            return
+        for name, where in kernel["names"].items():
+            if group.setdefault(name, where) != where:
+                return
+        sources.append(kernel["source"].replace(head, f"def _numkin_k{k}(", 1))
+        table.append([kernel["module"], kernel["nargs"]])
+    entry = {"key": key, "kind": "bundle", "model": model, "kernels": table, "names": names,
+             "source": "\n".join(sources), "versions": _versions()}
+    entry["sha256"] = _checksum(entry)
+    _write(path, entry)
+    _BUNDLES.pop(path, None)
+
+
+def _bundle_functions(key: str, entry: dict) -> list | None:
+    """The functions of a bundle entry, after checking the shape of its code; None if any check fails."""
+    table, names = entry["kernels"], entry["names"]
+    tree = ast.parse(entry["source"])
+    if len(tree.body) != len(table):
+        return None
+    for k, (fn, (module, nargs)) in enumerate(zip(tree.body, table)):
+        if module not in names or not isinstance(fn, ast.FunctionDef) or fn.name != f"_numkin_k{k}":
+            return None
+        if not _safe_function(fn, names[module], nargs):
+            return None
+    code = compile(tree, f"<numkin kernels {key[:12]}>", "exec")
+    spaces = {}
+    for module in {module for module, _ in table}:
+        ns = _namespace(names[module])
+        if ns is None:
+            return None
+        exec(code, ns)  # noqa: S102 - checked above
+        spaces[module] = ns
+    functions = []
+    lines = entry["source"].splitlines(keepends=True)
+    for k, (fn, (module, nargs)) in enumerate(zip(tree.body, table)):
+        f = spaces[module][f"_numkin_k{k}"]
+        used = {n.id for n in ast.walk(fn) if isinstance(n, ast.Name)}
+        f.numkin_kernel = {"name": fn.name, "source": "".join(lines[fn.lineno - 1 : fn.end_lineno]), "nargs": nargs,
+                           "names": {n: w for n, w in names[module].items() if n in used}, "module": module}
+        functions.append(f)
+    return functions
+
+
+def load_bundle(key: str):
+    """``(model, functions)`` kept under ``key`` (see :func:`store_bundle`), or None.
+
+    An entry whose key, checksum or code shape is wrong is ignored (and so
+    rebuilt by the caller). Loaded once per process.
+    """
+    key = _hex(key)
+    path = _bundle_path(key)
+    if path in _BUNDLES:
+        return _BUNDLES[path]
+    if path is None or not path.exists():
+        return None
+    entry = _read(path, key)
+    try:
+        if entry is None or entry.get("kind") != "bundle" or not isinstance(entry.get("model"), dict):
+            return None
+        functions = _bundle_functions(key, entry)
+    except (ValueError, KeyError, TypeError, SyntaxError, NameError, RecursionError):
+        return None
+    if functions is None:
+        return None
+    _BUNDLES[path] = (entry["model"], functions)
+    return _BUNDLES[path]

@@ -9,15 +9,18 @@ given directly as sympy residual expressions.
 
 from __future__ import annotations
 
-from typing import Iterable, Sequence
+from collections.abc import Mapping
+from typing import Callable, Iterable, Sequence
 
-import sympy as sp
-
-__all__ = ["Loop", "as_symbol"]
+__all__ = ["Loop", "as_symbol", "SymbolName", "LazyPoints", "describe", "check_lengths", "default_length_scale"]
 
 
-def as_symbol(name) -> sp.Symbol:
+def as_symbol(name):
     """A sympy symbol from a symbol or its name (real-valued)."""
+    import sympy as sp
+
+    if isinstance(name, SymbolName):
+        return name._sympy_()
     if isinstance(name, sp.Symbol):
         return name
     if isinstance(name, str) and name.isidentifier():
@@ -27,6 +30,8 @@ def as_symbol(name) -> sp.Symbol:
 
 def _angle_unknowns(residuals, unknowns) -> set:
     """Unknowns that appear inside a trigonometric function: those are angles (rad)."""
+    import sympy as sp
+
     found = set()
     for expr in residuals:
         for fn in expr.atoms(sp.sin, sp.cos, sp.tan, sp.exp):
@@ -65,6 +70,8 @@ class Loop:
     """
 
     def __init__(self, residuals: Sequence, unknowns: Sequence, *, name: str | None = None, angles=None):
+        import sympy as sp
+
         self.residuals = [sp.sympify(r) for r in residuals]
         self.unknowns = [as_symbol(u) for u in unknowns]
         self.name = name or "-".join(str(u) for u in self.unknowns)
@@ -98,6 +105,8 @@ class Loop:
         on its length (``(-r4, theta4)``) or pi added to its angle. Angles in
         rad, measured counter-clockwise from +x.
         """
+        import sympy as sp
+
         pairs = []
         for k, v in enumerate(vectors):
             try:
@@ -115,5 +124,149 @@ class Loop:
         loop.length_symbols = set().union(*(length.free_symbols for length, _ in pairs)) - set(unknown_syms)
         return loop
 
+    @classmethod
+    def placeholder(cls, name: str, resolve: Callable) -> "Loop":
+        """A loop known by its name only, whose equations ``resolve()`` fills in when first read.
+
+        A mechanism loaded from the kernel cache holds such loops: solving
+        needs only their names; their sympy expressions are derived on demand.
+        """
+        loop = cls.__new__(cls)
+        loop.name = name
+        loop._resolve = resolve
+        return loop
+
+    def __getattr__(self, attr):
+        resolve = self.__dict__.get("_resolve")
+        if resolve is None or attr.startswith("__"):
+            raise AttributeError(f"'Loop' object has no attribute {attr!r}")
+        resolve()
+        self.__dict__.pop("_resolve", None)
+        return getattr(self, attr)
+
     def __repr__(self) -> str:
         return f"Loop({self.name!r}, unknowns={[str(u) for u in self.unknowns]})"
+
+
+class SymbolName(str):
+    """The name of a sympy symbol, standing in for it where sympy is not imported yet.
+
+    It is the name wherever a string is wanted (printing, formatting,
+    comparison with names); sympy reads it as the symbol itself
+    (``sympify`` calls ``_sympy_``), and any attribute of a symbol
+    (``.name``, ``.is_real``, ...) is the symbol's.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> t = sp.Symbol("theta", real=True)
+    >>> s = SymbolName("theta", lambda: t)
+    >>> f"{s} [deg]", sp.sympify(s) is t, s.is_real
+    ('theta [deg]', True, True)
+    """
+
+    def __new__(cls, name: str, symbol: Callable):
+        obj = super().__new__(cls, name)
+        obj._symbol = symbol
+        return obj
+
+    def _sympy_(self):
+        return self._symbol()
+
+    def __getattr__(self, attr):
+        if attr.startswith("__") or attr == "_symbol":
+            raise AttributeError(attr)
+        return getattr(self._symbol(), attr)
+
+
+class LazyPoints(Mapping):
+    """Named points ``name -> (x, y)`` whose expressions ``resolve()`` derives when one is first read.
+
+    Names (iteration, ``in``, ``len``) are known without sympy.
+    """
+
+    def __init__(self, names, resolve: Callable):
+        self._names = list(names)
+        self._set = set(self._names)
+        self._resolve = resolve
+        self._exprs = None
+
+    def resolved(self, exprs: dict) -> None:
+        """Give the expressions (called by ``resolve``)."""
+        self._exprs = dict(exprs)
+
+    def __getitem__(self, key):
+        if key not in self._set:
+            raise KeyError(key)
+        if self._exprs is None:
+            self._resolve()
+        return self._exprs[key]
+
+    def __contains__(self, key) -> bool:
+        return key in self._set
+
+    def __iter__(self):
+        return iter(self._names)
+
+    def __len__(self) -> int:
+        return len(self._names)
+
+    def __repr__(self) -> str:
+        return repr(dict(self))
+
+
+# --------------------------------------------------------- loops described by their names
+def describe(loops, input_symbol, parameters, points) -> dict:
+    """What numkin needs to know about loops besides their compiled kernels, by names only (JSON data).
+
+    ``{"input", "input_assumptions", "parameters": [[name, non-negative, sign undeclared], ...], "loops": [{"name",
+    "unknowns", "angles", "lengths"}, ...], "points": [names]}``: the kernel cache keeps it so a
+    mechanism can be checked and solved without sympy.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> t, x = sp.symbols("t x", real=True)
+    >>> r = sp.Symbol("r", positive=True)
+    >>> loop = Loop([x - r * sp.cos(t)], [x], name="shadow")
+    >>> describe([loop], t, {r: 1.0}, {"P": (x, 0)})["parameters"]
+    [['r', True, False]]
+    """
+    return {
+        "input": str(input_symbol),
+        "input_assumptions": {k: bool(v) for k, v in input_symbol.assumptions0.items()},
+        "parameters": [[str(s), bool(s.is_positive or s.is_nonnegative), s.is_real is None] for s in parameters],
+        "loops": [{"name": lp.name, "unknowns": [str(u) for u in lp.unknowns],
+                   "angles": [str(u) for u in lp.unknowns if u in lp.angles],
+                   "lengths": sorted(str(s) for s in lp.length_symbols)} for lp in loops],
+        "points": [str(k) for k in (points or {})],
+    }
+
+
+def check_lengths(model: dict, value_of: dict) -> None:
+    """A parameter that is the length of a vector of a loop must not be negative.
+
+    A subtracted vector is written ``(-r4, theta4)``: the sign belongs in
+    the loop, not in the value. A signed distance (an offset that may be
+    negative) is declared so: ``sympy.Symbol("e", real=True)``. ``model`` is
+    :func:`describe`'s, ``value_of`` maps parameter names to values.
+    """
+    undeclared = {p for p, _, real_unknown in model["parameters"] if real_unknown}
+    for lp in model["loops"]:
+        for sym in lp["lengths"]:
+            value = value_of.get(sym)
+            if value is not None and value < 0 and sym in undeclared:
+                raise ValueError(
+                    f"loop '{lp['name']}': length {sym} = {value:g} is negative (a negative length mirrors "
+                    f"the linkage); write the vector as (-{sym}, angle) in the loop, or declare {sym} "
+                    f"real (sympy.Symbol('{sym}', real=True)) if it is a signed offset"
+                )
+
+
+def default_length_scale(model: dict, value_of: dict) -> float:
+    """The largest parameter that is a vector's length (else the largest parameter, else 1)."""
+    lengths = {s for lp in model["loops"] for s in lp["lengths"]}
+    values = [abs(v) for s, v in value_of.items() if s in lengths]
+    if not values:
+        values = [abs(v) for v in value_of.values()]
+    return max(values) if values and max(values) > 0 else 1.0

@@ -9,19 +9,22 @@ residuals, Jacobian and input derivative compiled once
 from __future__ import annotations
 
 import math
+import sys
 from functools import cached_property
 from typing import Callable, Mapping, Sequence
 
 import numpy as np
-import sympy as sp
 
-from .compiled import BlockStructure, CompiledMechanism
+from .compiled import BlockStructure, CompiledMechanism, KernelNotKept, compiled_once, export_function, import_function
 from .errors import AssemblyError, ConvergenceError
-from .loops import Loop, as_symbol
+from .loops import LazyPoints, Loop, SymbolName, as_symbol, check_lengths, default_length_scale, describe
 from .newton import JACOBIANS, TOL_MIN, NewtonResult, check_tol, iterate, residual_floor, scaled_cond
 from .units import finite
 
 __all__ = ["Mechanism", "LENGTH_SCALE_RANGE"]
+
+#: Keywords of :class:`Mechanism` besides the loops, input, parameters, points, name and unit.
+_OPTIONS = ("guess", "guess_input", "links", "ground", "length_scale", "assembly_check", "branch")
 
 #: Length scales (in any unit) a mechanism may have: products of two lengths (a loop
 #: Jacobian's determinant) stay normal float64 numbers, so every length scale in this
@@ -117,17 +120,45 @@ class Mechanism:
                 raise ValueError(f"parameter {sym} = {value:g} is negative, but {sym} is declared non-negative")
             self.parameters[sym] = value
         self._check_symbols()
-        self._check_lengths()
         self.unknown_symbols = [u for lp in self.loops for u in lp.unknowns]
-        self.unknowns = tuple(str(u) for u in self.unknown_symbols)
-        self.angles = tuple(str(u) for lp in self.loops for u in lp.unknowns if u in lp.angles)
+        self._setup(describe(self.loops, self.input_symbol, self.parameters, points), list(self.parameters.values()), name=name, guess=guess,
+                    guess_input=guess_input, links=links, ground=ground, length_unit=length_unit,
+                    length_scale=length_scale, assembly_check=assembly_check, branch=branch)
+        import sympy as sp
+
+        self.points = {k: tuple(sp.sympify(c) for c in v) for k, v in (points or {}).items()}
+        self.compiled = CompiledMechanism(
+            [r for lp in self.loops for r in lp.residuals],
+            self.unknown_symbols,
+            self.input_symbol,
+            list(self.parameters),
+        )
+
+    def _setup(self, model: dict, values: list, *, name, guess, guess_input, links, ground, length_unit,
+               length_scale, assembly_check, branch) -> None:
+        """Everything numeric about the mechanism, from the names in ``model`` and the parameter ``values``."""
+        self.name = name
+        self.input_name = model["input"]
+        params = model["parameters"]
+        if len(values) != len(params):
+            raise ValueError(f"{name}: {len(values)} parameter values for {len(params)} parameters")
+        values = [finite(f"parameter {p}", v) for (p, _, _), v in zip(params, values)]
+        for (p, nonnegative, _), v in zip(params, values):
+            if v < 0 and nonnegative:
+                raise ValueError(f"parameter {p} = {v:g} is negative, but {p} is declared non-negative")
+        value_of = {p: v for (p, _, _), v in zip(params, values)}
+        check_lengths(model, value_of)
+        self.unknowns = tuple(u for lp in model["loops"] for u in lp["unknowns"])
+        self.angles = tuple(u for lp in model["loops"] for u in lp["unknowns"] if u in lp["angles"])
         self.loop_slices = []
         start = 0
-        for lp in self.loops:
-            self.loop_slices.append(slice(start, start + len(lp.unknowns)))
-            start += len(lp.unknowns)
+        for lp in model["loops"]:
+            self.loop_slices.append(slice(start, start + len(lp["unknowns"])))
+            start += len(lp["unknowns"])
         self.length_unit = length_unit
-        self.length_scale = float(length_scale) if length_scale is not None else self._default_length_scale()
+        if length_scale is None:
+            length_scale = default_length_scale(model, value_of)
+        self.length_scale = float(length_scale)
         if not (math.isfinite(self.length_scale) and self.length_scale > 0):
             raise ValueError(f"length_scale must be a positive number, got {self.length_scale}")
         lo, hi = LENGTH_SCALE_RANGE
@@ -138,24 +169,160 @@ class Mechanism:
                 "give the lengths in another unit"
             )
         self.xscale = np.array([1.0 if u in self.angles else self.length_scale for u in self.unknowns])
-        self.points = {k: tuple(sp.sympify(c) for c in v) for k, v in (points or {}).items()}
         self.links = [tuple(link) for link in (links or [])]
         self.ground = tuple(ground or ())
         unknown_points = {p for link in self.links for p in link} | set(self.ground)
-        missing = sorted(unknown_points - set(self.points))
+        missing = sorted(unknown_points - set(model["points"]))
         if missing:
             raise ValueError(f"links or ground name undefined point(s) {missing}")
         self.assembly_check = assembly_check
         self.branch = branch
         self._guess = guess
         self.guess_input = guess_input
-        self.compiled = CompiledMechanism(
-            [r for lp in self.loops for r in lp.residuals],
-            self.unknown_symbols,
-            self.input_symbol,
-            list(self.parameters),
-        )
-        self.parameter_values = np.array(list(self.parameters.values()), dtype=float)
+        self.parameter_values = np.array(values, dtype=float)
+
+    @classmethod
+    def from_model(cls, key: str, model: Callable, values, **options) -> "Mechanism":
+        """A mechanism whose loops ``model()`` writes, built from the kernel cache when it holds them.
+
+        Parameters
+        ----------
+        key : str
+            What the mechanism is built from, as :func:`numkin.kernel_cache.bundle_key` makes it:
+            two models with one key must write the same loops and points.
+        model : callable
+            ``model() -> (loops, input, parameter symbols, points)``; called only when the cache
+            misses or when a symbolic attribute (``loops``' expressions, ``parameters``,
+            ``points``' expressions, ...) is first read.
+        values : sequence of float
+            The parameters' values, in the order ``model`` lists their symbols.
+        **options
+            The keywords of :class:`Mechanism` (``name``, ``guess``, ``links``, ...).
+
+        Examples
+        --------
+        >>> import sympy as sp
+        >>> def model():
+        ...     t, x = sp.symbols("t x", real=True)
+        ...     r = sp.Symbol("r", real=True)
+        ...     return [Loop([x - r * sp.cos(t)], [x])], t, [r], {"P": (x, 0)}
+        >>> m = Mechanism.from_model("a point on a circle's shadow", model, [2.0], guess={"x": 1.0})
+        >>> m.unknowns, float(m.solve(0.0).x[0])
+        (('x',), 2.0)
+        """
+        from . import kernel_cache
+
+        found = kernel_cache.load_bundle(key)
+        if found is not None:
+            try:
+                return cls._from_bundle(key, found, model, list(values), options)
+            except (KeyError, TypeError, IndexError, AttributeError):
+                pass  # a bundle of another shape: built again below
+        loops, input_symbol, symbols, points = model()
+        symbols = list(symbols)
+        values = list(values)
+        if len(values) != len(symbols):
+            raise ValueError(f"{len(values)} parameter values for {len(symbols)} parameters {[str(s) for s in symbols]}")
+        mech = cls(loops, input_symbol, dict(zip(symbols, values)), points=points, **options)
+        mech._keep(key)
+        return mech
+
+    def _keep(self, key: str) -> None:
+        """Store this mechanism's kernels compiled so far, and its names, as a bundle of the kernel cache;
+        kernels compiled later are added as they come (:class:`~numkin.compiled.compiled_once`)."""
+        from . import kernel_cache
+
+        if kernel_cache.cache_dir() is None:
+            return
+        kernels: list = []
+        try:
+            model = describe(self.loops, self.input_symbol, self.parameters, self.points)
+            model["kernels"] = self.compiled.export_kernels(kernels)
+            if "point_function" in self.__dict__ or "point_function" in self.__dict__.get("_loaded", {}):
+                model["point_kernel"] = export_function(self.point_function, kernels)
+        except KernelNotKept:
+            return
+        model["zeros"] = [list(z) for z in self._zeros()]
+        kernel_cache.store_bundle(key, model, kernels)
+        self.__dict__["_on_compile"] = self.compiled.__dict__["_on_compile"] = lambda: self._keep(key)
+
+    @classmethod
+    def _from_bundle(cls, key: str, found, model: Callable, values: list, options: dict) -> "Mechanism":
+        """The mechanism from a bundle of the kernel cache: no sympy until a symbolic attribute is read."""
+        kept, functions = found
+        options = dict(options)
+        name, length_unit = options.pop("name", "mechanism"), options.pop("length_unit", "mm")
+        setup = {k: options.pop(k, None) for k in _OPTIONS}
+        if options:
+            raise TypeError(f"Mechanism.from_model() got unexpected keyword(s) {sorted(options)}")
+        self = cls.__new__(cls)
+        self._setup(kept, values, name=name, length_unit=length_unit, **setup)
+        self._model = model
+        self._input_assumptions = dict(kept["input_assumptions"])
+        self.loops = [Loop.placeholder(lp["name"], self._materialize) for lp in kept["loops"]]
+        self.points = LazyPoints(kept["points"], self._materialize)
+        self._jacobian_zeros = kept["zeros"]
+        self.compiled = CompiledMechanism.from_kernels(len(self.unknowns), kept["kernels"], functions, self._symbolic)
+        if "point_kernel" in kept:
+            self._loaded = {"point_function": import_function(kept["point_kernel"], functions)}
+        self.__dict__["_on_compile"] = self.compiled.__dict__["_on_compile"] = lambda: self._keep(key)
+        return self
+
+    def _materialize(self) -> None:
+        """Build the sympy model of a mechanism loaded from the kernel cache (on first use of a symbolic attribute)."""
+        model = self.__dict__.pop("_model", None)
+        if model is None:
+            return
+        loops, input_symbol, symbols, points = model()
+        for stub, lp in zip(self.__dict__["loops"], loops):
+            stub.__dict__.pop("_resolve", None)
+            stub.__dict__.update(lp.__dict__)
+        self.input_symbol = as_symbol(input_symbol)
+        self.parameters = dict(zip((as_symbol(s) for s in symbols), self.parameter_values.tolist()))
+        self.unknown_symbols = [u for lp in self.loops for u in lp.unknowns]
+        import sympy as sp
+
+        self.points.resolved({k: tuple(sp.sympify(c) for c in v) for k, v in points.items()})
+
+    def _symbolic(self):
+        """``(residuals, unknowns, input symbol, parameter symbols)`` for :class:`CompiledMechanism`."""
+        self._materialize()
+        return ([r for lp in self.loops for r in lp.residuals], self.unknown_symbols, self.input_symbol,
+                list(self.parameters))
+
+    def __getattr__(self, name):
+        if name in ("parameters", "unknown_symbols", "_input_symbol") and "_model" in self.__dict__:
+            self._materialize()
+            return getattr(self, name)
+        raise AttributeError(f"'Mechanism' object has no attribute {name!r}")
+
+    @property
+    def input_symbol(self):
+        """The input as a sympy symbol.
+
+        On a mechanism loaded from the kernel cache before sympy was imported,
+        a :class:`~numkin.loops.SymbolName` (a ``str``, the symbol's name) that
+        sympy reads as the symbol.
+        """
+        sym = self.__dict__.get("_input_symbol")
+        if sym is not None:
+            return sym
+        if "_model" not in self.__dict__:
+            return self._input_symbol
+        if "sympy" in sys.modules:
+            return self._sympy_input()
+        return SymbolName(self.input_name, self._sympy_input)
+
+    @input_symbol.setter
+    def input_symbol(self, value) -> None:
+        self.__dict__["_input_symbol"] = value
+
+    def _sympy_input(self):
+        """The input symbol, equal to the model's, made without deriving the model."""
+        import sympy as sp
+
+        self.input_symbol = sp.Symbol(self.input_name, **self._input_assumptions)
+        return self.input_symbol
 
     # ------------------------------------------------------------------ checks
     def _check_symbols(self):
@@ -175,30 +342,6 @@ class Mechanism:
                     "its unknowns, earlier unknowns, the input nor a parameter with a value"
                 )
             known |= set(lp.unknowns)
-
-    def _check_lengths(self):
-        """A parameter that is the length of a vector of a loop must not be negative.
-
-        A subtracted vector is written ``(-r4, theta4)``: the sign belongs in
-        the loop, not in the value. A signed distance (an offset that may be
-        negative) is declared so: ``sympy.Symbol("e", real=True)``.
-        """
-        for lp in self.loops:
-            for sym in lp.length_symbols:
-                value = self.parameters.get(sym)
-                if value is not None and value < 0 and sym.is_real is None:
-                    raise ValueError(
-                        f"loop '{lp.name}': length {sym} = {value:g} is negative (a negative length mirrors "
-                        f"the linkage); write the vector as (-{sym}, angle) in the loop, or declare {sym} "
-                        f"real (sympy.Symbol('{sym}', real=True)) if it is a signed offset"
-                    )
-
-    def _default_length_scale(self) -> float:
-        lengths = set().union(*(lp.length_symbols for lp in self.loops))
-        values = [abs(v) for s, v in self.parameters.items() if s in lengths]
-        if not values:
-            values = [abs(v) for v in self.parameters.values()]
-        return max(values) if values and max(values) > 0 else 1.0
 
     # --------------------------------------------------------------- numerics
     def residual_function(self, inputs):
@@ -228,9 +371,15 @@ class Mechanism:
     @cached_property
     def block_structure(self) -> BlockStructure:
         """The block lower-triangular shape of the Jacobian (one block per loop) and its solves."""
-        jac = self.compiled.jacobian_matrix
-        zeros = [(i, j) for i in range(jac.rows) for j in range(jac.cols) if jac[i, j] == 0]
-        return BlockStructure(self.loop_slices, self.length_scale, self.xscale, zeros)
+        return BlockStructure(self.loop_slices, self.length_scale, self.xscale, self._zeros())
+
+    def _zeros(self) -> list:
+        """Entries (i, j) of the Jacobian that are zero whatever the unknowns."""
+        zeros = self.__dict__.get("_jacobian_zeros")
+        if zeros is None:
+            jac = self.compiled.jacobian_matrix
+            zeros = [(i, j) for i in range(jac.rows) for j in range(jac.cols) if jac[i, j] == 0]
+        return [tuple(z) for z in zeros]
 
     def _jacobian_rows(self, x, inputs):
         jac = self.compiled.J(np.asarray(x), np.asarray(inputs, dtype=float), self.parameter_values)
@@ -443,7 +592,7 @@ class Mechanism:
         )
 
     # ----------------------------------------------------------------- points
-    @cached_property
+    @compiled_once
     def point_function(self):
         """Compiled coordinates of all named points: ``f(q, t) -> (2 * points, N)``."""
         exprs = [c for xy in self.points.values() for c in xy]

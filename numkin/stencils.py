@@ -32,7 +32,7 @@ import math
 import numbers
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import cached_property, reduce
+from functools import cached_property, lru_cache, reduce
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -120,7 +120,16 @@ class Stencil:
 
     @classmethod
     def from_offsets(cls, offsets, derivative: int) -> "Stencil":
+        """The stencil on integer ``offsets`` (weights solved exactly; solved once per offsets and derivative)."""
         ks = _offsets(offsets)
+        if isinstance(derivative, bool) or not isinstance(derivative, numbers.Integral):
+            return cls._solve(ks, derivative)
+        if cls is Stencil:
+            return _solved(ks, int(derivative))
+        return cls._solve(ks, derivative)
+
+    @classmethod
+    def _solve(cls, ks, derivative) -> "Stencil":
         ws = weights(ks, derivative)
         p, c = _moments(ks, ws, derivative)
         keep = [(k, w) for k, w in sorted(zip(ks, ws)) if w != 0]
@@ -175,6 +184,12 @@ class Stencil:
         """The estimate from `values` at the offsets (last axis, in ``offsets`` order)."""
         v = np.asarray(values, dtype=float)
         return np.tensordot(v, np.array(self.coefficients), axes=([-1], [0])) / check_step(h) ** self.derivative
+
+
+@lru_cache(maxsize=256)
+def _solved(ks: tuple, derivative: int) -> Stencil:
+    """:meth:`Stencil.from_offsets`, solved once per offsets and derivative (stencils are immutable)."""
+    return Stencil._solve(ks, derivative)
 
 
 def _one_sided(derivative: int, order: int, first: int, step: int) -> Stencil:

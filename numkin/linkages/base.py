@@ -18,11 +18,12 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Callable
 
 from ..units import finite
 
-__all__ = ["Dimension", "LinkageSpec", "DIMENSION_KINDS", "length", "finite", "finish"]
+__all__ = ["Dimension", "LinkageSpec", "DIMENSION_KINDS", "length", "finite", "finish", "build"]
 
 #: Kinds of dimension: a positive length, a signed length (a coordinate), a point (x, y), an angle.
 DIMENSION_KINDS = ("length", "signed", "pair", "angle")
@@ -163,6 +164,34 @@ def length(name: str, value) -> float:
     return v
 
 
+
+
+def build(spec: LinkageSpec, model: Callable, values, **options):
+    """The mechanism of a ready-made linkage, through the kernel cache.
+
+    ``model()`` writes the linkage's loops with its dimensions as symbols
+    (``(loops, input, parameter symbols, points)``, see
+    :meth:`numkin.Mechanism.from_model`); ``values`` are the dimensions in the
+    order of those symbols. The cache key is the linkage's name and the
+    source of the module that defines ``model``, so a second build of the
+    linkage, in this run or a later one, needs no sympy.
+    """
+    import sys
+
+    from .. import kernel_cache
+    from ..mechanism import Mechanism
+
+    key = kernel_cache.bundle_key(f"linkage {spec.name}", _module_digest(sys.modules[model.__module__].__file__))
+    mech = Mechanism.from_model(key, model, values, links=spec.links, ground=spec.ground, **options)
+    return finish(mech, spec)
+
+
+@lru_cache(maxsize=None)
+def _module_digest(path: str) -> str:
+    import hashlib
+
+    with open(path, "rb") as source:
+        return hashlib.sha256(source.read()).hexdigest()
 
 
 def finish(mechanism, spec: LinkageSpec):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from .base import Dimension, LinkageSpec, finish, finite, length
+from .base import Dimension, LinkageSpec, build, finite, length
 
 __all__ = ["chained_four_bars", "SPEC"]
 
@@ -48,16 +48,24 @@ def chained_four_bars(
     >>> round(float(np.degrees(sweep["phi"][100])), 4), round(float(np.degrees(sweep["beta"][100])), 4)
     (94.4375, 214.727)
     """
-    import sympy as sp
-
-    from ..loops import Loop
-    from ..mechanism import Mechanism
-
     names = ["fixed1", "input1", "coupler1", "output1", "fixed2", "input2", "coupler2", "output2"]
     vals = [fixed1, input1, coupler1, output1, fixed2, input2, coupler2, output2]
     f1, i1, c1, o1, f2, i2, c2, o2 = (length(n, v) for n, v in zip(names, vals))
     off = finite("offset", offset)
     g = [finite(f"guess{k}", v) for k, pair in ((1, guess1), (2, guess2)) for v in pair]
+    return build(
+        SPEC, _model, [f1, i1, c1, o1, f2, i2, c2, o2, off],
+        name="chained four-bars", guess={"phi": g[0], "psi": g[1], "beta": g[2], "gamma": g[3]},
+        guess_input=0.0, length_unit=length_unit, length_scale=max(f1, i1, c1, o1, f2, i2, c2, o2),
+    )
+
+
+def _model():
+    """The loops and points, dimensions as symbols (see :func:`numkin.linkages.base.build`)."""
+    import sympy as sp
+
+    from ..loops import Loop
+
     th, phi, psi, beta, gamma = sp.symbols("theta phi psi beta gamma", real=True)
     F1, I1, C1, O1, F2, I2, C2, O2, OFF = sp.symbols(
         "fixed1 input1 coupler1 output1 fixed2 input2 coupler2 output2 offset", real=True
@@ -65,20 +73,14 @@ def chained_four_bars(
     loop1 = Loop.from_vectors([(O1, phi), (C1, psi), (I1, th + sp.pi), (-F1, 0)], [phi, psi], name="linkage 1")
     alpha = phi + OFF
     loop2 = Loop.from_vectors([(O2, beta), (C2, gamma), (I2, alpha + sp.pi), (-F2, 0)], [beta, gamma], name="linkage 2")
-    params = {F1: f1, I1: i1, C1: c1, O1: o1, F2: f2, I2: i2, C2: c2, O2: o2, OFF: off}
-    return finish(Mechanism(
-        [loop1, loop2], th, params,
-        name="chained four-bars", guess={"phi": g[0], "psi": g[1], "beta": g[2], "gamma": g[3]},
-        guess_input=0.0, length_unit=length_unit, length_scale=max(f1, i1, c1, o1, f2, i2, c2, o2),
-        points={
-            "C": (0, 0), "B": (O1 * sp.cos(phi), O1 * sp.sin(phi)),
-            "A": (F1 + I1 * sp.cos(th), I1 * sp.sin(th)), "D": (F1, 0),
-            # linkage 2 drawn with its input pivot on linkage 1's output pivot C
-            "E": (I2 * sp.cos(alpha), I2 * sp.sin(alpha)),
-            "F": (-F2 + O2 * sp.cos(beta), O2 * sp.sin(beta)), "G": (-F2, 0),
-        },
-        links=SPEC.links, ground=SPEC.ground,
-    ), SPEC)
+    points = {
+        "C": (0, 0), "B": (O1 * sp.cos(phi), O1 * sp.sin(phi)),
+        "A": (F1 + I1 * sp.cos(th), I1 * sp.sin(th)), "D": (F1, 0),
+        # linkage 2 drawn with its input pivot on linkage 1's output pivot C
+        "E": (I2 * sp.cos(alpha), I2 * sp.sin(alpha)),
+        "F": (-F2 + O2 * sp.cos(beta), O2 * sp.sin(beta)), "G": (-F2, 0),
+    }
+    return [loop1, loop2], th, (F1, I1, C1, O1, F2, I2, C2, O2, OFF), points
 
 
 SPEC = LinkageSpec(

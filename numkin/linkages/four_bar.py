@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from .base import Dimension, LinkageSpec, finish, length
+from .base import Dimension, LinkageSpec, build, length
 
 __all__ = ["four_bar", "grashof", "SPEC"]
 
@@ -134,19 +134,11 @@ def four_bar(ground, crank, coupler, rocker, *, branch: str = "open", length_uni
     >>> np.round(np.degrees(res.x), 4)
     array([ 32.5561, 119.3714])
     """
-    import sympy as sp
-
-    from ..loops import Loop
-    from ..mechanism import Mechanism
-
     r1, r2 = length("ground", ground), length("crank", crank)
     r3, r4 = length("coupler", coupler), length("rocker", rocker)
     if branch not in SPEC.branches:
         raise ValueError(f"branch must be 'open' or 'crossed', got {branch!r}")
     sign = 1.0 if branch == "open" else -1.0
-    t2, t3, t4 = sp.symbols("theta2 theta3 theta4", real=True)
-    R1, R2, R3, R4 = sp.symbols("r1 r2 r3 r4", real=True)
-    loop = Loop.from_vectors([(R2, t2), (R3, t3), (-R4, t4), (-R1, 0)], [t3, t4], name="O2-A-B-O4")
     klass = grashof(r1, r2, r3, r4)
     label = f"four-bar (ground {r1:g}, crank {r2:g}, coupler {r3:g}, rocker {r4:g})"
 
@@ -154,16 +146,26 @@ def four_bar(ground, crank, coupler, rocker, *, branch: str = "open", length_uni
         a, b = closed_form(theta2, r1, r2, r3, r4, sign)
         return {"theta3": float(a), "theta4": float(b)}
 
-    return finish(Mechanism(
-        [loop], t2, {R1: r1, R2: r2, R3: r3, R4: r4},
-        name=label, guess=guess, length_unit=length_unit, branch=branch,
-        points={
-            "O2": (0, 0), "A": (R2 * sp.cos(t2), R2 * sp.sin(t2)),
-            "B": (R1 + R4 * sp.cos(t4), R4 * sp.sin(t4)), "O4": (R1, 0),
-        },
-        links=SPEC.links, ground=SPEC.ground,
+    return build(
+        SPEC, _model, [r1, r2, r3, r4], name=label, guess=guess, length_unit=length_unit, branch=branch,
         assembly_check=crank_range_check(r1, r2, r3, r4, klass),
-    ), SPEC)
+    )
+
+
+def _model():
+    """The loop and points, dimensions as symbols r1..r4 (see :func:`numkin.linkages.base.build`)."""
+    import sympy as sp
+
+    from ..loops import Loop
+
+    t2, t3, t4 = sp.symbols("theta2 theta3 theta4", real=True)
+    R1, R2, R3, R4 = sp.symbols("r1 r2 r3 r4", real=True)
+    loop = Loop.from_vectors([(R2, t2), (R3, t3), (-R4, t4), (-R1, 0)], [t3, t4], name="O2-A-B-O4")
+    points = {
+        "O2": (0, 0), "A": (R2 * sp.cos(t2), R2 * sp.sin(t2)),
+        "B": (R1 + R4 * sp.cos(t4), R4 * sp.sin(t4)), "O4": (R1, 0),
+    }
+    return [loop], t2, (R1, R2, R3, R4), points
 
 
 SPEC = LinkageSpec(

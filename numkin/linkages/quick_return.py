@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from .base import Dimension, LinkageSpec, finish, length
+from .base import Dimension, LinkageSpec, build, length
 
 __all__ = ["quick_return", "SPEC"]
 
@@ -41,18 +41,9 @@ def quick_return(r1=60.0, r2=40.0, r6=60.0, *, length_unit: str = "mm"):
     >>> round(qr.time_ratio, 3)
     2.735
     """
-    import sympy as sp
-
-    from ..loops import Loop
-    from ..mechanism import Mechanism
-
     a, b, c = length("r1", r1), length("r2", r2), length("r6", r6)
     if b >= a:
         raise ValueError(f"r2 = {b:g} must be shorter than r1 = {a:g}: otherwise the crank passes the rocker pivot O1")
-    t2, r3, t3, r4, r5 = sp.symbols("theta2 r3 theta3 r4 r5", real=True)
-    R1, R2, R6 = sp.symbols("r1 r2 r6", real=True)
-    loop1 = Loop.from_vectors([(R1, sp.pi / 2), (R2, t2), (-r3, t3)], [r3, t3], name="O1-O2-A")
-    loop2 = Loop.from_vectors([(R1 + R6, sp.pi / 2), (r5, 0), (-r4, t3)], [r4, r5], name="O1-C-B")
 
     def guess(theta2):
         ax, ay = b * math.cos(theta2), a + b * math.sin(theta2)
@@ -60,17 +51,27 @@ def quick_return(r1=60.0, r2=40.0, r6=60.0, *, length_unit: str = "mm"):
         return {"r3": math.hypot(ax, ay), "theta3": th3, "r4": (a + c) / math.sin(th3), "r5": (a + c) / math.tan(th3)}
 
     beta = math.acos(b / a)
-    mech = Mechanism(
-        [loop1, loop2], t2, {R1: a, R2: b, R6: c},
-        name=f"quick-return (r1 {a:g}, r2 {b:g}, r6 {c:g})", guess=guess, length_unit=length_unit,
-        points={
-            "O1": (0, 0), "O2": (0, R1), "A": (R2 * sp.cos(t2), R1 + R2 * sp.sin(t2)),
-            "B": (r5, R1 + R6), "C": (0, R1 + R6),
-        },
-        links=SPEC.links, ground=SPEC.ground,
-    )
+    mech = build(SPEC, _model, [a, b, c], name=f"quick-return (r1 {a:g}, r2 {b:g}, r6 {c:g})", guess=guess,
+                 length_unit=length_unit)
     mech.time_ratio = (math.pi - beta) / beta
-    return finish(mech, SPEC)
+    return mech
+
+
+def _model():
+    """The loops and points, dimensions as symbols r1, r2, r6 (see :func:`numkin.linkages.base.build`)."""
+    import sympy as sp
+
+    from ..loops import Loop
+
+    t2, r3, t3, r4, r5 = sp.symbols("theta2 r3 theta3 r4 r5", real=True)
+    R1, R2, R6 = sp.symbols("r1 r2 r6", real=True)
+    loop1 = Loop.from_vectors([(R1, sp.pi / 2), (R2, t2), (-r3, t3)], [r3, t3], name="O1-O2-A")
+    loop2 = Loop.from_vectors([(R1 + R6, sp.pi / 2), (r5, 0), (-r4, t3)], [r4, r5], name="O1-C-B")
+    points = {
+        "O1": (0, 0), "O2": (0, R1), "A": (R2 * sp.cos(t2), R1 + R2 * sp.sin(t2)),
+        "B": (r5, R1 + R6), "C": (0, R1 + R6),
+    }
+    return [loop1, loop2], t2, (R1, R2, R6), points
 
 
 SPEC = LinkageSpec(

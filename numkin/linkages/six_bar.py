@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from .base import Dimension, LinkageSpec, finish, finite, length
+from .base import Dimension, LinkageSpec, build, finite, length
 
 __all__ = ["six_bar", "SPEC"]
 
@@ -39,11 +39,6 @@ def six_bar(
     >>> round(float(res.x[3]), 5)
     -1.77881
     """
-    import sympy as sp
-
-    from ..loops import Loop
-    from ..mechanism import Mechanism
-
     l2, l3 = length("crank", crank), length("coupler", coupler)
     l41, l42, l43, l5 = length("o4b", o4b), length("bc", bc), length("o4c", o4c), length("rod", rod)
     ox, oy = finite("o4[0]", o4[0]), finite("o4[1]", o4[1])
@@ -52,17 +47,6 @@ def six_bar(
     if not -1 < cos_b < 1:
         raise ValueError(f"o4b = {l41:g}, bc = {l42:g}, o4c = {l43:g} do not form a triangle (ternary link)")
     beta_val = math.pi - math.acos(cos_b)
-    t2, t3, t4, t5, x = sp.symbols("theta2 theta3 theta4 theta5 x", real=True)
-    L2, L3, L41, L42, L5, OX, OY, YD, BETA = sp.symbols("l2 l3 l41 l42 l5 o4x o4y y_d beta", real=True)
-    half = sp.pi / 2
-    loop1 = Loop.from_vectors(
-        [(L2, t2), (L3, t3), (-L41, t4), (-OX, 0), (-OY, half)], [t3, t4], name="O2-A-B-O4"
-    )
-    loop2 = Loop.from_vectors(
-        [(OX, 0), (OY, half), (L41, t4), (L42, t4 + BETA), (-L5, t5), (-x, 0), (-YD, half)],
-        [t5, x], name="O4-B-C-D",
-    )
-    params = {L2: l2, L3: l3, L41: l41, L42: l42, L5: l5, OX: ox, OY: oy, YD: yd, BETA: beta_val}
 
     def guess(theta2):
         ax, ay = l2 * math.cos(theta2), l2 * math.sin(theta2)
@@ -77,18 +61,35 @@ def six_bar(
         th5 = math.asin(s)
         return {"theta3": th3, "theta4": th4, "theta5": th5, "x": cx - l5 * math.cos(th5)}
 
-    return finish(Mechanism(
-        [loop1, loop2], t2, params,
-        name="six-bar with slider", guess=guess, length_unit=length_unit,
-        length_scale=max(l2, l3, l41, l42, l43, l5),
-        points={
-            "O2": (0, 0), "A": (L2 * sp.cos(t2), L2 * sp.sin(t2)), "O4": (OX, OY),
-            "B": (OX + L41 * sp.cos(t4), OY + L41 * sp.sin(t4)),
-            "C": (OX + L41 * sp.cos(t4) + L42 * sp.cos(t4 + BETA), OY + L41 * sp.sin(t4) + L42 * sp.sin(t4 + BETA)),
-            "D": (x, YD),
-        },
-        links=SPEC.links, ground=SPEC.ground,
-    ), SPEC)
+    return build(
+        SPEC, _model, [l2, l3, l41, l42, l5, ox, oy, yd, beta_val], name="six-bar with slider", guess=guess,
+        length_unit=length_unit, length_scale=max(l2, l3, l41, l42, l43, l5),
+    )
+
+
+def _model():
+    """The loops and points, dimensions as symbols (see :func:`numkin.linkages.base.build`)."""
+    import sympy as sp
+
+    from ..loops import Loop
+
+    t2, t3, t4, t5, x = sp.symbols("theta2 theta3 theta4 theta5 x", real=True)
+    L2, L3, L41, L42, L5, OX, OY, YD, BETA = sp.symbols("l2 l3 l41 l42 l5 o4x o4y y_d beta", real=True)
+    half = sp.pi / 2
+    loop1 = Loop.from_vectors(
+        [(L2, t2), (L3, t3), (-L41, t4), (-OX, 0), (-OY, half)], [t3, t4], name="O2-A-B-O4"
+    )
+    loop2 = Loop.from_vectors(
+        [(OX, 0), (OY, half), (L41, t4), (L42, t4 + BETA), (-L5, t5), (-x, 0), (-YD, half)],
+        [t5, x], name="O4-B-C-D",
+    )
+    points = {
+        "O2": (0, 0), "A": (L2 * sp.cos(t2), L2 * sp.sin(t2)), "O4": (OX, OY),
+        "B": (OX + L41 * sp.cos(t4), OY + L41 * sp.sin(t4)),
+        "C": (OX + L41 * sp.cos(t4) + L42 * sp.cos(t4 + BETA), OY + L41 * sp.sin(t4) + L42 * sp.sin(t4 + BETA)),
+        "D": (x, YD),
+    }
+    return [loop1, loop2], t2, (L2, L3, L41, L42, L5, OX, OY, YD, BETA), points
 
 
 SPEC = LinkageSpec(

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from .base import Dimension, LinkageSpec, finish, finite, length
+from .base import Dimension, LinkageSpec, build, finite, length
 
 __all__ = ["slider_crank", "SPEC"]
 
@@ -36,16 +36,8 @@ def slider_crank(crank, rod, offset=0.0, *, length_unit: str = "mm"):
     >>> round(float(sc.solve(np.pi / 2).x[1]), 6)   # sqrt(200**2 - 80**2)
     183.303028
     """
-    import sympy as sp
-
-    from ..loops import Loop
-    from ..mechanism import Mechanism
-
     r, rod_l = length("crank", crank), length("rod", rod)
     e = finite("offset", offset)
-    th, t3, x = sp.symbols("theta theta3 x", real=True)
-    R, L, E = sp.symbols("r l e", real=True)
-    loop = Loop.from_vectors([(R, th), (L, t3), (-x, 0), (-E, sp.pi / 2)], [t3, x], name="O-A-P")
     label = f"slider-crank (crank {r:g}, rod {rod_l:g}, offset {e:g})"
 
     def guess(theta):
@@ -65,12 +57,23 @@ def slider_crank(crank, rod, offset=0.0, *, length_unit: str = "mm"):
             f"e.g. theta = {math.degrees(first):.2f}° (a full turn needs rod >= crank + |offset|)"
         )
 
-    return finish(Mechanism(
-        [loop], th, {R: r, L: rod_l, E: e},
-        name=label, guess=guess, length_unit=length_unit, length_scale=max(r, rod_l, abs(e)),
-        points={"O": (0, 0), "A": (R * sp.cos(th), R * sp.sin(th)), "P": (x, E)},
-        links=SPEC.links, ground=SPEC.ground, assembly_check=check,
-    ), SPEC)
+    return build(
+        SPEC, _model, [r, rod_l, e], name=label, guess=guess, length_unit=length_unit,
+        length_scale=max(r, rod_l, abs(e)), assembly_check=check,
+    )
+
+
+def _model():
+    """The loop and points, dimensions as symbols r, l, e (see :func:`numkin.linkages.base.build`)."""
+    import sympy as sp
+
+    from ..loops import Loop
+
+    th, t3, x = sp.symbols("theta theta3 x", real=True)
+    R, L, E = sp.symbols("r l e", real=True)
+    loop = Loop.from_vectors([(R, th), (L, t3), (-x, 0), (-E, sp.pi / 2)], [t3, x], name="O-A-P")
+    points = {"O": (0, 0), "A": (R * sp.cos(th), R * sp.sin(th)), "P": (x, E)}
+    return [loop], th, (R, L, E), points
 
 
 SPEC = LinkageSpec(
