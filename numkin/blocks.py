@@ -102,12 +102,10 @@ class BlockStructure:
         if self._step is None:
             dx, _, bad = self.solve(J, -stack_rows(rows, N))
             return dx, bad
-        dx = np.empty((self.n, N), dtype=complex if any(map(np.iscomplexobj, rows)) or np.iscomplexobj(J[0]) else float)
+        dx = np.empty((self.n, N), dtype=complex if _any_complex(rows) or _any_complex(J[:1]) else float)
         self._step(J, rows, dx)
         total = dx[0] if self.n == 1 else dx.sum(axis=0)
         bad = ~np.isfinite(total)
-        if np.ndim(bad) == 0:
-            bad = np.full(N, bool(bad))
         if bad.any():
             dx[:, bad] = np.nan
         return dx, bad
@@ -274,6 +272,17 @@ class BlockStructure:
                         c[ok] = np.linalg.cond(m[ok])
                     out[k] = np.where(np.isfinite(c), c, np.inf)
         return out
+
+
+def _any_complex(rows) -> bool:
+    """Whether any of the rows (arrays or numbers) is complex."""
+    for r in rows:
+        if isinstance(r, np.ndarray):
+            if r.dtype.kind == "c":
+                return True
+        elif isinstance(r, (complex, np.complexfloating)):
+            return True
+    return False
 
 
 def stack_rows(rows, N):
