@@ -8,9 +8,10 @@ Algorithm
    as accurate as every other.
 2. March sequentially to *nodes*, grid points about ``max_step`` apart (30°
    by default): each step predicts with the tangent ``q' = -J^-1 dF/dt``
-   (and the previous point, a quadratic, only when that point is a sane
-   distance away and the quadratic term stays below the step times the
-   tangent) and corrects with Newton. The predicted change of every unknown
+   (and the previous point and its tangent, a cubic, or the previous point
+   alone, a quadratic, only when that point is a sane distance away and the
+   added terms stay below the step times the tangent) and corrects with
+   Newton (its updates written out for the mechanism's loops). The predicted change of every unknown
    is at most :data:`MAX_PREDICTION` (scaled), so no prediction can reach
    another turn. The corrected angles are taken nearest the prediction.
    A step is accepted only if Newton converges, the correction is small
