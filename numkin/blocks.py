@@ -64,11 +64,14 @@ class BlockStructure:
         self._rows = {(a, b): [i * n + j for i in range(a, b) for j in range(a, b)] for a, b in self.blocks}
         self._small = all(b - a <= 2 for a, b in self.blocks)
         self._step = None
+        self.newton1 = None
         if self._small:
             zeros = set(zeros)
             self.solve1 = _unrolled_solve(n, self.blocks, zeros, batch=False)
             self._step = _unrolled_solve(n, self.blocks, zeros, batch=True)
             self.update1 = _unrolled_update(n, self.blocks, zeros, self.inv_xscale)
+            #: Newton-Raphson at one point, every update written out (see :func:`_unrolled_newton`).
+            self.newton1 = _unrolled_newton(n, self.blocks, zeros, self.inv_xscale)
 
     def newton_step(self, J, f):
         """The Newton step ``-J^-1 f`` at every point: J rows, f (n, N) -> (dx (n, N), bad (N,)).
@@ -99,12 +102,10 @@ class BlockStructure:
         if self._step is None:
             dx, _, bad = self.solve(J, -stack_rows(rows, N))
             return dx, bad
-        dx = np.empty((self.n, N), dtype=complex if any(map(np.iscomplexobj, rows)) or np.iscomplexobj(J[0]) else float)
+        dx = np.empty((self.n, N), dtype=complex if _any_complex(rows) or _any_complex(J[:1]) else float)
         self._step(J, rows, dx)
         total = dx[0] if self.n == 1 else dx.sum(axis=0)
         bad = ~np.isfinite(total)
-        if np.ndim(bad) == 0:
-            bad = np.full(N, bool(bad))
         if bad.any():
             dx[:, bad] = np.nan
         return dx, bad
@@ -273,6 +274,17 @@ class BlockStructure:
         return out
 
 
+def _any_complex(rows) -> bool:
+    """Whether any of the rows (arrays or numbers) is complex."""
+    for r in rows:
+        if isinstance(r, np.ndarray):
+            if r.dtype.kind == "c":
+                return True
+        elif isinstance(r, (complex, np.complexfloating)):
+            return True
+    return False
+
+
 def stack_rows(rows, N):
     """Rows that are (N,) arrays or numbers, as one (len(rows), N) array."""
     if all(np.ndim(r) for r in rows):
@@ -297,39 +309,101 @@ def _cond2(p, q, r, s):
     return c if c >= 1.0 else (1.0 if math.isfinite(c) else math.inf)
 
 
+def _step_lines(n, blocks, zeros, singular, indent="    "):
+    """Lines computing the Newton step ``d0 .. d{n-1} = -J^-1 F`` from ``v = [F..., J rows...]``
+    by forward substitution through the blocks (sizes 1 and 2); ``singular`` is the statement
+    run where a block's determinant is zero or not finite."""
+    lines = []
+    for a, b in blocks:
+        for i in range(a, b):
+            terms = "".join(f" + v[{n + i * n + j}] * d{j}" for j in range(a) if (i, j) not in zeros)
+            lines.append(f"r{i} = v[{i}]{terms}")
+        if b - a == 2:
+            i0 = n + a * n + a
+            lines += [
+                f"a00 = v[{i0}]; a01 = v[{i0 + 1}]; a10 = v[{i0 + n}]; a11 = v[{i0 + n + 1}]",
+                "det = a00 * a11 - a01 * a10",
+                f"if not (det != 0.0 and -INF < det < INF): {singular}",
+                f"d{a} = (a01 * r{a + 1} - r{a} * a11) / det",
+                f"d{a + 1} = (a10 * r{a} - a00 * r{a + 1}) / det",
+            ]
+        else:
+            lines += [
+                f"det = v[{n + a * n + a}]",
+                f"if not (det != 0.0 and -INF < det < INF): {singular}",
+                f"d{a} = -r{a} / det",
+            ]
+    lines.append(f"if not -INF < {' + '.join(f'd{i}' for i in range(n))} < INF: {singular}")
+    return [indent + line for line in lines]
+
+
+def _scaled_max(names, weights):
+    """Source of ``max(|name_i| * weight_i)`` (a weight of one left out)."""
+    terms = [f"abs({a})" if w == 1.0 else f"abs({a}) * {w!r}" for a, w in zip(names, weights)]
+    return terms[0] if len(terms) == 1 else f"max({', '.join(terms)})"
+
+
 def _unrolled_update(n, blocks, zeros, inv_xscale):
     """Generate ``update1(v, x) -> (x_new, step)``: one Newton update at one point, written out.
 
     ``v`` holds the residuals then the Jacobian rows (from offset n).
     """
-    lines = ["def update1(v, x):"]
-    for k, (a, b) in enumerate(blocks):
-        for i in range(a, b):
-            terms = "".join(f" + v[{n + i * n + j}] * d{j}" for j in range(a) if (i, j) not in zeros)
-            lines.append(f"    r{i} = v[{i}]{terms}")
-        if b - a == 2:
-            i0 = n + a * n + a
-            lines += [
-                f"    a00 = v[{i0}]; a01 = v[{i0 + 1}]; a10 = v[{i0 + n}]; a11 = v[{i0 + n + 1}]",
-                "    det = a00 * a11 - a01 * a10",
-                "    if not (det != 0.0 and -INF < det < INF): return None, None",
-                f"    d{a} = (a01 * r{a + 1} - r{a} * a11) / det",
-                f"    d{a + 1} = (a10 * r{a} - a00 * r{a + 1}) / det",
-            ]
-        else:
-            lines += [
-                f"    det = v[{n + a * n + a}]",
-                "    if not (det != 0.0 and -INF < det < INF): return None, None",
-                f"    d{a} = -r{a} / det",
-            ]
-    lines.append(f"    if not -INF < {' + '.join(f'd{i}' for i in range(n))} < INF: return None, None")
-    steps = ", ".join(f"abs(d{i})" if inv_xscale[i] == 1.0 else f"abs(d{i}) * {inv_xscale[i]!r}" for i in range(n))
-    lines.append(f"    return [{', '.join(f'x[{i}] + d{i}' for i in range(n))}], max({steps}{',' if n == 1 else ''})")
-    if n == 1:
-        lines[-1] = lines[-1].replace(f"max({steps},)", steps)
+    lines = ["def update1(v, x):", *_step_lines(n, blocks, zeros, "return None, None")]
+    step = _scaled_max([f"d{i}" for i in range(n)], inv_xscale)
+    lines.append(f"    return [{', '.join(f'x[{i}] + d{i}' for i in range(n))}], {step}")
     namespace = {"INF": math.inf}
     exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers only
     return namespace["update1"]
+
+
+def _unrolled_newton(n, blocks, zeros, inv_xscale):
+    """Generate ``newton1(K, x, t, pt, maxiter, fscale, tol, converged, floor, errors)``: Newton-Raphson
+    at one point with every update written out.
+
+    ``K(*x, t, *pt)`` is the fused scalar kernel (residuals, Jacobian rows,
+    ...), ``converged`` the stopping rule (:func:`numkin.newton_rules.has_converged`)
+    and ``floor(x, t)`` the residual's round-off floor (consulted only when the
+    steps stall above ``tol``). Returns ``(x, status, iterations, residual, v,
+    evaluations)`` as :meth:`numkin.march.Continuation.newton1` does.
+    """
+    xs = [f"x{i}" for i in range(n)]
+    xl = "[" + ", ".join(xs) + "]"
+    res = "max(" + ", ".join(f"abs(v[{i}])" for i in range(n)) + ")" if n > 1 else "abs(v[0])"
+    lines = [
+        "def newton1(K, x, t, pt, maxiter, fscale, tol, converged, floor, errors):",
+        f"    {', '.join(xs)}{',' if n == 1 else ''} = x",
+        "    try:",
+        f"        v = K({', '.join(xs)}, t, *pt)",
+        "    except errors:",
+        "        return x, 'diverged', 0, NAN, None, 1",
+        "    if not -INF < sum(v) < INF:",
+        "        return x, 'diverged', 0, NAN, None, 1",
+        f"    res = {res} / fscale",
+        "    prev = INF",
+        "    it = 0",
+        "    status = 'maxiter'",
+        "    while it < maxiter:",
+        *_step_lines(n, blocks, zeros, "status = 'singular'; break", indent="        "),
+        *[f"        x{i} += d{i}" for i in range(n)],
+        f"        step = {_scaled_max([f'd{i}' for i in range(n)], inv_xscale)}",
+        "        it += 1",
+        "        try:",
+        f"            v = K({', '.join(xs)}, t, *pt)",
+        "        except errors:",
+        f"            return {xl}, 'diverged', it, NAN, None, it + 1",
+        "        if not -INF < sum(v) < INF:",
+        f"            return {xl}, 'diverged', it, NAN, None, it + 1",
+        f"        res = {res} / fscale",
+        f"        low = floor({xl}, t) if res > tol and step >= 0.9 * prev else 0.0",
+        "        if converged(res, step, prev, tol, low):",
+        "            status = 'converged'",
+        "            break",
+        "        prev = step",
+        f"    return {xl}, status, it, res, v, it + 1",
+    ]
+    namespace = {"INF": math.inf, "NAN": math.nan}
+    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers only
+    return namespace["newton1"]
 
 
 def _unrolled_solve(n, blocks, zeros=frozenset(), batch=False):

@@ -8,23 +8,27 @@ Algorithm
    as accurate as every other.
 2. March sequentially to *nodes*, grid points about ``max_step`` apart (30°
    by default): each step predicts with the tangent ``q' = -J^-1 dF/dt``
-   (and the previous point, a quadratic, only when that point is a sane
-   distance away and the quadratic term stays below the step times the
-   tangent) and corrects with Newton. The predicted change of every unknown
+   (and the previous point and its tangent, a cubic, or the previous point
+   alone, a quadratic, only when that point is a sane distance away and the
+   added terms stay below the step times the tangent) and corrects with
+   Newton (its updates written out for the mechanism's loops). The predicted change of every unknown
    is at most :data:`MAX_PREDICTION` (scaled), so no prediction can reach
    another turn. The corrected angles are taken nearest the prediction.
    A step is accepted only if Newton converges, the correction is small
    (:data:`MAX_CORRECTION`) and the sign of every loop's Jacobian
    determinant (its *orientation*, constant along a branch) is unchanged
-   and the tangent has not turned by more than :data:`MAX_TANGENT_TURN`
-   (1 + ``|q'|``) (where two branches meet, the other one keeps the
-   orientation, and only the kink in the tangent shows the switch);
+   and the tangent differs by at most :data:`MAX_TANGENT_TURN` (1 + ``|q'|``)
+   from the one expected (the last tangent, extrapolated linearly through
+   the one before when that is at most :data:`TREND_REACH` steps back)
+   (where two branches meet, the other one keeps the orientation, and only
+   the kink in the tangent shows the switch);
    otherwise the step is halved, so a large ``max_step`` costs no safety and
    a small one loses none. A change of orientation is localised to
    :data:`CROSSING_STEP` and placed where the determinant, linear between
    the two points, is zero.
-3. Fill the grid points between nodes in one batch: a cubic Hermite predictor
-   from the nodes' values and tangents, then Newton on all points at once.
+3. Fill the grid points between nodes in one batch: a Hermite predictor from
+   the nodes' values and tangents (cubic), and, where the segments hold many
+   points, their curvatures too (quintic), then Newton on all points at once.
    A point that fails the same acceptance tests (converged, small
    correction, the orientation of its nodes) is re-solved sequentially from
    its neighbour; a segment between two nodes where neighbouring batch
@@ -57,11 +61,13 @@ import numpy as np
 
 from .batch_fill import fill, nodes_of, report_near_singular
 from .first_point import solve_start
-from .march import CROSSING_STEP, DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_PREDICTION, MAX_TANGENT_TURN, Continuation
+from .march import (CROSSING_STEP, DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_PREDICTION, MAX_TANGENT_TURN, TREND_REACH,
+                    Continuation)
 from .newton import JACOBIANS, check_tol
 from .sweep import Sweep, record_evaluations
 
-__all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION", "MAX_TANGENT_TURN", "CROSSING_STEP"]
+__all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION", "MAX_TANGENT_TURN", "TREND_REACH",
+           "CROSSING_STEP"]
 
 
 def _validate_inputs(inputs) -> np.ndarray:

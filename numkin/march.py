@@ -29,7 +29,7 @@ from .newton import (
 from .sweep import SweepEvent, SingularityWarning
 
 __all__ = ["Continuation", "predict", "deg_text", "MAX_CORRECTION", "MAX_PREDICTION", "CORRECTOR_ITERATIONS",
-           "DEFAULT_MAX_STEP", "FAR", "TWO_PI", "MAX_TANGENT_TURN", "CROSSING_STEP", "COND_TANGENT"]
+           "DEFAULT_MAX_STEP", "FAR", "TWO_PI", "MAX_TANGENT_TURN", "TREND_REACH", "CROSSING_STEP", "COND_TANGENT"]
 
 #: Correction (scaled: rad, or lengths / length_scale) above which a continuation step is refused.
 MAX_CORRECTION = 0.3
@@ -46,6 +46,9 @@ COND_TANGENT = 1e6
 #: a larger one is halved until the step is resolved, so a switch to another branch where
 #: branches meet (same orientation, a kink in the tangent) is never taken for a step.
 MAX_TANGENT_TURN = 0.5
+#: The kink test expects the tangent to go on changing as it did over the last step, extrapolated
+#: at most this many times that step ahead (a smooth branch then passes in long steps).
+TREND_REACH = 2.0
 #: Step (rad) to which a change of orientation is localised before it is taken for a change
 #: point: small enough to place it, large enough that the branches meeting there are still
 #: told apart (their distance, ~ step, stays far above Newton's noise, ~ eps / step).
@@ -103,6 +106,7 @@ class Continuation:
         self.loop_names = [lp.name for lp in mech.loops]
         self.angle_idx = [k for k, u in enumerate(mech.unknowns) if u in mech.angles]
         self._fjt = comp.scalar_FJT
+        self._newton1 = self.blocks.newton1 if self.symbolic else None
         self._f = comp.scalar_F
         self.last_previous = None
         self.started_on_default = False
@@ -147,6 +151,9 @@ class Continuation:
         rows = jac[0].ravel().tolist()
         return f + rows if math.isfinite(sum(rows)) else None
 
+    def _floor(self, x, t):
+        return residual_floor([a * w for a, w in zip(x, self.inv_xs)], t)
+
     def newton1(self, x, t, maxiter, cond_max=None):
         """Newton-Raphson at one input from ``x`` (list): the scalar kernel.
 
@@ -159,6 +166,12 @@ class Continuation:
         non-finite solve is.
         """
         n, nn, fscale, tol = self.n, self.nn, self.fscale, self.tol
+        if self._newton1 is not None and cond_max is None:
+            x, status, it, res, v, evals = self._newton1(self._fjt, x, t, self.pt, maxiter, fscale, tol, has_converged,
+                                                         self._floor, MATH_ERRORS)
+            self.nfev += evals
+            self.njev += evals
+            return x, status, it, res, v
         update = self.blocks.update1
         evaluate = self.eval1 if self.symbolic else self.eval1_fd
         v = evaluate(x, t)
@@ -414,7 +427,8 @@ class Continuation:
         min_step = 1e-9 * max(1.0, abs(span))
         crossing_step = max(CROSSING_STEP, 64 * min_step)
         t, x, d, o = t0, x0, d0, o0
-        t_prev, x_prev = previous if previous is not None else (None, None)
+        t_prev, x_prev = previous[:2] if previous is not None else (None, None)
+        d_prev = previous[2] if previous is not None and len(previous) > 2 else None
         iters = 0
         inv_xs = self.inv_xs
         n, nn = self.n, self.nn
@@ -437,7 +451,7 @@ class Continuation:
                 t_new = t + direction * dt
             if dt < min_step or t_new == t:
                 self.fail(t0, x0, t, x, t_new, x, "singular", "singular", 0, math.nan)
-            x_pred = predict(t, x, d, t_prev, x_prev, t_new, None if unit else inv_xs, rate)
+            x_pred = predict(t, x, d, t_prev, x_prev, t_new, None if unit else inv_xs, rate, d_prev)
             x_new, status, it, res, v = self.correct(x_pred, t_new)
             reason = status
             ok = status == "converged"
@@ -456,12 +470,12 @@ class Continuation:
             if ok and d is not None:
                 if not max(self.blocks.cond1(v[n : n + nn])) <= COND_TANGENT:
                     d_new = d  # a tangent solved through a near-singular Jacobian is noise: keep the last good one
-                elif dt > crossing_step and self.kinked(d, d_new, rate):
+                elif dt > crossing_step and self.kinked(self.trend(t, d, t_prev, d_prev, t_new), d_new, rate):
                     # Where branches meet, the other branch keeps the orientation: only the
                     # tangent shows the switch. A smooth branch passes once the step is small.
                     ok, reason = False, "kink"
             if ok:
-                t_prev, x_prev = t, x
+                t_prev, x_prev, d_prev = t, x, d
                 t, x, d, o = t_new, x_new, d_new, o_new
                 iters = it
                 step = min(self.max_step, 2.0 * dt)
@@ -475,11 +489,23 @@ class Continuation:
                 f"progress in {MAX_TRIALS} trial steps (stopped at {deg_text(t, 6)})",
                 input_value=float(t), loop=self.loop_names[0], iterations=MAX_TRIALS, cause="no progress",
             )
-        self.last_previous = (t_prev, x_prev) if t_prev is not None else None
+        self.last_previous = (t_prev, x_prev, d_prev) if t_prev is not None else None
         return x, d, o, iters
 
+    @staticmethod
+    def trend(t, d, t_prev, d_prev, t_new):
+        """The tangent expected at ``t_new``: ``d`` extrapolated linearly through the previous point's
+        tangent ``d_prev`` (when that point is at most :data:`TREND_REACH` steps back), else ``d``."""
+        if d_prev is None or t_prev is None:
+            return d
+        r = (t_new - t) / (t - t_prev)
+        if not 0.0 < r <= TREND_REACH:
+            return d
+        return [a + (a - b) * r for a, b in zip(d, d_prev)]
+
     def kinked(self, d, d_new, rate) -> bool:
-        """Whether the tangent turned by more than :data:`MAX_TANGENT_TURN` (1 + ``|dq/dt|``) in one step."""
+        """Whether the tangent ``d_new`` differs from the one expected, ``d`` (:meth:`trend`), by more than
+        :data:`MAX_TANGENT_TURN` (1 + ``|dq/dt|``)."""
         if d_new is None:
             return False
         if self.unit_scale:
@@ -535,15 +561,18 @@ def _scatter(row, sub, idx, N):
     return row
 
 
-def predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate):
+def predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate, d_prev=None):
     """Predictor of a continuation step that cannot blow up.
 
-    The tangent ``x + d s``; plus the quadratic term through the previous
-    point only when that point is at least ``SANE_DISTANCE`` times the
-    step away and the term (scaled) is below the step times (1 + ``rate``),
-    ``rate`` the largest scaled entry of the tangent. Without a tangent: the
-    secant through a sane previous point, or ``x`` itself. ``inv_xs`` are the
-    unknowns' inverse scales (None: all one).
+    The tangent ``x + d s``; plus, through the previous point, the cubic
+    term as well when its tangent ``d_prev`` is known (the cubic through
+    both points and both tangents), else the quadratic one, only when that
+    point is at least ``SANE_DISTANCE`` times the step away and the added
+    terms (scaled) stay below the step times (1 + ``rate``), ``rate`` the
+    largest scaled entry of the tangent (else the quadratic, else the
+    tangent alone). Without a tangent: the secant through a sane previous
+    point, or ``x`` itself. ``inv_xs`` are the unknowns' inverse scales
+    (None: all one).
     """
     s = t_new - t
     if d is None:
@@ -560,8 +589,17 @@ def predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate):
     h = t_prev - t
     if abs(h) < SANE_DISTANCE * abs(s):
         return lin
-    s2 = s * s / (h * h)
-    quad = [(b - a - da * h) * s2 for a, da, b in zip(x, d, x_prev)]
-    if not max([abs(q) * w for q, w in zip(quad, inv_xs)] if inv_xs else map(abs, quad)) <= abs(s) * (1.0 + rate):
+    bound = abs(s) * (1.0 + rate)
+    r = s / h
+    # p(u) = x + d u + A u^2 + B u^3 with p(h) = x_prev (and p'(h) = d_prev): e = A h^2 + B h^3
+    e = [b - a - da * h for a, da, b in zip(x, d, x_prev)]
+    if d_prev is not None:
+        # A h^2 = 3 e - g h, B h^3 = g h - 2 e, g = d_prev - d
+        gh = [(b - a) * h for a, b in zip(d, d_prev)]
+        higher = [((3.0 * ei - gi) + (gi - 2.0 * ei) * r) * r * r for ei, gi in zip(e, gh)]
+        if max([abs(q) * w for q, w in zip(higher, inv_xs)] if inv_xs else map(abs, higher)) <= bound:
+            return [a + q for a, q in zip(lin, higher)]
+    quad = [ei * r * r for ei in e]
+    if not max([abs(q) * w for q, w in zip(quad, inv_xs)] if inv_xs else map(abs, quad)) <= bound:
         return lin
     return [a + q for a, q in zip(lin, quad)]

@@ -246,8 +246,7 @@ def solve_batch(evaluate, jacobian, solve, x0, *, fscale, xscale, tol=1e-12, max
     x_hist = [x.copy()] if record else []
     prev = np.full(N, np.inf)
     for _ in range(maxiter):
-        idx = np.flatnonzero(act)
-        M = idx.size
+        M = int(np.count_nonzero(act))
         if M == 0:
             break
         if M * 4 > N or N < compact_min:  # whole arrays; the inactive columns do not move
@@ -269,6 +268,7 @@ def solve_batch(evaluate, jacobian, solve, x0, *, fscale, xscale, tol=1e-12, max
             f, jac = evaluate(x, None)
             fmax = colmax(np.abs(f))
         else:  # the active columns only
+            idx = np.flatnonzero(act)
             z, fz = x.take(idx, axis=1), f.take(idx, axis=1)
             dx, bad_z = solve(jacobian(z, idx, fz, None if jac is None else take(jac, idx)), fz, idx)
             if bad_z.any():

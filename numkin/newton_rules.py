@@ -84,10 +84,14 @@ def has_converged(res, step, prev_step, tol, floor=0.0):
         if res <= tol:
             return step <= tol or (step <= tol ** (2.0 / 3.0) and step <= 0.25 * prev_step) or stuck
         return stuck and res <= floor
+    low = res <= tol
+    no_floor = isinstance(floor, float) and floor <= tol  # the floor clause adds nothing then
+    if no_floor and not low.any():
+        return low
     superlinear = (step <= tol ** (2.0 / 3.0)) & (step <= 0.25 * prev_step)
     stuck = step >= 0.9 * prev_step
-    done = (res <= tol) & ((step <= tol) | superlinear | stuck)
-    if isinstance(floor, float) and floor <= tol:  # the floor clause adds nothing then
+    done = low & ((step <= tol) | superlinear | stuck)
+    if no_floor:
         return done
     return done | ((res <= floor) & stuck)
 

@@ -636,8 +636,8 @@ def test_roundoff_optimum_lies_on_its_curve(hw_roundoff, scheme):
     near = np.abs(np.log10(h / hstar)) <= 0.25
     assert near.sum() >= 3
     assert 1 / 4 < np.median(err[near]) / estar < 4
-    # and the error measured at h* itself is of the same size
-    assert 1 / 10 < row["rel error measured at that h [-]"] / estar < 10
+    # and the error measured at h* itself is no larger (one sample of round-off: it may cancel to far less)
+    assert row["rel error measured at that h [-]"] / estar < 10
 
 
 def test_fitted_optimum_ignores_a_lucky_cancellation():

@@ -1,0 +1,124 @@
+"""The continuation's predictors and its written-out scalar Newton.
+
+References: polynomials the predictors must reproduce exactly (a cubic from
+two points and their tangents, a quintic from two points with tangents and
+curvatures), the four-bar's closed form by circle intersection computed
+here, and the count of Newton iterations that quadratic convergence allows.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from numkin import linkages
+from numkin.batch_fill import QUINTIC_MIN_POINTS, _hermite, node_curvatures, nodes_of
+from numkin.march import Continuation, predict
+
+
+def _cubic(t):
+    return 0.1 * t**3 - 0.2 * t**2 + 0.05 * t, 0.3 * t**2 - 0.4 * t + 0.05
+
+
+def test_march_predictor_is_exact_for_a_cubic_through_the_previous_tangent():
+    (x0, d0), (x1, d1) = _cubic(0.0), _cubic(1.0)
+    x2, _ = _cubic(1.5)
+    rate = abs(d1)
+    got = predict(1.0, [x1], [d1], 0.0, [x0], 1.5, None, rate, [d0])
+    assert got[0] == pytest.approx(x2, abs=1e-15)
+    # without the previous tangent: the quadratic through the previous point, wrong by the cubic term
+    quad = predict(1.0, [x1], [d1], 0.0, [x0], 1.5, None, rate)
+    assert abs(quad[0] - x2) > 1e-3
+
+
+def test_march_predictor_falls_back_when_the_cubic_term_is_too_large():
+    # a previous tangent far off: the cubic term exceeds the step times (1 + rate), so the quadratic is used
+    got = predict(1.0, [0.0], [0.0], 0.0, [0.0], 1.5, None, 0.0, [50.0])
+    assert got == [0.0]
+
+
+def _quintic(t):
+    c = [0.3, -0.2, 0.1, 0.05, -0.02, 0.004]
+    x = sum(ck * t**k for k, ck in enumerate(c))
+    d = sum(k * ck * t ** (k - 1) for k, ck in enumerate(c) if k)
+    d2 = sum(k * (k - 1) * ck * t ** (k - 2) for k, ck in enumerate(c) if k > 1)
+    return x, d, d2
+
+
+def test_batch_predictor_is_exact_for_a_quintic_and_for_a_cubic():
+    t = np.linspace(0.0, 2.0, 21)
+    nodes = np.array([0, 10, 20])
+    x, d, d2 = _quintic(t)
+    X, D = x[None, :].copy(), d[None, :].copy()
+    k = np.searchsorted(nodes, np.arange(t.size), side="right") - 1
+    got = _hermite(t, t, X, D, d2[None, nodes], nodes, k)
+    np.testing.assert_allclose(got[0], x, rtol=0, atol=1e-14)
+    # with the curvatures unknown: the cubic Hermite, exact for a cubic
+    xc, dc = _cubic(t)
+    got = _hermite(t, t, xc[None, :].copy(), dc[None, :].copy(), np.full((1, 3), np.nan), nodes, k)
+    np.testing.assert_allclose(got[0], xc, rtol=0, atol=1e-15)
+    # one node without a curvature: its segments are cubic, the others quintic
+    mixed = d2[None, nodes].copy()
+    mixed[0, 2] = np.nan
+    got = _hermite(t, t, X, D, mixed, nodes, k)
+    np.testing.assert_allclose(got[0, :11], x[:11], rtol=0, atol=1e-14)
+    assert np.abs(got[0, 11:20] - x[11:20]).max() > 1e-6
+
+
+def _four_bar_closed_form(t2, r1, r2, r3, r4):
+    """Open-branch (theta3, theta4) of the four-bar, by intersecting the circles about A and O4."""
+    ax, ay = r2 * np.cos(t2), r2 * np.sin(t2)
+    dx, dy = r1 - ax, -ay
+    d = np.hypot(dx, dy)
+    gamma = np.arccos((r3**2 + d**2 - r4**2) / (2 * r3 * d))
+    t3 = np.arctan2(dy, dx) + gamma
+    t4 = np.arctan2(ay + r3 * np.sin(t3), ax + r3 * np.cos(t3) - r1)
+    return t3, t4
+
+
+def test_node_curvatures_match_a_finite_difference_of_the_closed_form():
+    mech = linkages.four_bar(4, 1, 3, 3)
+    t = np.radians(np.arange(0.0, 361.0, 1.0))
+    sweep = mech.sweep(t)
+    ctx = Continuation(mech, "symbolic", 1e-12, math.radians(30.0), "raise")
+    nodes = nodes_of(t, math.radians(30.0))
+    X = sweep.values.copy()
+    h = 1e-4
+    tn = t[nodes]
+    closed = [np.unwrap(np.array(_four_bar_closed_form(tn + s * h, 4, 1, 3, 3))) for s in (-1, 0, 1)]
+    D = np.full_like(X, np.nan)
+    D[:, nodes] = (closed[2] - closed[0]) / (2 * h)
+    d2_fd = (closed[2] - 2 * closed[1] + closed[0]) / h**2
+    np.testing.assert_allclose(node_curvatures(ctx, t, X, D, nodes), d2_fd, rtol=0, atol=1e-5)
+
+
+@pytest.mark.parametrize("n_points", [361, 36001])
+def test_sweeps_with_either_predictor_agree_with_the_closed_form(n_points):
+    # 361 points: cubic prediction (fewer than QUINTIC_MIN_POINTS per node); 36001: quintic
+    assert (n_points >= QUINTIC_MIN_POINTS * 13) == (n_points == 36001)
+    mech = linkages.four_bar(4, 1, 3, 3)
+    t = np.linspace(0.0, 2 * math.pi, n_points)
+    sweep = mech.sweep(t)
+    t3, t4 = _four_bar_closed_form(t, 4, 1, 3, 3)
+    for got, ref in ((sweep["theta3"], t3), (sweep["theta4"], t4)):
+        assert np.abs(np.angle(np.exp(1j * (got - ref)))).max() < 1e-13
+    assert sweep.iterations.max() <= 4
+
+
+def test_written_out_newton_converges_quadratically_to_the_closed_form():
+    mech = linkages.four_bar(4, 1, 3, 3)
+    ctx = Continuation(mech, "symbolic", 1e-12, math.radians(30.0), "raise")
+    assert mech.block_structure.newton1 is not None
+    t2 = math.radians(40.0)
+    t3, t4 = (float(v) for v in _four_bar_closed_form(np.array(t2), 4, 1, 3, 3))
+    x, status, it, res, v = ctx.newton1([t3 + 0.01, t4 - 0.01], t2, 12)
+    assert status == "converged"
+    assert abs(x[0] - t3) < 1e-14 and abs(x[1] - t4) < 1e-14
+    # from an error of 1e-2: about 1e-4, 1e-8, 1e-16 -- and a last step to see it
+    assert 3 <= it <= 4
+    assert res < 1e-14
+    # det J = r3 r4 sin(theta3 - theta4): zero where theta3 = theta4, refused there and never divided by
+    x, status, it, res, v = ctx.newton1([0.5, 0.5], t2, 12)
+    assert (status, it, x) == ("singular", 0, [0.5, 0.5])
