@@ -64,7 +64,6 @@ import warnings
 import weakref
 
 import numpy as np
-import sympy as sp
 
 from .compiled import jacobian_rows, rates as rates_of, vector_function
 from .conditioning import (
@@ -127,7 +126,7 @@ def column_units(mechanism) -> dict:
 
 def _unknown_columns(mech, source: str = "analytic", second_source: str | None = None) -> dict:
     """Column name -> :class:`~numkin.quantities.Quantity` of a kinematics table, in column order."""
-    cols = {str(mech.input_symbol): input_quantity(mech)}
+    cols = {mech.input_name: input_quantity(mech)}
     for pair in unknown_quantities(mech, source, second_source):
         cols.update((q.name, q) for q in pair)
     return cols
@@ -464,6 +463,8 @@ def _point_functions(mech, names):
     cache = _POINT_CACHE.setdefault(mech, {})
     key = tuple(names)
     if key not in cache:
+        import sympy as sp
+
         q = list(mech.compiled.unknowns)
         t = mech.compiled.input_symbol
         params = list(mech.compiled.parameters)
@@ -558,8 +559,8 @@ def point_kinematics(sweep, omega, alpha=0.0, points=None):
     mech, t, _ = check_sweep(sweep)
     w, a = input_rates(omega, alpha, t.size)
     data = point_derivatives(sweep, points)
-    quantities = {str(mech.input_symbol): input_quantity(mech)}
-    cols = {str(mech.input_symbol): t}
+    quantities = {mech.input_name: input_quantity(mech)}
+    cols = {mech.input_name: t}
     for name, (P, dP, d2P) in data.items():
         values = (P, w * dP, w**2 * d2P + a * dP)
         for pair, v in zip(point_quantities(mech, name), values):

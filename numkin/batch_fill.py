@@ -33,7 +33,7 @@ def nodes_of(t: np.ndarray, max_step: float) -> np.ndarray:
 
 
 #: Grid points per node from which the batch is predicted by quintic Hermite polynomials (the nodes'
-#: curvatures cost two kernel calls on the nodes; a prediction error of order h^6 instead of h^4
+#: curvatures cost a few kernel calls on the nodes; a prediction error of order h^6 instead of h^4
 #: saves a Newton iteration on every point once the segments hold this many).
 QUINTIC_MIN_POINTS = 100
 
@@ -182,17 +182,26 @@ def _put_rows(rows, sub, idx, N):
 
 
 def node_curvatures(ctx: Continuation, t, X, D, nodes) -> np.ndarray:
-    """d2q/dt2 at the nodes (n, nodes), from their positions and tangents: the differentiated loop
-    equations solved loop by loop. NaN where a node's tangent is unknown or a block singular (its
-    segments are then predicted by the cubic); a node on a singular position has its segments
-    marched whatever the prediction (:func:`fill`)."""
-    from .compiled import acceleration_rhs
+    """d2q/dt2 at the nodes (n, nodes): the tangent's central difference along the curve.
 
+    The tangent ``-J^-1 dF/dt`` (loop by loop) at ``(q + e q', t + e)`` and
+    ``(q - e q', t - e)``, ``e`` a thousandth of the nodes' spacing: an error
+    of order e^2 (the path's curvature from its tangent field; no second
+    derivatives of the loop equations, which a sweep of positions never
+    derives). NaN where a node's tangent is unknown or a block singular (its
+    segments are then predicted by the cubic); a node on a singular position
+    has its segments marched whatever the prediction (:func:`fill`).
+    """
     tn = t.take(nodes)
     Xn, Dn = X.take(nodes, axis=1), D.take(nodes, axis=1)
-    jac = ctx.comp.FJ_rows(Xn, tn, ctx.p)[ctx.n :]
-    D2n, _ = ctx.blocks.solve_negated(jac, acceleration_rhs(ctx.comp, Xn, Dn, tn, ctx.p), nodes.size)
-    return D2n
+    e = 1e-3 * float(np.abs(np.diff(tn)).min()) if nodes.size > 1 else 1e-3
+    m = nodes.size
+    comp, p = ctx.comp, ctx.p
+    ts = np.concatenate([tn + e, tn - e])
+    xs = np.concatenate([Xn + e * Dn, Xn - e * Dn], axis=1)
+    jac = comp.FJ_rows(xs, ts, p)[ctx.n :]
+    tangent, _ = ctx.blocks.solve_negated(jac, comp.F_t(xs, ts, p), 2 * m)
+    return (tangent[:, :m] - tangent[:, m:]) / (2.0 * e)
 
 
 def _hermite(tc, t, X, D, D2n, nodes, k):

@@ -383,7 +383,7 @@ class Continuation:
     def describe_crossings(self, t, X, O, cond):
         """Record every change point passed (``on_singular="report"``): the branch kept and its tangent."""
         mech = self.mech
-        inp = str(mech.input_symbol)
+        inp = mech.input_name
         branch = getattr(mech, "branch", None)
         kept = f"the {branch} branch" if branch and self.started_on_default else "the branch the sweep was on"
         span = float(abs(t[-1] - t[0])) if t.size > 1 else 1.0

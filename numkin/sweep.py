@@ -153,7 +153,7 @@ class Sweep:
         try:
             return self.values[self.unknowns.index(name)]
         except ValueError:
-            if name == str(self.mechanism.input_symbol):
+            if name == self.mechanism.input_name:
                 return self.inputs
             raise KeyError(f"{name!r} is not an unknown of {self.mechanism.name}; unknowns are {list(self.unknowns)}") from None
 
@@ -194,7 +194,7 @@ class Sweep:
 
         angle_unit = "deg" if degrees else "rad"
         conv = np.degrees if degrees else (lambda a: a)
-        cols = {f"{self.mechanism.input_symbol} [{angle_unit}]": conv(self.inputs)}
+        cols = {f"{self.mechanism.input_name} [{angle_unit}]": conv(self.inputs)}
         for name, vals in zip(self.unknowns, self.values):
             if name in self.mechanism.angles:
                 cols[f"{name} [{angle_unit}]"] = conv(vals)
