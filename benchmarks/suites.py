@@ -113,7 +113,7 @@ def startup(settings: Settings) -> Table:
         "numkin run homework": 'python -c "import numpy, pandas"',
     }
     with tempfile.TemporaryDirectory() as tmp:
-        times = interleaved_commands(commands, settings.command_repeat, cwd=tmp)
+        times = interleaved_commands(commands, settings.command_repeat, cwd=tmp, bytecode=True)
     table = Table("Start-up (separate processes)",
                   ["command", "wall [s]", "CPU [s]", "wall ratio", "CPU ratio", "against"])
     for name, (wall, cpu) in times.items():
@@ -121,7 +121,8 @@ def startup(settings: Settings) -> Table:
         ratios = [f"{wall / times[ref][0]:.2f}", f"{cpu / times[ref][1]:.2f}"] if ref else ["", ""]
         table.rows.append([f"`{name}`", f"{wall:.3f}", f"{cpu:.3f}", *ratios, f"`{ref}`" if ref else ""])
     table.notes.append(f"median of {settings.command_repeat} interleaved rounds after one untimed run of each "
-                       "(so `numkin run homework` is a repeated run); CPU is the child's user + system time")
+                       "(so `numkin run homework` is a repeated run, with the kernel cache and the bytecode of the "
+                       "first run kept, the latter in a temporary folder); CPU is the child's user + system time")
     return table
 
 

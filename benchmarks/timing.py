@@ -81,15 +81,21 @@ def run_command(args, cwd=None, env=None) -> tuple:
     return wall, usage.ru_utime + usage.ru_stime
 
 
-def interleaved_commands(commands: dict, repeat: int, cwd=None, warmup: bool = True) -> dict:
+def interleaved_commands(commands: dict, repeat: int, cwd=None, warmup: bool = True, bytecode: bool = False) -> dict:
     """Median (wall, CPU) seconds of commands (lists of arguments, no shell), run in interleaved rounds.
 
     With ``warmup`` every command runs once untimed first (so that a second,
     "repeated" run is what is measured, with the operating system's file
-    cache warm).
+    cache warm). With ``bytecode`` (and ``cwd`` given) the children keep the
+    bytecode they compile in ``cwd/pycache`` (``PYTHONPYCACHEPREFIX``), even
+    where ``PYTHONDONTWRITEBYTECODE`` is set: a repeated run then reads it, as
+    every run of an installed package does.
     """
     env = dict(os.environ)
     env.setdefault("PYTHONHASHSEED", "0")
+    if bytecode and cwd is not None:
+        env.pop("PYTHONDONTWRITEBYTECODE", None)
+        env["PYTHONPYCACHEPREFIX"] = os.path.join(cwd, "pycache")
     if warmup:
         for args in commands.values():
             run_command(args, cwd, env)
