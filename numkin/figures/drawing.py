@@ -283,7 +283,7 @@ def _clear_labels(ax, labels, joints, span: float) -> None:
     """Move each angle label outward along its arc's bisector (or below the reference line) until it
     covers no joint and no other text; a label that finds no clear place stays where it was."""
     fig = ax.figure
-    fig.canvas.draw()
+    fig.draw_without_rendering()  # the layout, so that data coordinates map to the final pixels; nothing rasterised
     renderer = fig.canvas.get_renderer()
     joints_px = [ax.transData.transform(p) for p in joints]
 
