@@ -126,3 +126,60 @@ def test_png_is_the_same_whatever_the_order_of_formats(tmp_path):
     png = (tmp_path / "a.png").read_bytes()
     assert png == (tmp_path / "b.png").read_bytes() == (tmp_path / "c.png").read_bytes()
     assert (tmp_path / "a.svg").read_bytes() == (tmp_path / "b.svg").read_bytes()
+
+
+def test_tables_of_one_report_equal_the_tables_computed_alone():
+    from numkin import report
+
+    mech = linkages.slider_crank(R, L)
+    opts = dict(omega="6000 rpm", quantity="x", check_angle=math.radians(90.0))
+    grids, schemes = (36, 72), ("centred", "forward", "second_difference")
+    together = report.full_report(mech, grids=grids, schemes=schemes, points_per_turn=72, **opts)
+    alone = {
+        "convergence": report.convergence_table(mech, grids=grids, schemes=schemes, **opts),
+        "work_precision": report.work_precision_table(mech, omega=opts["omega"], quantity="x", grids=grids,
+                                                      schemes=schemes),
+        "tolerance": report.tolerance_table(mech, points_per_turn=72, **opts),
+        "roundoff": report.roundoff_table(mech, quantity="x", check_angle=opts["check_angle"]),
+    }
+    for name, table in alone.items():
+        pd.testing.assert_frame_equal(together[name], table, check_exact=True)
+    # the work counts are the evaluations each row spends, not what sharing saved: the analytic
+    # velocity costs dF/dtheta at the 37 and 73 inputs of the two grids
+    wp = together["work_precision"]
+    analytic_v = wp[(wp["method"] == "analytic") & wp["quantity"].str.startswith("v_x")]
+    assert analytic_v["derivative work [evaluations]"].tolist() == [37, 73]
+
+
+def test_shared_sweeps_are_one_object_inside_the_block_and_fresh_outside():
+    from numkin.report.study import TURN, grid_inputs, shared_results, solve_sweep
+
+    mech = linkages.slider_crank(R, L)
+    inputs = grid_inputs(36, 0.0, TURN)
+    with shared_results():
+        a = solve_sweep(mech, inputs)
+        assert solve_sweep(mech, inputs.copy()) is a
+        assert solve_sweep(mech, inputs, tol=1e-6) is not a                  # other settings: another sweep
+        assert solve_sweep(mech, inputs, shared=False) is not a
+    b = solve_sweep(mech, inputs)
+    assert b is not a
+    np.testing.assert_array_equal(a.values, b.values)
+
+
+def test_a_shared_sweep_still_warns_every_caller_that_asks():
+    from numkin import SingularityWarning
+    from numkin.report.study import shared_results, solve_sweep
+
+    import warnings
+
+    mech = linkages.four_bar(5, 2, 5, 2)                                        # a change point at 180 deg
+    inputs = np.radians(np.arange(10.0, 351.0, 10.0))
+    with pytest.warns(SingularityWarning, match="180"):
+        mech.sweep(inputs, on_singular="report")
+    with shared_results():
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            first = solve_sweep(mech, inputs, on_singular="report")             # quiet: nothing shown
+        for _ in range(2):
+            with pytest.warns(SingularityWarning, match="180"):
+                assert solve_sweep(mech, inputs, quiet=False, on_singular="report") is first
