@@ -142,7 +142,6 @@ def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
             )
         stem = Path(path_stem)
         stem.parent.mkdir(parents=True, exist_ok=True)
-        paths = []
         # One layout for every format, computed once at the saving resolution, then frozen. A PNG is
         # drawn at that resolution anyway: it is written first and its own drawing lays the figure out
         # (one pass instead of a layout pass and a drawing pass, text measured once).

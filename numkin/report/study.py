@@ -338,16 +338,16 @@ def _key(value):
     return None
 
 
-def _shared(key, compute: Callable, quiet: bool, keep=()):
+def _shared(key, compute: Callable, quiet: bool, keep=(), fresh: bool = False):
     """``compute()`` (its warnings silenced if `quiet`), once per `key` inside :func:`shared_results`.
 
     `keep` holds the objects whose ``id`` is in `key`, so that no other object takes that id while the
-    result is kept.
+    result is kept. With `fresh`, computed anew (counted or timed) and kept for later callers.
     """
     store = _SHARED.get()
     if store is None or key is None:
         return silenced(compute) if quiet else compute()
-    if key not in store:
+    if fresh or key not in store:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             value = compute()
@@ -396,23 +396,23 @@ def position_record(what: str, mechanism, angle: float, x) -> dict:
     return {"what": what, "input [rad]": float(angle), **{u: float(v) for u, v in zip(mechanism.unknowns, x)}}
 
 
-def differenced(sweep: Sweep, scheme, quiet: bool = True, *, shared: bool = True) -> np.ndarray:
+def differenced(sweep: Sweep, scheme, quiet: bool = True, *, fresh: bool = False) -> np.ndarray:
     """d/dtheta (or d2/dtheta2) of every unknown of `sweep` by the finite-difference `scheme` (a Scheme).
 
-    Inside :func:`shared_results` (and with `shared`), once per sweep and scheme.
+    Inside :func:`shared_results`, once per sweep and scheme; with `fresh`
+    (where the work is counted or timed) computed anew, and kept.
     """
-    key = ("differenced", id(sweep), scheme.name) if shared else None
-    return _shared(key, lambda: kinematics.sweep_derivative(sweep, scheme.name), quiet, keep=(sweep,))
+    return _shared(("differenced", id(sweep), scheme.name), lambda: kinematics.sweep_derivative(sweep, scheme.name),
+                   quiet, keep=(sweep,), fresh=fresh)
 
 
-def exact_derivatives(sweep: Sweep, quiet: bool = True, *, shared: bool = True) -> tuple:
+def exact_derivatives(sweep: Sweep, quiet: bool = True, *, fresh: bool = False) -> tuple:
     """The analytic ``(dq/dtheta, d2q/dtheta2)`` of `sweep` (:func:`numkin.analytic.derivatives`).
 
-    Inside :func:`shared_results` (and with `shared`), once per sweep; pass
-    ``shared=False`` where the evaluations are being counted.
+    Inside :func:`shared_results`, once per sweep; with `fresh` (where the
+    evaluations are counted or timed) computed anew, and kept.
     """
-    key = ("exact", id(sweep)) if shared else None
-    return _shared(key, lambda: analytic.derivatives(sweep), quiet, keep=(sweep,))
+    return _shared(("exact", id(sweep)), lambda: analytic.derivatives(sweep), quiet, keep=(sweep,), fresh=fresh)
 
 
 def order_text(scheme) -> str:

@@ -145,14 +145,14 @@ def work_precision_table(
 
     def method_fns(order):
         fns = [
-            # counted: computed here, never taken from results shared with other tables
+            # counted (and timed): computed here, never taken from results shared with other tables
             ("analytic", (lambda s: silenced(analytic.tangent, s)) if order == 1
-             else (lambda s: exact_derivatives(s, shared=False)), False),
+             else (lambda s: exact_derivatives(s, fresh=True)), False),
             ("complex step", lambda s, o=order: silenced(analytic.complex_step, s, order=o), False),
         ]
         for scheme in scheme_list:
             if scheme.derivative == order:
-                fns.append((scheme.name, lambda s, sc=scheme: differenced(s, sc, shared=False), True))
+                fns.append((scheme.name, lambda s, sc=scheme: differenced(s, sc, fresh=True), True))
         return fns
 
     for order in (1, 2):
