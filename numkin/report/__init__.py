@@ -55,6 +55,11 @@ Conventions
   differenced as an open grid) reach the caller; the repeated sweeps of
   the timings and of the loose-tolerance solves are quiet.
 
+Tables computed inside :func:`shared_results` (as :func:`full_report` and
+the scene figures compute theirs) share what they have in common: each sweep
+of the same grid, its analytic derivatives and each scheme's differences are
+computed once; counted and timed calls are computed anew.
+
 :func:`write_tables` writes the tables as Markdown (GitHub-flavoured pipe
 tables; a wide table in parts, ``attrs["views"]``, one idea each; numbers
 with the significant figures of their column), CSV (every column, full
