@@ -183,3 +183,55 @@ def test_a_shared_sweep_still_warns_every_caller_that_asks():
         for _ in range(2):
             with pytest.warns(SingularityWarning, match="180"):
                 assert solve_sweep(mech, inputs, quiet=False, on_singular="report") is first
+
+
+def _student_reference(mech, inputs, rule, tol, maxiter=100):
+    """The student loop written out with the array kernels, one Newton step after another."""
+    comp, p = mech.compiled, mech.parameter_values
+    x = mech.guess_vector(mech.default_guess, float(inputs[0])).copy()
+    blocks = list(mech.loop_slices) if rule == "relative" else [slice(0, x.size)]
+    values, iters = [], []
+    for t in inputs:
+        tk, steps = np.array([t]), 0
+        for block in blocks:
+            for it in range(maxiter + 1):
+                f = comp.F(x[:, None], tk, p)[:, 0]
+                if rule == "residual" and np.max(np.abs(f)) < tol:
+                    break
+                dx = np.linalg.solve(comp.J(x[:, None], tk, p)[0][block, block], -f[block])
+                x[block] += dx
+                size = np.linalg.norm(dx) / (np.linalg.norm(x[block]) if rule == "relative" else 1.0)
+                if rule != "residual" and size < tol:
+                    it += 1
+                    break
+            steps += it
+        values.append(x.copy())
+        iters.append(steps)
+    return np.array(values).T, np.array(iters)
+
+
+@pytest.mark.parametrize("rule", ["step", "relative", "residual"])
+def test_student_sweep_on_the_one_point_kernel_takes_the_array_kernels_steps(rule, monkeypatch):
+    from numkin.report import student_sweep
+
+    mech = linkages.chained_four_bars()
+    inputs = np.radians(np.arange(0.0, 361.0, 3.0))
+    values, iters = _student_reference(mech, inputs, rule, 1e-4)
+    s = student_sweep(mech, inputs, rule=rule, tol=1e-4)
+    np.testing.assert_array_equal(s.iterations, iters)
+    np.testing.assert_allclose(s.values, values, rtol=0, atol=1e-12)
+    # where the one-point kernel cannot evaluate, the array kernels take over: the same steps
+    comp = mech.compiled
+
+    class Undefined:
+        def __getattr__(self, name):
+            return getattr(comp, name)
+
+        @staticmethod
+        def scalar_FJT(*args):
+            raise ValueError("math domain error")
+
+    monkeypatch.setattr(type(mech), "compiled", property(lambda self: Undefined()), raising=False)
+    s2 = student_sweep(mech, inputs, rule=rule, tol=1e-4)
+    np.testing.assert_array_equal(s2.iterations, iters)
+    np.testing.assert_array_equal(s2.values, values)
