@@ -164,6 +164,9 @@ def _progress(desc: str, total: int | None = None):
     Yields ``step(label, advance=True)``: advance by one (not before the first
     step) and show ``label``.
     """
+    if not sys.stderr.isatty():  # no bar to show: tqdm is not even imported
+        yield lambda label="", advance=True: None
+        return
     from tqdm import tqdm
 
     bar = tqdm(

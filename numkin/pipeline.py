@@ -277,28 +277,29 @@ def render_figures(result: SceneResult, out_dir, *, formats=("png", "svg"), prog
         span = math.radians(scene.stop_deg - scene.start_deg)
         common = {k: options[k] for k in ("quantity", "guess")}
         sweep_opts = {"start": options["start"], "span": span, **{k: options[k] for k in ("grids", "schemes") if k in options}}
-        for kind in wanted:
-            step(f"{kind} table")
-            if kind == "convergence":
-                table = report.convergence_table(
-                    result.mechanism, omega=scene.speed, check_angle=options["check_angle"], **common, **sweep_opts,
-                )
-            elif kind == "work-precision":  # the figure plots work counts: never timed
-                table = report.work_precision_table(
-                    result.mechanism, omega=scene.speed, **common, **sweep_opts, repeat=None,
-                )
-            elif kind == "roundoff":
-                table = report.roundoff_table(
-                    result.mechanism, check_angle=options["check_angle"], start=options["start"], **common,
-                )
-            else:
-                for jacobian in ("symbolic", "forward", "central"):
-                    result.report[f"newton_{jacobian}"] = report.newton_table(
-                        result.mechanism, check_angle=options["check_angle"], jacobian=jacobian, guess=options["guess"],
-                        start=options["start"],
+        with report.shared_results():  # the convergence and work-precision tables sweep the same grids
+            for kind in wanted:
+                step(f"{kind} table")
+                if kind == "convergence":
+                    table = report.convergence_table(
+                        result.mechanism, omega=scene.speed, check_angle=options["check_angle"], **common, **sweep_opts,
                     )
-                continue
-            result.report[_REPORT_FIGURES[kind]] = table
+                elif kind == "work-precision":  # the figure plots work counts: never timed
+                    table = report.work_precision_table(
+                        result.mechanism, omega=scene.speed, **common, **sweep_opts, repeat=None,
+                    )
+                elif kind == "roundoff":
+                    table = report.roundoff_table(
+                        result.mechanism, check_angle=options["check_angle"], start=options["start"], **common,
+                    )
+                else:
+                    for jacobian in ("symbolic", "forward", "central"):
+                        result.report[f"newton_{jacobian}"] = report.newton_table(
+                            result.mechanism, check_angle=options["check_angle"], jacobian=jacobian, guess=options["guess"],
+                            start=options["start"],
+                        )
+                    continue
+                result.report[_REPORT_FIGURES[kind]] = table
     step("figures")
     view = copy.copy(result)
     view.tables = {**result.tables, **result.report}

@@ -105,6 +105,12 @@ class Quantity:
         if self.axis not in (None, "x", "y"):
             raise ValueError(f"axis must be 'x', 'y' or None, got {self.axis!r}")
 
+    def __copy__(self) -> "Quantity":
+        return self  # immutable: frozen, every field a str, an int or None
+
+    def __deepcopy__(self, memo) -> "Quantity":
+        return self  # pandas deep-copies a table's attrs (which hold Quantities) on every derived frame
+
     # ------------------------------------------------------------ identity
     @property
     def kind(self) -> str:

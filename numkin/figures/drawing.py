@@ -283,7 +283,11 @@ def _clear_labels(ax, labels, joints, span: float) -> None:
     """Move each angle label outward along its arc's bisector (or below the reference line) until it
     covers no joint and no other text; a label that finds no clear place stays where it was."""
     fig = ax.figure
-    fig.canvas.draw()
+    # the layout (and the equal aspect it leaves room for), so that data coordinates map to the pixels
+    # of the drawn figure; nothing is drawn
+    if fig.get_layout_engine() is not None:
+        fig.get_layout_engine().execute(fig)
+    ax.apply_aspect()
     renderer = fig.canvas.get_renderer()
     joints_px = [ax.transData.transform(p) for p in joints]
 

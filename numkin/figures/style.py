@@ -142,20 +142,26 @@ def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
             )
         stem = Path(path_stem)
         stem.parent.mkdir(parents=True, exist_ok=True)
-        paths = []
+        # One layout for every format, computed once at the saving resolution, then frozen. A PNG is
+        # drawn at that resolution anyway: it is written first and its own drawing lays the figure out
+        # (one pass instead of a layout pass and a drawing pass, text measured once).
+        order = sorted(range(len(fmts)), key=lambda k: fmts[k] != "png")
+        paths = {}
         with style():
-            # one layout for every format: computed once at the saving resolution, then frozen
-            if fig.get_layout_engine() is not None and len(fmts) > 1:
+            if fig.get_layout_engine() is not None and len(fmts) > 1 and fmts[order[0]] != "png":
                 dpi = fig.dpi
                 fig.set_dpi(matplotlib.rcParams["savefig.dpi"])
                 fig.draw_without_rendering()
                 fig.set_dpi(dpi)
                 fig.set_layout_engine("none")
-            for fmt in fmts:
+            for k in order:
+                fmt = fmts[k]
                 path = stem.with_name(f"{stem.name}.{fmt}")
                 fig.savefig(path, format=fmt, metadata=METADATA[fmt])
-                paths.append(path)
-        return paths
+                if fig.get_layout_engine() is not None:
+                    fig.set_layout_engine("none")
+                paths[k] = path
+        return [paths[k] for k in range(len(fmts))]
     finally:
         close(fig)
 

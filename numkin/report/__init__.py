@@ -55,6 +55,11 @@ Conventions
   differenced as an open grid) reach the caller; the repeated sweeps of
   the timings and of the loose-tolerance solves are quiet.
 
+Tables computed inside :func:`shared_results` (as :func:`full_report` and
+the scene figures compute theirs) share what they have in common: each sweep
+of the same grid, its analytic derivatives and each scheme's differences are
+computed once; counted and timed calls are computed anew.
+
 :func:`write_tables` writes the tables as Markdown (GitHub-flavoured pipe
 tables; a wide table in parts, ``attrs["views"]``, one idea each; numbers
 with the significant figures of their column), CSV (every column, full
@@ -92,7 +97,7 @@ from .convergence import convergence_table
 from .counting import COUNTED_FUNCTIONS, EvaluationCounter, count_evaluations
 from .newton_tables import jacobian_table, newton_table
 from .roundoff import ROUNDOFF_SCHEMES, ROUNDOFF_STEPS, fitted_optimum, roundoff_table, stencil
-from .study import DEFAULT_GRIDS, input_speed
+from .study import DEFAULT_GRIDS, input_speed, shared_results
 from .tolerance import STUDENT_RULES, student_sweep, tolerance_table
 from .workprecision import cheapest_table, work_precision_table
 from .writers import format_cell, format_text, table_views, write_tables
@@ -100,6 +105,7 @@ from .writers import format_cell, format_text, table_views, write_tables
 __all__ = [
     "DEFAULT_GRIDS",
     "input_speed",
+    "shared_results",
     "format_text",
     "format_cell",
     "table_views",
@@ -180,6 +186,13 @@ def full_report(
     >>> list(tables)
     ['convergence', 'work_precision', 'cheapest', 'roundoff', 'newton', 'jacobian', 'tolerance']
     """
+    with shared_results():  # the tables sweep the same grids: each sweep and its derivatives computed once
+        return _full_report(mechanism, omega=omega, quantity=quantity, check_angle=check_angle, grids=grids,
+                            schemes=schemes, points_per_turn=points_per_turn, repeat=repeat, start=start, guess=guess)
+
+
+def _full_report(mechanism, *, omega, quantity, check_angle, grids, schemes, points_per_turn, repeat, start,
+                 guess) -> dict:
     wp = work_precision_table(
         mechanism, omega=omega, quantity=quantity, grids=grids, schemes=schemes, repeat=repeat, start=start,
         guess=guess,

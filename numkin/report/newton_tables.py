@@ -207,9 +207,10 @@ def jacobian_table(
         finite = orders[np.isfinite(orders)]
 
         def run(jac=jac):
-            return solve_sweep(mechanism, inputs, guess, jacobian=jac)
+            return solve_sweep(mechanism, inputs, guess, jacobian=jac, shared=False)  # timed: computed each time
 
-        s = run()
+        # the symbolic Jacobian is the sweep's default: the sweep the other tables of a report share
+        s = solve_sweep(mechanism, inputs, guess, **({} if jac == "symbolic" else {"jacobian": jac}))
         if ref is None:
             ref = s.values
         rows.append(

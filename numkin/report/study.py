@@ -29,6 +29,8 @@ import math
 import statistics
 import time
 import warnings
+from contextlib import contextmanager
+from contextvars import ContextVar
 from typing import Callable, Mapping, Sequence
 
 import numpy as np
@@ -55,6 +57,7 @@ __all__ = [
     "grid_study",
     "check_index",
     "silenced",
+    "shared_results",
     "median_time",
     "timing_repeats",
     "solve_points",
@@ -282,11 +285,89 @@ def solve_points(mechanism, x0, t, *, what: str = "position") -> np.ndarray:
     return out.x
 
 
-def solve_sweep(mechanism, inputs, guess=None, *, quiet: bool = True, **kwargs) -> Sweep:
-    """A sweep; with ``quiet=False`` its warnings (near-singular points, ...) reach the caller."""
-    if quiet:
-        return silenced(mechanism.sweep, inputs, guess, **kwargs)
-    return mechanism.sweep(inputs, guess, **kwargs)
+#: Results shared by the tables of one report (:func:`shared_results`); None outside one.
+_SHARED: ContextVar = ContextVar("numkin_report_shared", default=None)
+
+
+@contextmanager
+def shared_results():
+    """Within this block, the tables computed share their sweeps and derivatives instead of recomputing them.
+
+    The convergence and work-precision tables sweep the same grids and
+    difference them with the same schemes, the tolerance table sweeps one
+    of those grids again: inside the block each sweep (same mechanism,
+    inputs, guess and settings), its analytic derivatives and each scheme's
+    differences on it are computed once. Every result is what the call would
+    compute (the same function on the same arguments); the warnings a
+    computation raised are raised again for every caller that asks for
+    them (``quiet=False``). Nested blocks share the outer block's results.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> mech = linkages.slider_crank(80, 200)
+    >>> with shared_results():
+    ...     a = solve_sweep(mech, grid_inputs(36, 0.0, TURN))
+    ...     b = solve_sweep(mech, grid_inputs(36, 0.0, TURN))
+    >>> a is b, solve_sweep(mech, grid_inputs(36, 0.0, TURN)) is a
+    (True, False)
+    """
+    token = _SHARED.set({}) if _SHARED.get() is None else None
+    try:
+        yield
+    finally:
+        if token is not None:
+            _SHARED.reset(token)
+
+
+def _key(value):
+    """A hashable, exact key for an argument (arrays by their bytes), or None if there is none."""
+    if value is None or isinstance(value, (bool, int, float, str)):
+        return (type(value).__name__, value)
+    if isinstance(value, np.ndarray):
+        return ("array", value.dtype.str, value.shape, value.tobytes())
+    if isinstance(value, np.generic):
+        return ("scalar", value.dtype.str, value.tobytes())
+    if isinstance(value, (list, tuple)):
+        parts = tuple(_key(v) for v in value)
+        return None if any(p is None for p in parts) else (type(value).__name__, parts)
+    if isinstance(value, Mapping):
+        parts = tuple((str(k), _key(v)) for k, v in value.items())
+        return None if any(p[1] is None for p in parts) else ("mapping", parts)
+    return None
+
+
+def _shared(key, compute: Callable, quiet: bool, keep=(), fresh: bool = False):
+    """``compute()`` (its warnings silenced if `quiet`), once per `key` inside :func:`shared_results`.
+
+    `keep` holds the objects whose ``id`` is in `key`, so that no other object takes that id while the
+    result is kept. With `fresh`, computed anew (counted or timed) and kept for later callers.
+    """
+    store = _SHARED.get()
+    if store is None or key is None:
+        return silenced(compute) if quiet else compute()
+    if fresh or key not in store:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            value = compute()
+        store[key] = (value, list(caught), keep)
+    value, caught, _ = store[key]
+    if not quiet:
+        for w in caught:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    return value
+
+
+def solve_sweep(mechanism, inputs, guess=None, *, quiet: bool = True, shared: bool = True, **kwargs) -> Sweep:
+    """A sweep; with ``quiet=False`` its warnings (near-singular points, ...) reach the caller.
+
+    Inside :func:`shared_results` (and with `shared`), one sweep per
+    mechanism, inputs, guess and settings; pass ``shared=False`` to time it.
+    """
+    parts = _key((np.asarray(inputs, dtype=float), guess, sorted(kwargs.items()))) if shared else None
+    key = None if parts is None else ("sweep", id(mechanism), parts)
+    return _shared(key, lambda: mechanism.sweep(inputs, guess, **kwargs), quiet, keep=(mechanism,))
 
 
 def branch_point(mechanism, angle: float, guess=None, start: float = 0.0) -> Sweep:
@@ -315,16 +396,23 @@ def position_record(what: str, mechanism, angle: float, x) -> dict:
     return {"what": what, "input [rad]": float(angle), **{u: float(v) for u, v in zip(mechanism.unknowns, x)}}
 
 
-def differenced(sweep: Sweep, scheme, quiet: bool = True) -> np.ndarray:
-    """d/dtheta (or d2/dtheta2) of every unknown of `sweep` by the finite-difference `scheme` (a Scheme)."""
-    if quiet:
-        return silenced(kinematics.sweep_derivative, sweep, scheme.name)
-    return kinematics.sweep_derivative(sweep, scheme.name)
+def differenced(sweep: Sweep, scheme, quiet: bool = True, *, fresh: bool = False) -> np.ndarray:
+    """d/dtheta (or d2/dtheta2) of every unknown of `sweep` by the finite-difference `scheme` (a Scheme).
+
+    Inside :func:`shared_results`, once per sweep and scheme; with `fresh`
+    (where the work is counted or timed) computed anew, and kept.
+    """
+    return _shared(("differenced", id(sweep), scheme.name), lambda: kinematics.sweep_derivative(sweep, scheme.name),
+                   quiet, keep=(sweep,), fresh=fresh)
 
 
-def exact_derivatives(sweep: Sweep, quiet: bool = True) -> tuple:
-    """The analytic ``(dq/dtheta, d2q/dtheta2)`` of `sweep` (:func:`numkin.analytic.derivatives`)."""
-    return silenced(analytic.derivatives, sweep) if quiet else analytic.derivatives(sweep)
+def exact_derivatives(sweep: Sweep, quiet: bool = True, *, fresh: bool = False) -> tuple:
+    """The analytic ``(dq/dtheta, d2q/dtheta2)`` of `sweep` (:func:`numkin.analytic.derivatives`).
+
+    Inside :func:`shared_results`, once per sweep; with `fresh` (where the
+    evaluations are counted or timed) computed anew, and kept.
+    """
+    return _shared(("exact", id(sweep)), lambda: analytic.derivatives(sweep), quiet, keep=(sweep,), fresh=fresh)
 
 
 def order_text(scheme) -> str:

@@ -119,16 +119,31 @@ def student_sweep(
 def _student_newton(comp, p, x, tk, block: slice, rule: str, tol: float, maxiter: int) -> int | None:
     """Newton on the unknowns `block` of `x` (updated in place) at input `tk` until `rule` holds.
 
+    Residuals and Jacobian at the one point come from the mechanism's
+    one-point kernel (``scalar_FJT``, floats, as the sweep's own Newton
+    evaluates them), or from the array kernels where a value is undefined
+    there (NaN, as the array kernels give it, instead of an exception).
+
     Returns the number of steps taken, or None if `maxiter` steps did not
     meet the rule.
     """
+    from ..compiled import MATH_ERRORS
+
+    n = x.size
+    point, t, pt = comp.scalar_FJT, float(tk[0]), tuple(np.asarray(p, dtype=float).tolist())
     for it in range(maxiter + 1):
-        f = comp.F(x[:, None], tk, p)[:, 0]
+        try:
+            v = np.array(point(*x.tolist(), t, *pt)[: n + n * n], dtype=float)
+            f, jac = v[:n], v[n:].reshape(n, n)
+        except MATH_ERRORS:
+            f, jac = comp.F(x[:, None], tk, p)[:, 0], None
         if rule == "residual" and np.max(np.abs(f)) < tol:
             return it
         if it == maxiter:
             return None
-        dx = np.linalg.solve(comp.J(x[:, None], tk, p)[0][block, block], -f[block])
+        if jac is None:
+            jac = comp.J(x[:, None], tk, p)[0]
+        dx = np.linalg.solve(jac[block, block], -f[block])
         x[block] += dx
         size = np.linalg.norm(dx)
         if rule == "relative":

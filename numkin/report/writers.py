@@ -148,49 +148,84 @@ def format_text(df, *, width: int = 100, max_width: int = 120) -> str:
     """
     import textwrap
 
+    import pandas as pd
+
     blocks = []
     caption = df.attrs.get("caption")
     if caption:
         blocks.append(textwrap.fill(str(caption), width=width))
     keys = [c for c in df.attrs.get("row_keys") or [] if c in df.columns]
-    for title, view in table_views(df):
-        parts = _fitting_parts(view, [k for k in keys if k in view.columns] or list(view.columns[:1]), max_width)
+    plain = pd.DataFrame(df, copy=False)
+    plain.attrs = {}  # columns read without copying the table's attrs each time
+    formatted = {}  # column -> (cells as text, right-aligned): each column formatted once for all its views
+    for title, columns in _view_columns(df):
+        for c in columns:
+            if c not in formatted:
+                column = plain[c]
+                formatted[c] = ([format_cell(v, c) for v in column.tolist()], column.dtype.kind in "iuf")
+        whole = _text_table(columns, formatted)
+        parts = _fitting_parts(columns, [k for k in keys if k in columns] or list(columns[:1]), max_width,
+                               whole)
         for n, part in enumerate(parts):
             head = title + (f" ({n + 1} of {len(parts)})" if len(parts) > 1 else "")
-            blocks.append((f"{head}\n" if head else "") + _text_table(part))
+            text = whole if len(parts) == 1 else _text_table(part, formatted)
+            blocks.append((f"{head}\n" if head else "") + text)
     return "\n\n".join(blocks)
 
 
-def _text_table(view) -> str:
-    """One view as a plain text table (tabulate), numbers by their column's format."""
+def _view_columns(df) -> list:
+    """The column names of each view of :func:`table_views`, without slicing the DataFrame."""
+    views = df.attrs.get("views") or []
+    present = set(df.columns)
+    out = [(str(title), [c for c in cols if c in present]) for title, cols in views]
+    return [(t, cols) for t, cols in out if cols] or [("", list(df.columns))]
+
+
+def _text_table(columns: list, formatted: dict) -> str:
+    """Columns (already formatted, :func:`format_cell`) as a plain text table (tabulate)."""
     from tabulate import tabulate
 
-    cells = [[format_cell(v, c) for v, c in zip(row, view.columns)] for row in view.itertuples(index=False)]
-    align = ["right" if view[c].dtype.kind in "iuf" else "left" for c in view.columns]
+    cells = [list(row) for row in zip(*(formatted[c][0] for c in columns))]
+    align = ["right" if formatted[c][1] else "left" for c in columns]
     return tabulate(
-        cells, headers=list(view.columns), disable_numparse=True, colalign=align,
+        cells, headers=list(columns), disable_numparse=True, colalign=align,
         maxcolwidths=[None if a == "right" else 40 for a in align],
         maxheadercolwidths=[14 if a == "right" else 24 for a in align],
     )
 
 
-def _text_width(view) -> int:
-    return max(len(line) for line in _text_table(view).splitlines())
+def _column_widths(columns: list, text: str) -> dict:
+    """Width of each column of `text`, the :func:`_text_table` of `columns` (read off the rule under the headers).
+
+    A column's width depends on its own header and cells only, so a table of
+    some of the columns is as wide as theirs plus two spaces between each.
+    """
+    rule = next(line for line in text.splitlines() if line.strip() and not line.strip("- "))
+    widths = [len(run) for run in rule.split()]
+    return dict(zip(columns, widths))
 
 
-def _fitting_parts(view, keys: list, max_width: int) -> list:
-    """`view` as it is if no wider than `max_width`, else in parts: the key columns, then as many more as fit."""
-    if _text_width(view) <= max_width:
-        return [view]
-    rest = [c for c in view.columns if c not in keys]
+def _fitting_parts(columns: list, keys: list, max_width: int, whole: str) -> list:
+    """`columns` as they are if no wider than `max_width`, else in parts: the key columns, then as many more as fit.
+
+    `whole` is the text table of all `columns` (:func:`_text_table`).
+    """
+    widths = _column_widths(columns, whole)
+
+    def width(cols):
+        return sum(widths[c] for c in cols) + 2 * (len(cols) - 1)
+
+    if width(columns) <= max_width:
+        return [columns]
+    rest = [c for c in columns if c not in keys]
     parts, current = [], []
     for column in rest:
-        if current and _text_width(view[keys + current + [column]]) > max_width:
-            parts.append(view[keys + current])
+        if current and width(keys + current + [column]) > max_width:
+            parts.append(keys + current)
             current = []
         current.append(column)
     if current:
-        parts.append(view[keys + current])
+        parts.append(keys + current)
     return parts
 
 
