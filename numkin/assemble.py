@@ -370,7 +370,7 @@ def scene_quantities(scene: Scene, mech, *, all_unknowns: bool = False, all_poin
     points = tuple(mech.points) if all_points else scene.points
     if orders is None:
         orders = [k for k, kind in enumerate(QUANTITIES) if scene.wants(kind)]
-    common = {"length_unit": mech.length_unit, "input_name": str(mech.input_symbol)}
+    common = {"length_unit": mech.length_unit, "input_name": mech.input_name}
     out = {}
     for u in unknowns:
         dimension = "angle" if u in mech.angles else "length"

@@ -364,7 +364,9 @@ def _unrolled_newton(n, blocks, zeros, inv_xscale):
     ...), ``converged`` the stopping rule (:func:`numkin.newton_rules.has_converged`)
     and ``floor(x, t)`` the residual's round-off floor (consulted only when the
     steps stall above ``tol``). Returns ``(x, status, iterations, residual, v,
-    evaluations)`` as :meth:`numkin.march.Continuation.newton1` does.
+    evaluations)`` as :meth:`numkin.march.Continuation.newton1` does: a
+    Jacobian singular where the residual is already within ``tol`` (a root
+    on a singular position, predicted exactly) has converged.
     """
     xs = [f"x{i}" for i in range(n)]
     xl = "[" + ", ".join(xs) + "]"
@@ -383,7 +385,7 @@ def _unrolled_newton(n, blocks, zeros, inv_xscale):
         "    it = 0",
         "    status = 'maxiter'",
         "    while it < maxiter:",
-        *_step_lines(n, blocks, zeros, "status = 'singular'; break", indent="        "),
+        *_step_lines(n, blocks, zeros, "status = 'converged' if res <= tol else 'singular'; break", indent="        "),
         *[f"        x{i} += d{i}" for i in range(n)],
         f"        step = {_scaled_max([f'd{i}' for i in range(n)], inv_xscale)}",
         "        it += 1",

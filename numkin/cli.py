@@ -87,7 +87,7 @@ def format_result(result) -> str:
         lines += _suite_lines(result.suite)
     else:
         mech, sweep = result.mechanism, result.sweep
-        name = str(mech.input_symbol)
+        name = mech.input_name
         motion = f"{name} {scene.start_deg:g}..{scene.stop_deg:g}° step {scene.step_deg:g}° ({scene.n_points} points)"
         if result.omega is not None:
             speed = f"{result.omega:.6g} rad/s"

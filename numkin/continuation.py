@@ -21,7 +21,9 @@ Algorithm
    from the one expected (the last tangent, extrapolated linearly through
    the one before when that is at most :data:`TREND_REACH` steps back)
    (where two branches meet, the other one keeps the orientation, and only
-   the kink in the tangent shows the switch);
+   the kink in the tangent shows the switch; next to a singular position,
+   where the tangent is noise, neither shows it, so such a step is
+   localised like a crossing);
    otherwise the step is halved, so a large ``max_step`` costs no safety and
    a small one loses none. A change of orientation is localised to
    :data:`CROSSING_STEP` and placed where the determinant, linear between

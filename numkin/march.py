@@ -163,7 +163,8 @@ class Continuation:
         With ``cond_max`` a Jacobian whose loop blocks have a larger scaled
         condition number is refused as singular (the conditioning rule of
         :mod:`numkin.newton`); otherwise only an exactly singular or
-        non-finite solve is.
+        non-finite solve is, and an exactly singular one where the residual is
+        already within ``tol`` (a root on a singular position) has converged.
         """
         n, nn, fscale, tol = self.n, self.nn, self.fscale, self.tol
         if self._newton1 is not None and cond_max is None:
@@ -186,8 +187,8 @@ class Continuation:
                 status = "singular"
                 break
             x_new, step = update(v, x)
-            if x_new is None:
-                status = "singular"
+            if x_new is None:  # no step; none needed if x is a root already (on a singular position)
+                status = "converged" if cond_max is None and res <= tol else "singular"
                 break
             x = x_new
             it += 1
@@ -459,7 +460,11 @@ class Continuation:
                 ok, reason = False, "correction"
             if ok:
                 d_new, o_new = self.local1(v)
-                if o_new is None:
+                if o_new is None and d is not None and v is not None:
+                    # a root where the Jacobian is singular (a change point on the grid, reached exactly):
+                    # no tangent or orientation of its own; the branch's go on from the side it came from
+                    d_new, o_new = d, o
+                elif o_new is None:
                     ok, reason = False, "singular"
                 elif o_new != o:
                     k = next(i for i, (a, b) in enumerate(zip(o_new, o)) if a != b)
@@ -469,6 +474,10 @@ class Continuation:
                         self.change_point(t, t_new, self.loop_names[k], self.crossing(t, x, t_new, v, k))
             if ok and d is not None:
                 if not max(self.blocks.cond1(v[n : n + nn])) <= COND_TANGENT:
+                    if dt > crossing_step:
+                        # Next to a singular position the tangent is noise, so neither it nor the orientation
+                        # (the other branch keeps it) tells the branches apart: localise as for a crossing.
+                        ok, reason = False, "singular"
                     d_new = d  # a tangent solved through a near-singular Jacobian is noise: keep the last good one
                 elif dt > crossing_step and self.kinked(self.trend(t, d, t_prev, d_prev, t_new), d_new, rate):
                     # Where branches meet, the other branch keeps the orientation: only the

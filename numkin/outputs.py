@@ -89,7 +89,7 @@ def tables(result) -> dict:
     scene, mech, sweep = result.scene, result.mechanism, result.sweep
     wanted = set(scene.tables)
     out = {}
-    input_col = f"{mech.input_symbol} [deg]"
+    input_col = f"{mech.input_name} [deg]"
     quantities = scene_quantities(scene, mech).values()
     xy = sweep.points() if scene.points and wanted & {"positions", "points"} else {}
 

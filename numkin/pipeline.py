@@ -151,7 +151,7 @@ class SceneResult:
             out["mechanism"] = mech.name
             out["unit"] = s.unit
             out["input"] = {
-                "name": str(mech.input_symbol), "start_deg": s.start_deg, "stop_deg": s.stop_deg,
+                "name": mech.input_name, "start_deg": s.start_deg, "stop_deg": s.stop_deg,
                 "step_deg": s.step_deg, "points": s.n_points,
                 "speed_rad_s": self.omega, "acceleration_rad_s2": self.alpha if self.omega is not None else None,
             }

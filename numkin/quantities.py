@@ -219,7 +219,7 @@ def catalogue(mechanism, orders=(0, 1, 2), *, wrt: str = "time", points: bool = 
     ['alpha_theta3 [rad/s^2]', 'alpha_theta4 [rad/s^2]']
     """
     lu = mechanism.length_unit
-    common = dict(length_unit=lu, wrt=wrt, input_name=str(mechanism.input_symbol))
+    common = dict(length_unit=lu, wrt=wrt, input_name=mechanism.input_name)
     out = {}
     for order in orders:
         source = "solved" if order == 0 else "analytic"
@@ -274,7 +274,7 @@ def input_quantity(mechanism) -> Quantity:
     >>> input_quantity(linkages.slider_crank(80, 200)).label
     'theta [rad]'
     """
-    name = str(mechanism.input_symbol)
+    name = mechanism.input_name
     return Quantity(name, 0, "angle", length_unit=mechanism.length_unit, source="input", input_name=name)
 
 
@@ -307,7 +307,7 @@ def point_quantities(mechanism, point: str, source: str = "analytic") -> list:
     >>> [[q.name for q in pair] for pair in point_quantities(linkages.slider_crank(80, 200), "P")]
     [['x_P', 'y_P'], ['vx_P', 'vy_P'], ['ax_P', 'ay_P']]
     """
-    common = dict(length_unit=mechanism.length_unit, input_name=str(mechanism.input_symbol))
+    common = dict(length_unit=mechanism.length_unit, input_name=mechanism.input_name)
     return [
         tuple(Quantity(point, order, "length", axis=axis, source="solved" if order == 0 else source, **common)
               for axis in "xy")

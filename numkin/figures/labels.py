@@ -51,7 +51,7 @@ def sym(name: str) -> str:
 
 def input_name(sweep) -> str:
     """Name of the sweep's input angle (``"theta2"``)."""
-    return str(sweep.mechanism.input_symbol)
+    return sweep.mechanism.input_name
 
 
 def mechanism_title(mechanism) -> str:

@@ -135,7 +135,7 @@ def newton_table(
     )
     return set_caption(
         df,
-        f"Newton iterations: {mechanism.name} at {mechanism.input_symbol} = {deg_text(check_angle)} deg, "
+        f"Newton iterations: {mechanism.name} at {mechanism.input_name} = {deg_text(check_angle)} deg, "
         f"{jacobian} Jacobian, started from the solution at {deg_text(check_angle - start_offset)} deg "
         f"({res.message}).",
         _solve_positions(mechanism, check_angle, start_offset, x_start, [(jacobian, res.x)]),

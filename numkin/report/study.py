@@ -103,7 +103,7 @@ def quantity_labels(mechanism, quantity: str) -> dict:
     else:
         u = mechanism.length_unit
         first, second = f"v_{quantity}", f"a_{quantity}"
-    t = str(mechanism.input_symbol)
+    t = mechanism.input_name
     return {
         "unit": u,
         1: f"{first} [{u}/s]",
