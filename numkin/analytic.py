@@ -89,6 +89,9 @@ __all__ = [
     "point_derivatives",
     "point_kinematics",
     "complex_step",
+    "complex_positions",
+    "complex_tangent",
+    "COMPLEX_STEP",
     "input_rates",
     "column_units",
     "check_sweep",
@@ -573,7 +576,81 @@ def point_kinematics(sweep, omega, alpha=0.0, points=None):
 
 
 # --------------------------------------------------------------------------- complex step
-def complex_step(sweep, h: float = 1e-30, *, order: int = 1) -> np.ndarray:
+#: Default imaginary step of :func:`complex_step` (rad).
+COMPLEX_STEP = 1e-30
+
+
+def complex_tangent(mech, x, t, h) -> np.ndarray:
+    """d2q/dtheta2 from the complex positions ``x`` at ``t + i h`` (:func:`complex_positions`).
+
+    The complex step of the first-derivative formula, ``Im(q'(x, t + i h)) / h``
+    with ``q'(q, theta) = -J^-1 dF/dtheta`` (the velocity equations, not the
+    acceleration equations), as :func:`complex_step` with ``order=2``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> m = linkages.slider_crank(80, 200)
+    >>> s = m.sweep(np.radians([0.0]))
+    >>> x, _, _ = complex_positions(m, s.values, s.inputs, 1e-30)
+    >>> print(np.round(complex_tangent(m, x, s.inputs, 1e-30)[1], 9))   # x'' = -r (1 + r/l) at 0
+    [-112.]
+    """
+    tc = np.asarray(t, dtype=float) + 1j * np.asarray(h, dtype=float)
+    return _tangent(mech, x, tc, mech.parameter_values).imag / h
+
+
+def complex_positions(mech, q, t, h):
+    """The positions at the complex inputs ``t + i h`` by Newton-Raphson in complex arithmetic.
+
+    The solve of :func:`complex_step`: from the real positions ``q`` (n, N)
+    at the inputs ``t`` (N,), two passes of ``numkin.newton.iterate``
+    (``tol = 1e-13``, at most 8 steps, the conditioning rule), the first also
+    removing the real residual the positions leave, the second recomputing
+    the imaginary part at the polished real solution. ``h`` (rad) is one
+    step or one per input (N,).
+
+    Returns
+    -------
+    x : ndarray of complex, shape (n, N)
+        ``q(t) + i h q'(t) + O(h**2)`` where the solve converged.
+    failed : ndarray of bool, shape (N,)
+        Where it did not converge.
+    singular : ndarray of bool, shape (N,)
+        Where it stopped at a singular Jacobian.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> m = linkages.slider_crank(80, 200)
+    >>> s = m.sweep(np.radians([90.0]))
+    >>> q, t = np.repeat(s.values, 2, axis=1), np.repeat(s.inputs, 2)  # one input twice: two steps at once
+    >>> x, failed, _ = complex_positions(m, q, t, np.array([1e-3, 1e-30]))
+    >>> print(np.round(x.imag[1] / [1e-3, 1e-30], 6), failed)   # dx/dtheta = -r at 90 deg; O(h^2) at h = 1e-3
+    [-80.000013 -80.      ] [False False]
+    """
+    comp, p = mech.compiled, mech.parameter_values
+    tc = np.asarray(t, dtype=float) + 1j * np.asarray(h, dtype=float)
+
+    def F(x, idx):
+        record_evaluations(mech, "F", x.shape[1])
+        return comp.F(x, tc[idx], p)
+
+    def J(x, idx):
+        record_evaluations(mech, "J", x.shape[1])
+        return comp.J(x, tc[idx], p)
+
+    x = np.asarray(q, dtype=float).astype(complex)
+    for _ in range(2):
+        out = iterate(F, J, x, fscale=mech.length_scale, xscale=mech.xscale, tol=1e-13, maxiter=8,
+                      cond_max=COND_MAX)
+        x = np.where(out.converged, out.x, x)
+    return x, ~out.converged, out.singular & ~out.converged
+
+
+def complex_step(sweep, h: float = COMPLEX_STEP, *, order: int = 1) -> np.ndarray:
     """Derivatives of the unknowns by the complex-step method through the Newton solve.
 
     The loop equations are solved at the complex inputs ``theta + i h`` by
@@ -623,36 +700,15 @@ def complex_step(sweep, h: float = 1e-30, *, order: int = 1) -> np.ndarray:
     if order not in (1, 2):
         raise ValueError(f"order must be 1 (dq/dtheta) or 2 (d2q/dtheta2), got {order!r}")
     mech, t, q = check_sweep(sweep)
-    comp, p = mech.compiled, mech.parameter_values
-    tc = t + 1j * float(h)
-
-    def F(x, idx):
-        record_evaluations(mech, "F", x.shape[1])
-        return comp.F(x, tc[idx], p)
-
-    def J(x, idx):
-        record_evaluations(mech, "J", x.shape[1])
-        return comp.J(x, tc[idx], p)
-
-    x = q.astype(complex)
-    # Two passes: the first also removes the real residual left by the sweep, the
-    # second recomputes the imaginary part at the polished real solution.
-    for _ in range(2):
-        out = iterate(F, J, x, fscale=mech.length_scale, xscale=mech.xscale, tol=1e-13, maxiter=8,
-                      cond_max=COND_MAX)
-        x = np.where(out.converged, out.x, x)
-    failed = ~out.converged
+    x, failed, singular = complex_positions(mech, q, t, float(h))
     if failed.any():
         k = int(np.flatnonzero(failed)[0])
         warnings.warn(
             f"{mech.name}: complex-step Newton failed at {int(failed.sum())} point(s) (first at input "
-            f"{_deg(t[k])}: {'singular Jacobian' if out.singular[k] else 'no convergence'}): set to NaN",
+            f"{_deg(t[k])}: {'singular Jacobian' if singular[k] else 'no convergence'}): set to NaN",
             SingularityWarning,
             stacklevel=2,
         )
-    if order == 1:
-        d = x.imag / h
-    else:
-        d = _tangent(mech, x, tc, p).imag / h
+    d = x.imag / h if order == 1 else complex_tangent(mech, x, t, float(h))
     d[:, failed] = np.nan
     return d

@@ -125,11 +125,10 @@ def complex_step_scan(mechanism, point, steps) -> np.ndarray:
     """dq/dtheta at one solved point by the complex step, for many steps h in one batch of Newton solves.
 
     Column ``k`` is what :func:`numkin.analytic.complex_step` gives for the
-    one-point sweep `point` with ``h = steps[k]``: the same complex Newton
-    (two passes from the real solution, ``tol = 1e-13``, at most 8 steps,
-    the same conditioning rule), on every step at once. The batch's systems
-    are independent (each stops when it converges), so each column is the
-    one-by-one solve's.
+    one-point sweep `point` with ``h = steps[k]``: its complex Newton
+    (:func:`numkin.analytic.complex_positions`) on every step at once. The
+    batch's systems are independent (each stops when it converges), so each
+    column is the one-by-one solve's.
 
     Parameters
     ----------
@@ -155,28 +154,16 @@ def complex_step_scan(mechanism, point, steps) -> np.ndarray:
     >>> print(round(float(d[1, 1]), 12))     # dx/dtheta = -r at 90 deg
     -80.0
     """
-    from ..newton import iterate
-    from ..sweep import COND_MAX
+    from ..analytic import complex_positions
 
     h = np.asarray(steps, dtype=float).reshape(-1)
     if not np.all(np.isfinite(h) & (h > 0)):
         raise ValueError(f"steps must be finite and positive, got {steps!r}")
-    comp, p = mechanism.compiled, mechanism.parameter_values
-    tc = float(np.asarray(point.inputs, dtype=float)[0]) + 1j * h
-    x = np.repeat(np.asarray(point.values, dtype=float)[:, :1], h.size, axis=1).astype(complex)
-
-    def F(x, idx):
-        return comp.F(x, tc[idx], p)
-
-    def J(x, idx):
-        return comp.J(x, tc[idx], p)
-
-    for _ in range(2):  # as numkin.analytic.complex_step: the second pass from the polished real solution
-        out = iterate(F, J, x, fscale=mechanism.length_scale, xscale=mechanism.xscale, tol=1e-13, maxiter=8,
-                      cond_max=COND_MAX)
-        x = np.where(out.converged, out.x, x)
+    q = np.repeat(np.asarray(point.values, dtype=float)[:, :1], h.size, axis=1)
+    t = np.full(h.size, float(np.asarray(point.inputs, dtype=float)[0]))
+    x, failed, _ = complex_positions(mechanism, q, t, h)
     d = x.imag / h
-    d[:, ~out.converged] = np.nan
+    d[:, failed] = np.nan
     return d
 
 
