@@ -154,8 +154,14 @@ def fd_jacobian(F, x, f0, method, xscale):
 
 
 def scaled_cond(jac, fscale, xscale):
-    """2-norm condition numbers of a batch of Jacobians, rows / fscale and columns * xscale."""
+    """2-norm condition numbers of a batch of Jacobians, rows / fscale and columns * xscale.
+
+    A complex Jacobian whose imaginary part is below round-off of its real
+    part (a complex step's) has the real part's condition number, to rounding.
+    """
     js = jac * (xscale[None, None, :] / np.asarray(fscale).reshape(-1, 1, 1))
+    if np.iscomplexobj(js) and np.abs(js.imag).max(initial=0.0) <= EPS * np.abs(js.real).max(initial=0.0):
+        js = js.real
     if not np.all(np.isfinite(js)):
         out = np.full(js.shape[0], np.inf)
         ok = np.all(np.isfinite(js), axis=(1, 2))

@@ -287,3 +287,18 @@ def test_one_stopping_rule_at_the_round_off_floor():
     arr = has_converged(np.array([3e-12, 5e-12]), np.array([1e-13, 1e-13]),
                                       np.array([1e-13, 1e-13]), 1e-12, 4e-12)
     assert arr.tolist() == [True, False]
+
+
+def test_scaled_cond_of_a_complex_step_jacobian_is_the_real_ones():
+    from numkin.newton_rules import scaled_cond
+
+    rng = np.random.default_rng(3)
+    real = rng.normal(size=(5, 3, 3))
+    xscale = np.array([1.0, 2.0, 0.5])
+    expected = np.linalg.cond(real * xscale[None, None, :] / 4.0)
+    np.testing.assert_allclose(scaled_cond(real + 1e-30j * rng.normal(size=real.shape), 4.0, xscale), expected,
+                               rtol=1e-12)
+    # a finite imaginary part is not dropped: the complex matrix's own condition number
+    big = real + 0.5j * rng.normal(size=real.shape)
+    np.testing.assert_allclose(scaled_cond(big, 4.0, xscale), np.linalg.cond(big * xscale[None, None, :] / 4.0),
+                               rtol=1e-12)
