@@ -43,7 +43,7 @@ CHUNK = 8192
 
 
 def fill(ctx: Continuation, t, X, D, O, iters, nodes):
-    """Solve the grid points between nodes by Newton batches (Hermite predictor, :func:`_hermite`).
+    """Solve the grid points between nodes by Newton batches (a Hermite predictor from the nodes).
 
     The points are taken :data:`CHUNK` at a time. Returns the scaled
     residual norm (N,), the largest condition number of the loops' blocks

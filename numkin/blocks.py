@@ -70,7 +70,8 @@ class BlockStructure:
             self.solve1 = _unrolled_solve(n, self.blocks, zeros, batch=False)
             self._step = _unrolled_solve(n, self.blocks, zeros, batch=True)
             self.update1 = _unrolled_update(n, self.blocks, zeros, self.inv_xscale)
-            #: Newton-Raphson at one point, every update written out (see :func:`_unrolled_newton`).
+            #: Newton-Raphson at one point with every update written out for these blocks; called with
+            #: the kernel, the point and the stopping rule (see :meth:`numkin.march.Continuation.newton1`).
             self.newton1 = _unrolled_newton(n, self.blocks, zeros, self.inv_xscale)
 
     def newton_step(self, J, f):
