@@ -24,7 +24,15 @@ import numpy as np
 from .newton import COND_MAX, COND_WARN
 
 __all__ = ["Sweep", "SweepEvent", "SingularityWarning", "run_sweep", "COND_MAX", "COND_WARN", "EvaluationCounter",
-           "count_evaluations", "record_evaluations"]
+           "count_evaluations", "record_evaluations", "check_sweep"]
+
+
+def check_sweep(sweep):
+    """``(mechanism, inputs, values)`` of a sweep, or a TypeError for anything else."""
+    for attr in ("mechanism", "inputs", "values"):
+        if not hasattr(sweep, attr):
+            raise TypeError(f"sweep must be a numkin Sweep (from Mechanism.sweep), got {type(sweep).__name__}")
+    return sweep.mechanism, np.asarray(sweep.inputs, dtype=float), np.asarray(sweep.values, dtype=float)
 
 
 class SingularityWarning(UserWarning):
