@@ -42,7 +42,7 @@ the mechanism: the velocity equations reuse the sweep's Jacobian and take
 dF/dtheta at every point, the acceleration equations also their
 right-hand side.
 
-A reference independent of these formulas is :func:`complex_step`: the
+A reference independent of these formulas is :func:`~numkin.complex_solve.complex_step`: the
 loop equations are solved at the complex input ``theta + i h`` and the
 derivative read off the imaginary part, to machine precision.
 
