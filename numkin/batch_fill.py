@@ -228,28 +228,21 @@ def _hermite(tc, t, X, D, D2n, nodes, k):
     known = np.isfinite(D2n).all(axis=0)
     quintic = known.take(k) & known.take(kb)
     if quintic.all():
-        h01 = s2 * s * (s * (6.0 * s - 15.0) + 10.0)  # s^3 (6 s^2 - 15 s + 10)
-        h10 = s * u * u * u * (3.0 * s + 1.0)  # s (1 - s)^3 (3 s + 1)
-        h11 = s2 * s * u * (3.0 * s - 4.0)  # s^3 (1 - s) (3 s - 4)
+        h01, h10, h11 = _quintic_bases(s, u)
         c = 0.5 * delta * delta
-        h20 = s2 * u * u * u * c  # s^2 (1 - s)^3 / 2, times delta^2
-        h21 = s2 * s * u * u * c  # s^3 (1 - s)^2 / 2, times delta^2
         D2 = D2n
     else:
-        h01 = s2 * (3.0 - 2.0 * s)  # 3 s^2 - 2 s^3
-        h10 = s * u * u  # s^3 - 2 s^2 + s
-        h11 = -s2 * u  # s^3 - s^2
-        h20 = h21 = None
+        h01, h10, h11 = _cubic_bases(s, u)
+        c = None
         if quintic.any():
             q = quintic
-            sq, uq = s[q], u[q]
-            h01[q] = sq * sq * sq * (sq * (6.0 * sq - 15.0) + 10.0)
-            h10[q] = sq * uq * uq * uq * (3.0 * sq + 1.0)
-            h11[q] = sq * sq * sq * uq * (3.0 * sq - 4.0)
+            h01[q], h10[q], h11[q] = _quintic_bases(s[q], u[q])
             c = np.where(q, 0.5 * delta * delta, 0.0)
-            h20 = s2 * u * u * u * c
-            h21 = s2 * s * u * u * c
             D2 = np.nan_to_num(D2n, nan=0.0)
+    h20 = h21 = None
+    if c is not None:
+        h20 = s2 * u * u * u * c  # s^2 (1 - s)^3 / 2, times delta^2
+        h21 = s2 * s * u * u * c  # s^3 (1 - s)^2 / 2, times delta^2
     del s, u, s2
     h10 *= delta
     h11 *= delta
@@ -277,6 +270,19 @@ def _hermite(tc, t, X, D, D2n, nodes, k):
             row += dd
         out[i] = row
     return out
+
+
+def _cubic_bases(s, u):
+    """Cubic Hermite bases of the right node's value and of both tangents at ``s`` (``u = 1 - s``)."""
+    s2 = s * s
+    return s2 * (3.0 - 2.0 * s), s * u * u, -s2 * u  # 3 s^2 - 2 s^3, s (1 - s)^2, s^2 (s - 1)
+
+
+def _quintic_bases(s, u):
+    """Quintic Hermite bases of the right node's value and of both tangents at ``s`` (``u = 1 - s``)."""
+    s3 = s * s * s
+    # s^3 (6 s^2 - 15 s + 10), s (1 - s)^3 (3 s + 1), s^3 (1 - s) (3 s - 4)
+    return s3 * (s * (6.0 * s - 15.0) + 10.0), s * u * u * u * (3.0 * s + 1.0), s3 * u * (3.0 * s - 4.0)
 
 
 def report_near_singular(ctx, t, X, cond):

@@ -25,16 +25,15 @@ from .sweep import COND_MAX, SingularityWarning, check_sweep, record_evaluations
 __all__ = ["complex_step", "complex_positions", "complex_tangent", "COMPLEX_STEP"]
 
 
-def _columnwise(solve, q, t, *extra) -> np.ndarray:
-    """``solve(q, *extra, t)`` on the whole batch, or column by column (NaN where singular)."""
+def _columnwise(solve, q, t) -> np.ndarray:
+    """``solve(q, t)`` on the whole batch, or column by column (NaN where singular)."""
     try:
-        return np.asarray(solve(q, *extra, t))
+        return np.asarray(solve(q, t))
     except np.linalg.LinAlgError:
         out = np.full(q.shape, np.nan, dtype=np.result_type(q, t))
         for k in range(t.size):
-            cols = [e[:, k : k + 1] for e in extra]
             try:
-                out[:, k] = np.asarray(solve(q[:, k : k + 1], *cols, t[k : k + 1]))[:, 0]
+                out[:, k] = np.asarray(solve(q[:, k : k + 1], t[k : k + 1]))[:, 0]
             except np.linalg.LinAlgError:
                 pass
         return out

@@ -152,6 +152,7 @@ class Continuation:
         return f + rows if math.isfinite(sum(rows)) else None
 
     def _floor(self, x, t):
+        """The round-off floor of the scaled residual at the point ``x`` (list) and input ``t``."""
         return residual_floor([a * w for a, w in zip(x, self.inv_xs)], t)
 
     def newton1(self, x, t, maxiter, cond_max=None):
@@ -198,7 +199,7 @@ class Continuation:
             res = max([abs(a) for a in v[:n]]) / fscale
             floor = 0.0
             if res > tol and step >= 0.9 * prev:  # stalled above tol: is it the round-off floor?
-                floor = residual_floor([a * w for a, w in zip(x, self.inv_xs)], t)
+                floor = self._floor(x, t)
             if has_converged(res, step, prev, tol, floor):
                 status = "converged"
                 break
