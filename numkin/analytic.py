@@ -129,6 +129,8 @@ def _unknown_columns(mech, source: str = "analytic", second_source: str | None =
 def _singular_mask(sweep, mech, inputs, what: str, skip=()) -> np.ndarray:
     """Points whose Jacobian is singular (condition number above COND_MAX), but for `skip`; warns once."""
     cond = condition_numbers(sweep, inputs)
+    if not cond.size or cond.max() <= COND_MAX:  # (a NaN fails the test)
+        return np.zeros(cond.size, dtype=bool)
     bad = ~(cond <= COND_MAX)
     bad[list(skip)] = False
     if bad.any():
@@ -154,7 +156,7 @@ def _sweep_jacobian(sweep, q):
 def _change_point_checks(mech, t, cond) -> None:
     """Record the Jacobians :func:`~numkin.conditioning.change_points` evaluates: at both
     neighbours of every interior sample whose condition number exceeds ``CHANGE_COND``."""
-    if t.size > 2:
+    if t.size > 2 and not cond.max() <= CHANGE_COND:
         record_evaluations(mech, "J", 2 * int(np.count_nonzero(~(cond[1:-1] <= CHANGE_COND))))
 
 
@@ -210,7 +212,8 @@ def tangent(sweep, *, at_change_point: str = "nan") -> np.ndarray:
     _change_point_checks(mech, t, cond)
     bad = _singular_mask(sweep, mech, t, "dq/dtheta is", change)
     dq = _velocity(sweep, mech, q, t, mech.parameter_values)
-    dq[:, bad] = np.nan
+    if bad.any():
+        dq[:, bad] = np.nan
     continue_branch(mech, t, cond, change, [dq], "dq/dtheta", at_change_point)
     return dq
 
@@ -275,9 +278,12 @@ def derivatives(sweep, *, rtol: float = DIGITS_RTOL, at_change_point: str = "nan
     _change_point_checks(mech, t, cond)
     bad = _singular_mask(sweep, mech, t, "dq/dtheta and d2q/dtheta2 are", change)
     dq, d2q = _rates(sweep, mech, q, t, p)
-    dq[:, bad] = np.nan
-    d2q[:, bad] = np.nan
-    d2q[:, ~np.all(np.isfinite(dq), axis=0)] = np.nan
+    if bad.any():
+        dq[:, bad] = np.nan
+        d2q[:, bad] = np.nan
+    finite = np.isfinite(dq).all(axis=0)
+    if not finite.all():
+        d2q[:, ~finite] = np.nan
     continue_branch(mech, t, cond, change, [dq, d2q], "dq/dtheta and d2q/dtheta2", at_change_point)
     warn_lost_digits(mech, t, cond, change, rtol)
     return dq, d2q

@@ -65,6 +65,7 @@ class BlockStructure:
         self._small = all(b - a <= 2 for a, b in self.blocks)
         self._step = None
         self.newton1 = None
+        self.newton_batch = None
         if self._small:
             zeros = set(zeros)
             self.solve1 = _unrolled_solve(n, self.blocks, zeros, batch=False)
@@ -73,6 +74,9 @@ class BlockStructure:
             #: Newton-Raphson at one point with every update written out for these blocks; called with
             #: the kernel, the point and the stopping rule (see :meth:`numkin.march.Continuation.newton1`).
             self.newton1 = _unrolled_newton(n, self.blocks, zeros, self.inv_xscale)
+            #: Newton-Raphson on whole arrays with every update written out (see
+            #: :meth:`numkin.march.Continuation.newton_batch`).
+            self.newton_batch = _unrolled_newton_batch(n, self.blocks, zeros, self.inv_xscale)
 
     def newton_step(self, J, f):
         """The Newton step ``-J^-1 f`` at every point: J rows, f (n, N) -> (dx (n, N), bad (N,)).
@@ -407,6 +411,84 @@ def _unrolled_newton(n, blocks, zeros, inv_xscale):
     namespace = {"INF": math.inf, "NAN": math.nan}
     exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers only
     return namespace["newton1"]
+
+
+def _unrolled_newton_batch(n, blocks, zeros, inv_xscale):
+    """Generate ``newton_batch(K, x, t, kargs, active, maxiter, fscale, tol, floor, converged)``:
+    Newton-Raphson on whole arrays with every update written out.
+
+    The iteration of :func:`numkin.newton.solve_batch` without compaction
+    (every column is computed at every iteration, the inactive ones are not
+    moved) and without histories: ``K(*x, t, *kargs)`` is the fused kernel
+    (residual rows, then Jacobian rows), ``x`` (n, N) is iterated in place,
+    ``converged`` the stopping rule (:func:`numkin.newton_rules.has_converged`).
+    Returns ``(converged, singular, iterations, rows, evaluations)``, ``rows``
+    the kernel's rows at the returned ``x``, ``evaluations`` the kernel's
+    calls; or None, before any step, if a residual row
+    is not an (N,) array (a constant residual: the caller's general loop
+    takes it).
+    """
+    xs = ", ".join(f"x{i}" for i in range(n))
+    call = f"K({xs}, t, *kargs)"
+    fmax = "ABS(v[0])" if n == 1 else "MAX(" * (n - 1) + "ABS(v[0])" + "".join(
+        f", ABS(v[{i}]))" for i in range(1, n))
+    step = f"ABS(d0) * {inv_xscale[0]!r}" if inv_xscale[0] != 1.0 else "ABS(d0)"
+    for i in range(1, n):
+        term = f"ABS(d{i})" if inv_xscale[i] == 1.0 else f"ABS(d{i}) * {inv_xscale[i]!r}"
+        step = f"MAX({step}, {term})"
+    lines = [
+        "def newton_batch(K, x, t, kargs, active, maxiter, fscale, tol, floor, converged):",
+        "    N = x.shape[1]",
+        *[f"    x{i} = x[{i}]" for i in range(n)],
+        f"    v = {call}",
+        f"    if not all(type(v[i]) is NDARRAY and v[i].shape == (N,) for i in range({n})):",
+        "        return None",
+        f"    fmax = {fmax}",
+        "    done_all = ZEROS(N, dtype=bool)",
+        "    singular = ZEROS(N, dtype=bool)",
+        "    iterations = ZEROS(N, dtype=int)",
+        "    act = active & ISFINITE(fmax)",
+        "    prev = FULL(N, INF)",
+        "    evaluations = 1",
+        "    for _ in range(maxiter):",
+        "        if not act.any():",
+        "            break",
+    ]
+    for a, b in blocks:
+        for i in range(a, b):
+            terms = "".join(f" + v[{n + i * n + j}] * d{j}" for j in range(a) if (i, j) not in zeros)
+            lines.append(f"        r{i} = v[{i}]{terms}")
+        if b - a == 2:
+            i0 = n + a * n + a
+            lines += [
+                f"        a00 = v[{i0}]; a01 = v[{i0 + 1}]; a10 = v[{i0 + n}]; a11 = v[{i0 + n + 1}]",
+                "        inv = 1.0 / (a00 * a11 - a01 * a10)",
+                f"        d{a} = (a01 * r{a + 1} - r{a} * a11) * inv",
+                f"        d{a + 1} = (a10 * r{a} - a00 * r{a + 1}) * inv",
+            ]
+        else:
+            lines.append(f"        d{a} = -r{a} / v[{n + a * n + a}]")
+    lines += [
+        f"        upd = ISFINITE({' + '.join(f'd{i}' for i in range(n))})",
+        "        bad = act & ~upd",
+        "        upd &= act",
+        *[f"        ADD(x{i}, d{i}, out=x{i}, where=upd)" for i in range(n)],
+        f"        step = {step}",
+        f"        v = {call}",
+        "        evaluations += 1",
+        f"        fmax = {fmax}",
+        "        iterations += upd",
+        "        singular |= bad",
+        "        done = upd & converged(fmax / fscale, step, prev, tol, floor)",
+        "        done_all |= done",
+        "        act &= ~(done | bad) & ISFINITE(fmax)",
+        "        prev = WHERE(upd, step, prev)",
+        "    return done_all, singular, iterations, v, evaluations",
+    ]
+    namespace = {"INF": math.inf, "ABS": np.abs, "MAX": np.maximum, "ADD": np.add, "ISFINITE": np.isfinite,
+                 "WHERE": np.where, "ZEROS": np.zeros, "FULL": np.full, "NDARRAY": np.ndarray}
+    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
+    return namespace["newton_batch"]
 
 
 def _unrolled_solve(n, blocks, zeros=frozenset(), batch=False):

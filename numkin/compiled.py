@@ -344,6 +344,12 @@ class CompiledMechanism:
         terms = self._fast[1]
         return [] if terms is None else terms(t, *p)
 
+    @property
+    def FJ_kernel(self):
+        """The function behind :meth:`FJ_rows`: ``FJ_kernel(*q, t, *fixed, *p) -> rows``, for callers
+        that evaluate it many times with the same ``fixed`` and ``p``."""
+        return self._fast[0]
+
     def FJ_rows(self, q, t, p, fixed=None) -> list:
         """Residuals and Jacobian in one call, as a list of n + n*n rows: rows 0..n-1 the
         residuals, then the Jacobian's entries row by row (``n + i * n + j`` is entry (i, j)).

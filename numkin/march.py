@@ -278,8 +278,20 @@ class Continuation:
         x = np.asarray(x, dtype=float)
         comp, p = self.comp, self.p
         floor = self.floor
+        N = x.shape[1]
         if self.symbolic:
             fixed_all = comp.fixed_terms(t, p)
+            if self.blocks.newton_batch is not None and N < COMPACT_MIN:
+                # few columns: every column at every iteration, the iteration written out
+                if not (overwrite and x.flags.writeable and x.flags.c_contiguous):
+                    x = np.array(x, dtype=float, order="C")
+                out = self.blocks.newton_batch(comp.FJ_kernel, x, t, (*fixed_all, *self.pt), np.asarray(active, dtype=bool),
+                                               maxiter, self.fscale, self.tol, floor, has_converged)
+                if out is not None:
+                    converged, _, iterations, v, evaluations = out
+                    self.nfev += evaluations * N
+                    self.njev += evaluations * N
+                    return x, converged, iterations, stack_rows(v[: self.n], N), v[self.n :]
 
             def evaluate(z, idx):
                 if idx is None:
@@ -303,7 +315,6 @@ class Continuation:
                 return list(fd_jacobian(lambda w: comp.F(w, tz, p), z, fz, self.jacobian, xs).reshape(z.shape[1], nn).T)
 
         step = self.blocks.newton_step
-        N = x.shape[1]
         out = solve_batch(
             evaluate, jacobian, lambda jac, f, idx: step(jac, f), x, fscale=self.fscale, xscale=self.xs_arr,
             tol=self.tol, maxiter=maxiter, active=active, floor=floor, fd_cost=self.fd_cost, compact_min=COMPACT_MIN,

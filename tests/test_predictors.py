@@ -122,3 +122,34 @@ def test_written_out_newton_converges_quadratically_to_the_closed_form():
     # det J = r3 r4 sin(theta3 - theta4): zero where theta3 = theta4, refused there and never divided by
     x, status, it, res, v = ctx.newton1([0.5, 0.5], t2, 12)
     assert (status, it, x) == ("singular", 0, [0.5, 0.5])
+
+
+@pytest.mark.parametrize("written_out", [True, False])
+def test_batch_newton_solves_active_columns_and_leaves_the_others(written_out, monkeypatch):
+    # the batch Newton written out for the mechanism (few columns) and numkin.newton.solve_batch
+    # (taken when it is absent, and for many columns) meet the same contract
+    mech = linkages.four_bar(4, 1, 3, 3)
+    assert mech.block_structure.newton_batch is not None
+    if not written_out:
+        monkeypatch.setattr(mech.block_structure, "newton_batch", None)
+    ctx = Continuation(mech, "symbolic", 1e-12, math.radians(30.0), "raise")
+    t = np.radians(np.linspace(5.0, 355.0, 50))
+    t3, t4 = _four_bar_closed_form(t, 4, 1, 3, 3)
+    x = np.vstack([t3 + 0.02 * np.sin(3 * t), t4 - 0.01])
+    active = np.ones(t.size, dtype=bool)
+    active[::7] = False  # kept as they are
+    x[:, 3] = 0.5  # theta3 = theta4: det J = r3 r4 sin(theta3 - theta4) = 0, refused, never divided by
+    start = x.copy()
+    with np.errstate(all="ignore"):
+        got, converged, iterations, f, jac = ctx.newton_batch(x.copy(), t, active)
+    assert np.array_equal(got[:, ~active], start[:, ~active]) and not iterations[~active].any()
+    assert not converged[3] and np.array_equal(got[:, 3], start[:, 3]) and iterations[3] == 0
+    solved = active.copy()
+    solved[3] = False
+    assert converged[solved].all()
+    assert np.abs(got[0, solved] - t3[solved]).max() < 1e-14 and np.abs(got[1, solved] - t4[solved]).max() < 1e-14
+    # from errors of 1e-2: about 1e-4, 1e-8, 1e-16, and a last step to see it
+    assert 3 <= iterations[solved].min() and iterations.max() <= 4
+    # the residuals and Jacobian rows returned are those at the returned positions
+    rows = mech.compiled.FJ_rows(got, t, mech.parameter_values)
+    assert np.array_equal(f, np.array(rows[:2])) and all(np.array_equal(a, b) for a, b in zip(jac, rows[2:]))
