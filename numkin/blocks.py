@@ -73,7 +73,7 @@ class BlockStructure:
             self.update1 = _unrolled_update(n, self.blocks, zeros, self.inv_xscale)
             #: Newton-Raphson at one point with every update written out for these blocks; called with
             #: the kernel, the point and the stopping rule (see :meth:`numkin.march.Continuation.newton1`).
-            self.newton1 = _unrolled_newton(n, self.blocks, zeros, self.inv_xscale)
+            self.newton1 = _unrolled_newton(n, self.blocks, zeros, self.inv_xscale, self._col)
             #: Newton-Raphson on whole arrays with every update written out (see
             #: :meth:`numkin.march.Continuation.newton_batch`).
             self.newton_batch = _unrolled_newton_batch(n, self.blocks, zeros, self.inv_xscale)
@@ -361,9 +361,9 @@ def _unrolled_update(n, blocks, zeros, inv_xscale):
     return namespace["update1"]
 
 
-def _unrolled_newton(n, blocks, zeros, inv_xscale):
-    """Generate ``newton1(K, x, t, pt, maxiter, fscale, tol, converged, floor, errors)``: Newton-Raphson
-    at one point with every update written out.
+def _unrolled_newton(n, blocks, zeros, inv_xscale, col):
+    """Generate ``newton1(K, x, t, pt, maxiter, fscale, tol, converged, floor, errors, cond_max=None)``:
+    Newton-Raphson at one point with every update written out.
 
     ``K(*x, t, *pt)`` is the fused scalar kernel (residuals, Jacobian rows,
     ...), ``converged`` the stopping rule (:func:`numkin.newton_rules.has_converged`)
@@ -371,13 +371,27 @@ def _unrolled_newton(n, blocks, zeros, inv_xscale):
     steps stall above ``tol``). Returns ``(x, status, iterations, residual, v,
     evaluations)`` as :meth:`numkin.march.Continuation.newton1` does: a
     Jacobian singular where the residual is already within ``tol`` (a root
-    on a singular position, predicted exactly) has converged.
+    on a singular position, predicted exactly) has converged; with
+    ``cond_max``, a Jacobian whose scaled blocks (``col``: the unknowns'
+    scales over the residuals') have a larger condition number is refused
+    as singular.
     """
     xs = [f"x{i}" for i in range(n)]
     xl = "[" + ", ".join(xs) + "]"
     res = "max(" + ", ".join(f"abs(v[{i}])" for i in range(n)) + ")" if n > 1 else "abs(v[0])"
+    # the conditioning rule on the scaled 2 x 2 blocks (a block of size 1 is refused only where it is
+    # exactly singular, by the step itself, as in BlockStructure.cond1)
+    conds = [f"COND2(v[{n + a * n + a}] * {col[a]!r}, v[{n + a * n + a + 1}] * {col[a + 1]!r}, "
+             f"v[{n + (a + 1) * n + a}] * {col[a]!r}, v[{n + (a + 1) * n + a + 1}] * {col[a + 1]!r})"
+             for a, b in blocks if b - a == 2]
+    cond_check = []
+    if conds:
+        worst = conds[0] if len(conds) == 1 else f"max({', '.join(conds)})"
+        cond_check = [f"        if cond_max is not None and not {worst} <= cond_max:",
+                      "            status = 'singular'",
+                      "            break"]
     lines = [
-        "def newton1(K, x, t, pt, maxiter, fscale, tol, converged, floor, errors):",
+        "def newton1(K, x, t, pt, maxiter, fscale, tol, converged, floor, errors, cond_max=None):",
         f"    {', '.join(xs)}{',' if n == 1 else ''} = x",
         "    try:",
         f"        v = K({', '.join(xs)}, t, *pt)",
@@ -390,7 +404,9 @@ def _unrolled_newton(n, blocks, zeros, inv_xscale):
         "    it = 0",
         "    status = 'maxiter'",
         "    while it < maxiter:",
-        *_step_lines(n, blocks, zeros, "status = 'converged' if res <= tol else 'singular'; break", indent="        "),
+        *cond_check,
+        *_step_lines(n, blocks, zeros, "status = 'converged' if res <= tol and cond_max is None else 'singular'; break",
+                     indent="        "),
         *[f"        x{i} += d{i}" for i in range(n)],
         f"        step = {_scaled_max([f'd{i}' for i in range(n)], inv_xscale)}",
         "        it += 1",
@@ -408,8 +424,8 @@ def _unrolled_newton(n, blocks, zeros, inv_xscale):
         "        prev = step",
         f"    return {xl}, status, it, res, v, it + 1",
     ]
-    namespace = {"INF": math.inf, "NAN": math.nan}
-    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers only
+    namespace = {"INF": math.inf, "NAN": math.nan, "COND2": _cond2}
+    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
     return namespace["newton1"]
 
 

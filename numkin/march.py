@@ -168,9 +168,9 @@ class Continuation:
         already within ``tol`` (a root on a singular position) has converged.
         """
         n, nn, fscale, tol = self.n, self.nn, self.fscale, self.tol
-        if self._newton1 is not None and cond_max is None:
+        if self._newton1 is not None:
             x, status, it, res, v, evals = self._newton1(self._fjt, x, t, self.pt, maxiter, fscale, tol, has_converged,
-                                                         self._floor, MATH_ERRORS)
+                                                         self._floor, MATH_ERRORS, cond_max)
             self.nfev += evals
             self.njev += evals
             return x, status, it, res, v
