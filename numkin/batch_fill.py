@@ -14,10 +14,11 @@ import warnings
 import numpy as np
 
 from .march import COND_TANGENT, MAX_CORRECTION, Continuation, deg_text
+from .predictors import QUINTIC_MIN_POINTS, hermite, node_curvatures
 from .newton import COND_MAX, COND_WARN, colmax as _colmax, is_singular, residual_floor
 from .sweep import SweepEvent, SingularityWarning
 
-__all__ = ["nodes_of", "fill", "node_curvatures", "report_near_singular", "CHUNK", "QUINTIC_MIN_POINTS"]
+__all__ = ["nodes_of", "fill", "report_near_singular", "CHUNK"]
 
 
 def nodes_of(t: np.ndarray, max_step: float) -> np.ndarray:
@@ -32,10 +33,6 @@ def nodes_of(t: np.ndarray, max_step: float) -> np.ndarray:
     return idx
 
 
-#: Grid points per node from which the batch is predicted by quintic Hermite polynomials (the nodes'
-#: curvatures cost a few kernel calls on the nodes; a prediction error of order h^6 instead of h^4
-#: saves a Newton iteration on every point once the segments hold this many).
-QUINTIC_MIN_POINTS = 100
 
 #: Grid points solved together in one Newton batch: the batch's temporaries stay this
 #: many columns wide however long the sweep.
@@ -73,7 +70,7 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
     for c0 in range(0, N, CHUNK):
         c = slice(c0, min(N, c0 + CHUNK))
         fm, kc, tc = fine_mask[c], k[c], t[c]
-        x_pred = _hermite(tc, t, X, D, D2n, nodes, kc)
+        x_pred = hermite(tc, t, X, D, D2n, nodes, kc)
         x, converged, it, f, jac_c = ctx.newton_batch(x_pred.copy(), tc, fm, overwrite=True)
         # accept a point if Newton converged on the turn of its prediction, the correction is
         # small and no loop changed orientation
@@ -179,110 +176,6 @@ def _put_rows(rows, sub, idx, N):
             full[idx] = r
             rows[i] = full
     return rows
-
-
-def node_curvatures(ctx: Continuation, t, X, D, nodes) -> np.ndarray:
-    """d2q/dt2 at the nodes (n, nodes): the tangent's central difference along the curve.
-
-    The tangent ``-J^-1 dF/dt`` (loop by loop) at ``(q + e q', t + e)`` and
-    ``(q - e q', t - e)``, ``e`` a thousandth of the nodes' spacing: an error
-    of order e^2 (the path's curvature from its tangent field; no second
-    derivatives of the loop equations, which a sweep of positions never
-    derives). NaN where a node's tangent is unknown or a block singular (its
-    segments are then predicted by the cubic); a node on a singular position
-    has its segments marched whatever the prediction (:func:`fill`).
-    """
-    tn = t.take(nodes)
-    Xn, Dn = X.take(nodes, axis=1), D.take(nodes, axis=1)
-    e = 1e-3 * float(np.abs(np.diff(tn)).min()) if nodes.size > 1 else 1e-3
-    m = nodes.size
-    comp, p = ctx.comp, ctx.p
-    ts = np.concatenate([tn + e, tn - e])
-    xs = np.concatenate([Xn + e * Dn, Xn - e * Dn], axis=1)
-    jac = comp.FJ_rows(xs, ts, p)[ctx.n :]
-    tangent, _ = ctx.blocks.solve_negated(jac, comp.F_t(xs, ts, p), 2 * m)
-    return (tangent[:, :m] - tangent[:, m:]) / (2.0 * e)
-
-
-def _hermite(tc, t, X, D, D2n, nodes, k):
-    """The Hermite predictor at the inputs ``tc`` from their nodes' values, tangents and curvatures (n, M).
-
-    Quintic (values, first and second derivatives at both nodes: error of
-    order h^6) on a segment whose nodes both have a curvature in ``D2n``
-    (n, nodes; NaN where unknown), cubic (values and tangents: order h^4)
-    on the others. ``k`` is the left node of every input (its index in
-    ``nodes``), ``t`` the sweep's inputs; built row by row, so that few
-    temporaries are alive at once.
-    """
-    kb = np.minimum(k + 1, nodes.size - 1)
-    a = nodes.take(k)
-    b = nodes.take(kb)
-    ta = t.take(a)
-    delta = t.take(b) - ta
-    delta[a == b] = 1.0
-    s = tc - ta
-    s /= delta
-    del ta
-    u = 1.0 - s
-    s2 = s * s
-    known = np.isfinite(D2n).all(axis=0)
-    quintic = known.take(k) & known.take(kb)
-    if quintic.all():
-        h01, h10, h11 = _quintic_bases(s, u)
-        c = 0.5 * delta * delta
-        D2 = D2n
-    else:
-        h01, h10, h11 = _cubic_bases(s, u)
-        c = None
-        if quintic.any():
-            q = quintic
-            h01[q], h10[q], h11[q] = _quintic_bases(s[q], u[q])
-            c = np.where(q, 0.5 * delta * delta, 0.0)
-            D2 = np.nan_to_num(D2n, nan=0.0)
-    h20 = h21 = None
-    if c is not None:
-        h20 = s2 * u * u * u * c  # s^2 (1 - s)^3 / 2, times delta^2
-        h21 = s2 * s * u * u * c  # s^3 (1 - s)^2 / 2, times delta^2
-    del s, u, s2
-    h10 *= delta
-    h11 *= delta
-    del delta
-    out = np.empty((X.shape[0], tc.size))
-    for i in range(X.shape[0]):
-        xa = X[i].take(a)
-        row = X[i].take(b)
-        row -= xa
-        row *= h01
-        row += xa
-        del xa
-        dd = D[i].take(a)
-        dd *= h10
-        row += dd
-        D[i].take(b, out=dd)
-        dd *= h11
-        row += dd
-        if h20 is not None:
-            D2[i].take(k, out=dd)
-            dd *= h20
-            row += dd
-            D2[i].take(kb, out=dd)
-            dd *= h21
-            row += dd
-        out[i] = row
-    return out
-
-
-def _cubic_bases(s, u):
-    """Cubic Hermite bases of the right node's value and of both tangents at ``s`` (``u = 1 - s``)."""
-    s2 = s * s
-    return s2 * (3.0 - 2.0 * s), s * u * u, -s2 * u  # 3 s^2 - 2 s^3, s (1 - s)^2, s^2 (s - 1)
-
-
-def _quintic_bases(s, u):
-    """Quintic Hermite bases of the right node's value and of both tangents at ``s`` (``u = 1 - s``)."""
-    s3 = s * s * s
-    # s^3 (6 s^2 - 15 s + 10), s (1 - s)^3 (3 s + 1), s^3 (1 - s) (3 s - 4)
-    return s3 * (s * (6.0 * s - 15.0) + 10.0), s * u * u * u * (3.0 * s + 1.0), s3 * u * (3.0 * s - 4.0)
 
 
 def report_near_singular(ctx, t, X, cond):

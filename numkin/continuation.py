@@ -63,9 +63,10 @@ import numpy as np
 
 from .batch_fill import fill, nodes_of, report_near_singular
 from .first_point import solve_start
-from .march import (CROSSING_STEP, DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_PREDICTION, MAX_TANGENT_TURN, TREND_REACH,
+from .march import (CROSSING_STEP, DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_TANGENT_TURN, TREND_REACH,
                     Continuation)
 from .newton import JACOBIANS, check_tol
+from .predictors import MAX_PREDICTION
 from .sweep import Sweep, record_evaluations
 
 __all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION", "MAX_TANGENT_TURN", "TREND_REACH",

@@ -26,19 +26,14 @@ from .newton import (
     residual_floor,
     solve_batch,
 )
+from .predictors import MAX_PREDICTION, SANE_DISTANCE, predict
 from .sweep import SweepEvent, SingularityWarning
 
-__all__ = ["Continuation", "predict", "deg_text", "MAX_CORRECTION", "MAX_PREDICTION", "CORRECTOR_ITERATIONS",
+__all__ = ["Continuation", "deg_text", "MAX_CORRECTION", "CORRECTOR_ITERATIONS",
            "DEFAULT_MAX_STEP", "FAR", "TWO_PI", "MAX_TANGENT_TURN", "TREND_REACH", "CROSSING_STEP", "COND_TANGENT"]
 
 #: Correction (scaled: rad, or lengths / length_scale) above which a continuation step is refused.
 MAX_CORRECTION = 0.3
-#: Largest predicted change of an unknown in one step (scaled): with MAX_CORRECTION well below
-#: pi, an accepted point is never a whole turn away from its predecessor.
-MAX_PREDICTION = 1.0
-#: The quadratic predictor uses the previous point only if it is at least this fraction of
-#: the step away (closer points make the quadratic term blow up).
-SANE_DISTANCE = 0.2
 #: Condition number above which a solved point's tangent is not used to predict (it carries
 #: the position's error times the condition number: noise next to a change point).
 COND_TANGENT = 1e6
@@ -580,47 +575,3 @@ def _scatter(row, sub, idx, N):
         row = np.full(N, row, dtype=np.result_type(row, sub))
     row[idx] = sub
     return row
-
-
-def predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate, d_prev=None):
-    """Predictor of a continuation step that cannot blow up.
-
-    The tangent ``x + d s``; plus, through the previous point, the cubic
-    term as well when its tangent ``d_prev`` is known (the cubic through
-    both points and both tangents), else the quadratic one, only when that
-    point is at least ``SANE_DISTANCE`` times the step away and the added
-    terms (scaled) stay below the step times (1 + ``rate``), ``rate`` the
-    largest scaled entry of the tangent (else the quadratic, else the
-    tangent alone). Without a tangent: the secant through a sane previous
-    point, or ``x`` itself. ``inv_xs`` are the unknowns' inverse scales
-    (None: all one).
-    """
-    s = t_new - t
-    if d is None:
-        if x_prev is None or abs(t - t_prev) < SANE_DISTANCE * abs(s):
-            return list(x)
-        r = s / (t - t_prev)
-        lin = [a + (a - b) * r for a, b in zip(x, x_prev)]
-        if max([abs(a - b) * w for a, b, w in zip(lin, x, inv_xs or [1.0] * len(x))]) <= MAX_PREDICTION:
-            return lin
-        return list(x)
-    lin = [a + da * s for a, da in zip(x, d)]
-    if x_prev is None:
-        return lin
-    h = t_prev - t
-    if abs(h) < SANE_DISTANCE * abs(s):
-        return lin
-    bound = abs(s) * (1.0 + rate)
-    r = s / h
-    # p(u) = x + d u + A u^2 + B u^3 with p(h) = x_prev (and p'(h) = d_prev): e = A h^2 + B h^3
-    e = [b - a - da * h for a, da, b in zip(x, d, x_prev)]
-    if d_prev is not None:
-        # A h^2 = 3 e - g h, B h^3 = g h - 2 e, g = d_prev - d
-        gh = [(b - a) * h for a, b in zip(d, d_prev)]
-        higher = [((3.0 * ei - gi) + (gi - 2.0 * ei) * r) * r * r for ei, gi in zip(e, gh)]
-        if max([abs(q) * w for q, w in zip(higher, inv_xs)] if inv_xs else map(abs, higher)) <= bound:
-            return [a + q for a, q in zip(lin, higher)]
-    quad = [ei * r * r for ei in e]
-    if not max([abs(q) * w for q, w in zip(quad, inv_xs)] if inv_xs else map(abs, quad)) <= bound:
-        return lin
-    return [a + q for a, q in zip(lin, quad)]

@@ -14,8 +14,9 @@ import numpy as np
 import pytest
 
 from numkin import linkages
-from numkin.batch_fill import QUINTIC_MIN_POINTS, _hermite, node_curvatures, nodes_of
-from numkin.march import Continuation, predict
+from numkin.batch_fill import nodes_of
+from numkin.march import Continuation
+from numkin.predictors import QUINTIC_MIN_POINTS, hermite, node_curvatures, predict
 
 
 def _cubic(t):
@@ -53,16 +54,16 @@ def test_batch_predictor_is_exact_for_a_quintic_and_for_a_cubic():
     x, d, d2 = _quintic(t)
     X, D = x[None, :].copy(), d[None, :].copy()
     k = np.searchsorted(nodes, np.arange(t.size), side="right") - 1
-    got = _hermite(t, t, X, D, d2[None, nodes], nodes, k)
+    got = hermite(t, t, X, D, d2[None, nodes], nodes, k)
     np.testing.assert_allclose(got[0], x, rtol=0, atol=1e-14)
     # with the curvatures unknown: the cubic Hermite, exact for a cubic
     xc, dc = _cubic(t)
-    got = _hermite(t, t, xc[None, :].copy(), dc[None, :].copy(), np.full((1, 3), np.nan), nodes, k)
+    got = hermite(t, t, xc[None, :].copy(), dc[None, :].copy(), np.full((1, 3), np.nan), nodes, k)
     np.testing.assert_allclose(got[0], xc, rtol=0, atol=1e-15)
     # one node without a curvature: its segments are cubic, the others quintic
     mixed = d2[None, nodes].copy()
     mixed[0, 2] = np.nan
-    got = _hermite(t, t, X, D, mixed, nodes, k)
+    got = hermite(t, t, X, D, mixed, nodes, k)
     np.testing.assert_allclose(got[0, :11], x[:11], rtol=0, atol=1e-14)
     assert np.abs(got[0, 11:20] - x[11:20]).max() > 1e-6
 

@@ -1,0 +1,209 @@
+"""The predictors of a continuation: where the next solution is expected, before Newton corrects it.
+
+Sequential steps (:func:`predict`): the tangent line, plus the cubic through
+the previous point and its tangent, bounded so that no prediction can blow
+up. The batch between nodes (:func:`hermite`): Hermite polynomials through
+the nodes' values and tangents (cubic), and their curvatures where known
+(quintic, from :func:`node_curvatures`).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:  # pragma: no cover - for annotations only
+    from .march import Continuation
+
+__all__ = ["predict", "hermite", "node_curvatures", "cubic_bases", "quintic_bases", "MAX_PREDICTION",
+           "SANE_DISTANCE", "QUINTIC_MIN_POINTS"]
+
+#: Largest predicted change of an unknown in one step (scaled): with MAX_CORRECTION well below
+#: pi, an accepted point is never a whole turn away from its predecessor.
+MAX_PREDICTION = 1.0
+#: The quadratic predictor uses the previous point only if it is at least this fraction of
+#: the step away (closer points make the quadratic term blow up).
+SANE_DISTANCE = 0.2
+#: Grid points per node from which the batch is predicted by quintic Hermite polynomials (the nodes'
+#: curvatures cost a few kernel calls on the nodes; a prediction error of order h^6 instead of h^4
+#: saves a Newton iteration on every point once the segments hold this many).
+QUINTIC_MIN_POINTS = 100
+
+
+def predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate, d_prev=None):
+    """Predictor of a continuation step that cannot blow up.
+
+    The tangent ``x + d s``; plus, through the previous point, the cubic
+    term as well when its tangent ``d_prev`` is known (the cubic through
+    both points and both tangents), else the quadratic one, only when that
+    point is at least ``SANE_DISTANCE`` times the step away and the added
+    terms (scaled) stay below the step times (1 + ``rate``), ``rate`` the
+    largest scaled entry of the tangent (else the quadratic, else the
+    tangent alone). Without a tangent: the secant through a sane previous
+    point, or ``x`` itself. ``inv_xs`` are the unknowns' inverse scales
+    (None: all one).
+
+    Examples
+    --------
+    The cubic through two points and their tangents is exact for
+    ``q(t) = t^3`` (at t = 0 and 1, predicting t = 1.5):
+
+    >>> predict(1.0, [1.0], [3.0], 0.0, [0.0], 1.5, None, 3.0, [0.0])
+    [3.375]
+    """
+    s = t_new - t
+    if d is None:
+        if x_prev is None or abs(t - t_prev) < SANE_DISTANCE * abs(s):
+            return list(x)
+        r = s / (t - t_prev)
+        lin = [a + (a - b) * r for a, b in zip(x, x_prev)]
+        if max([abs(a - b) * w for a, b, w in zip(lin, x, inv_xs or [1.0] * len(x))]) <= MAX_PREDICTION:
+            return lin
+        return list(x)
+    lin = [a + da * s for a, da in zip(x, d)]
+    if x_prev is None:
+        return lin
+    h = t_prev - t
+    if abs(h) < SANE_DISTANCE * abs(s):
+        return lin
+    bound = abs(s) * (1.0 + rate)
+    r = s / h
+    # p(u) = x + d u + A u^2 + B u^3 with p(h) = x_prev (and p'(h) = d_prev): e = A h^2 + B h^3
+    e = [b - a - da * h for a, da, b in zip(x, d, x_prev)]
+    if d_prev is not None:
+        # A h^2 = 3 e - g h, B h^3 = g h - 2 e, g = d_prev - d
+        gh = [(b - a) * h for a, b in zip(d, d_prev)]
+        higher = [((3.0 * ei - gi) + (gi - 2.0 * ei) * r) * r * r for ei, gi in zip(e, gh)]
+        if max([abs(q) * w for q, w in zip(higher, inv_xs)] if inv_xs else map(abs, higher)) <= bound:
+            return [a + q for a, q in zip(lin, higher)]
+    quad = [ei * r * r for ei in e]
+    if not max([abs(q) * w for q, w in zip(quad, inv_xs)] if inv_xs else map(abs, quad)) <= bound:
+        return lin
+    return [a + q for a, q in zip(lin, quad)]
+
+
+def node_curvatures(ctx: Continuation, t, X, D, nodes) -> np.ndarray:
+    """d2q/dt2 at the nodes (n, nodes): the tangent's central difference along the curve.
+
+    The tangent ``-J^-1 dF/dt`` (loop by loop) at ``(q + e q', t + e)`` and
+    ``(q - e q', t - e)``, ``e`` a thousandth of the nodes' spacing: an error
+    of order e^2 (the path's curvature from its tangent field; no second
+    derivatives of the loop equations, which a sweep of positions never
+    derives). NaN where a node's tangent is unknown or a block singular (its
+    segments are then predicted by the cubic); a node on a singular position
+    has its segments marched whatever the prediction (:func:`numkin.batch_fill.fill`).
+    """
+    tn = t.take(nodes)
+    Xn, Dn = X.take(nodes, axis=1), D.take(nodes, axis=1)
+    e = 1e-3 * float(np.abs(np.diff(tn)).min()) if nodes.size > 1 else 1e-3
+    m = nodes.size
+    comp, p = ctx.comp, ctx.p
+    ts = np.concatenate([tn + e, tn - e])
+    xs = np.concatenate([Xn + e * Dn, Xn - e * Dn], axis=1)
+    jac = comp.FJ_rows(xs, ts, p)[ctx.n :]
+    tangent, _ = ctx.blocks.solve_negated(jac, comp.F_t(xs, ts, p), 2 * m)
+    return (tangent[:, :m] - tangent[:, m:]) / (2.0 * e)
+
+
+def hermite(tc, t, X, D, D2n, nodes, k):
+    """The Hermite predictor at the inputs ``tc`` from their nodes' values, tangents and curvatures (n, M).
+
+    Quintic (values, first and second derivatives at both nodes: error of
+    order h^6) on a segment whose nodes both have a curvature in ``D2n``
+    (n, nodes; NaN where unknown), cubic (values and tangents: order h^4)
+    on the others. ``k`` is the left node of every input (its index in
+    ``nodes``), ``t`` the sweep's inputs; built row by row, so that few
+    temporaries are alive at once.
+
+    Examples
+    --------
+    ``q(t) = t^3`` from nodes at t = 0 and 2 (values and tangents: the cubic is exact):
+
+    >>> import numpy as np
+    >>> t = np.array([0.0, 0.5, 1.0, 2.0]); nodes = np.array([0, 3])
+    >>> X, D = (t**3)[None, :], (3 * t**2)[None, :]
+    >>> hermite(t, t, X, D, np.full((1, 2), np.nan), nodes, np.array([0, 0, 0, 1])).tolist()
+    [[0.0, 0.125, 1.0, 8.0]]
+    """
+    kb = np.minimum(k + 1, nodes.size - 1)
+    a = nodes.take(k)
+    b = nodes.take(kb)
+    ta = t.take(a)
+    delta = t.take(b) - ta
+    delta[a == b] = 1.0
+    s = tc - ta
+    s /= delta
+    del ta
+    u = 1.0 - s
+    s2 = s * s
+    known = np.isfinite(D2n).all(axis=0)
+    quintic = known.take(k) & known.take(kb)
+    if quintic.all():
+        h01, h10, h11 = quintic_bases(s, u)
+        c = 0.5 * delta * delta
+        D2 = D2n
+    else:
+        h01, h10, h11 = cubic_bases(s, u)
+        c = None
+        if quintic.any():
+            q = quintic
+            h01[q], h10[q], h11[q] = quintic_bases(s[q], u[q])
+            c = np.where(q, 0.5 * delta * delta, 0.0)
+            D2 = np.nan_to_num(D2n, nan=0.0)
+    h20 = h21 = None
+    if c is not None:
+        h20 = s2 * u * u * u * c  # s^2 (1 - s)^3 / 2, times delta^2
+        h21 = s2 * s * u * u * c  # s^3 (1 - s)^2 / 2, times delta^2
+    del s, u, s2
+    h10 *= delta
+    h11 *= delta
+    del delta
+    out = np.empty((X.shape[0], tc.size))
+    for i in range(X.shape[0]):
+        xa = X[i].take(a)
+        row = X[i].take(b)
+        row -= xa
+        row *= h01
+        row += xa
+        del xa
+        dd = D[i].take(a)
+        dd *= h10
+        row += dd
+        D[i].take(b, out=dd)
+        dd *= h11
+        row += dd
+        if h20 is not None:
+            D2[i].take(k, out=dd)
+            dd *= h20
+            row += dd
+            D2[i].take(kb, out=dd)
+            dd *= h21
+            row += dd
+        out[i] = row
+    return out
+
+
+def cubic_bases(s, u):
+    """Cubic Hermite bases of the right node's value and of both tangents at ``s`` (``u = 1 - s``).
+
+    Examples
+    --------
+    >>> cubic_bases(0.5, 0.5)
+    (0.5, 0.125, -0.125)
+    """
+    s2 = s * s
+    return s2 * (3.0 - 2.0 * s), s * u * u, -s2 * u  # 3 s^2 - 2 s^3, s (1 - s)^2, s^2 (s - 1)
+
+
+def quintic_bases(s, u):
+    """Quintic Hermite bases of the right node's value and of both tangents at ``s`` (``u = 1 - s``).
+
+    Examples
+    --------
+    >>> quintic_bases(0.5, 0.5)
+    (0.5, 0.15625, -0.15625)
+    """
+    s3 = s * s * s
+    # s^3 (6 s^2 - 15 s + 10), s (1 - s)^3 (3 s + 1), s^3 (1 - s) (3 s - 4)
+    return s3 * (s * (6.0 * s - 15.0) + 10.0), s * u * u * u * (3.0 * s + 1.0), s3 * u * (3.0 * s - 4.0)
