@@ -514,6 +514,19 @@ def test_write_tables(tmp_path):
     assert tex.count("\\\\") == 3  # header + 2 rows
 
 
+def test_latex_tables_carry_the_markdown_digits_and_parts(tmp_path):
+    # the value 10.6319826...: 7 significant figures in every format, not 6 in LaTeX (10.632 would hide
+    # the digit a tolerance table is about)
+    df = pd.DataFrame({"rule": ["homework", "relative stop"], "exact value [rad/s]": [10.6319826, 10.6328997],
+                       "Newton iterations per point (mean)": [3.04, 5.0], "note": ["a", "b"]})
+    df.attrs["views"] = [("values", ["rule", "exact value [rad/s]"]), ("cost", ["rule", "Newton iterations per point (mean)", "note"])]
+    md, _, tex = (p.read_text() for p in report.write_tables({"t": df}, tmp_path))
+    for text in ("10.631983", "10.632900", "3.0", "5.0"):
+        assert text in md and text in tex, text
+    assert tex.count("\\begin{tabular}") == 2 and "\\begin{tabular}{lr}" in tex and "\\begin{tabular}{lrl}" in tex
+    assert "\\textbf{values}" in tex and "\\textbf{cost}" in tex
+
+
 def test_write_tables_formats(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "tabulate", None)  # Markdown is written without tabulate
     assert report.write_tables({"t": pd.DataFrame({"a": [1]})}, tmp_path / "md")[0].read_text().startswith("| a |")

@@ -128,6 +128,8 @@ def convergence_table(
     return set_caption(
         df,
         f"Convergence: {mechanism.name}, {quantity}, input speed {w:g} rad/s; error of each scheme "
-        "against the analytic solution over the sweep; observed order from successive grids.",
+        "against the analytic solution over the sweep; observed order from successive grids. Absolute errors "
+        f"in {lab['unit1']} ({lab['name1']}, first-derivative schemes) or {lab['unit2']} ({lab['name2']}, "
+        "second-derivative schemes).",
         grid_positions(mechanism, {n: data[n][0] for n in grid_list}, check_angle),
     )

@@ -17,19 +17,6 @@ __all__ = [
 ]
 
 
-def _cell(value) -> str:
-    """One table cell as text for LaTeX: 6 significant digits, blanks for NaN, yes/no for booleans."""
-    if isinstance(value, (bool, np.bool_)):
-        return "yes" if value else "no"
-    if isinstance(value, (int, np.integer)):
-        return str(int(value))
-    if isinstance(value, (float, np.floating)):
-        if math.isnan(value):
-            return ""
-        return f"{float(value):.6g}"
-    return "" if value is None else str(value)
-
-
 def column_format(column: str) -> str:
     """The number format of a column, chosen from its name (Python format spec, or ``"int"``).
 
@@ -251,28 +238,28 @@ def _tex(text: str) -> str:
 
 
 def _booktabs(df, name: str) -> str:
-    """A LaTeX table with booktabs rules (needs \\usepackage{booktabs}); no jinja2."""
-    numeric = [
-        df[c].dtype.kind in "iuf" for c in df.columns
-    ]
-    spec = "".join("r" if isnum else "l" for isnum in numeric)
-    lines = [
-        "% needs \\usepackage{booktabs}",
-        "\\begin{table}[htbp]",
-        "\\centering",
-    ]
+    """A LaTeX table with booktabs rules (needs \\usepackage{booktabs}); no jinja2.
+
+    The cells carry the digits of the Markdown table (:func:`format_cell`), and a
+    table read in parts (:func:`table_views`) is one tabular per part, each
+    under its title, so that no part is wider than the Markdown one.
+    """
+    lines = ["% needs \\usepackage{booktabs}", "\\begin{table}[htbp]", "\\centering"]
     caption = df.attrs.get("caption")
     if caption:
         lines.append("\\caption{" + _tex(caption) + "}")
     lines.append("\\label{tab:" + name.replace("_", "-") + "}")
-    lines.append("\\begin{tabular}{" + spec + "}")
-    lines.append("\\toprule")
-    lines.append(" & ".join(_tex(str(c)) for c in df.columns) + " \\\\")
-    lines.append("\\midrule")
-    for row in df.itertuples(index=False):
-        lines.append(" & ".join(_tex(_cell(v)) for v in row) + " \\\\")
-    lines.append("\\bottomrule")
-    lines.append("\\end{tabular}")
+    for k, (title, view) in enumerate(table_views(df)):
+        if k:
+            lines.append("\\medskip")
+        if title:
+            lines.append("\\par\\textbf{" + _tex(title) + "}\\par\\smallskip")
+        spec = "".join("r" if view[c].dtype.kind in "iuf" else "l" for c in view.columns)
+        lines += ["\\begin{tabular}{" + spec + "}", "\\toprule",
+                  " & ".join(_tex(str(c)) for c in view.columns) + " \\\\", "\\midrule"]
+        for row in view.itertuples(index=False):
+            lines.append(" & ".join(_tex(format_cell(v, c)) for v, c in zip(row, view.columns)) + " \\\\")
+        lines += ["\\bottomrule", "\\end{tabular}"]
     lines.append("\\end{table}")
     return "\n".join(lines) + "\n"
 
