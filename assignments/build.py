@@ -339,6 +339,21 @@ def _differs(a, b, rtol: float = AGREE) -> bool:
     return any(abs(x - y) > rtol * scale for x, y in zip(a, b))
 
 
+def _committed(hw: str) -> dict:
+    try:
+        return load_expected(hw)
+    except FileNotFoundError:
+        return {}
+
+
+def _kept(hw: str, fresh: dict) -> dict:
+    """``fresh``, but for the values whose committed version agrees with it (:data:`AGREE`): those stay as
+    committed, so that rebuilding unchanged references leaves the files as they are (fresh values differ
+    from run to run and version to version only by rounding noise, in their last digits)."""
+    committed = _committed(hw)
+    return {k: committed[k] if k in committed and not _differs(committed[k], v) else v for k, v in fresh.items()}
+
+
 def stale(hw: str, fresh: dict | None = None) -> list[str]:
     """Disagreements between committed references (json and master) and numkin's values."""
     problems = []
@@ -526,8 +541,10 @@ def _run(args) -> int:
                     print(problem)
                 failed |= bool(problems)
             else:
-                write(hw, fresh)
-                print(f"{hw}: {len(fresh)} reference values written")
+                kept = _kept(hw, fresh)
+                write(hw, kept)
+                changed = sum(1 for k in fresh if kept[k] is fresh[k] and k in _committed(hw))
+                print(f"{hw}: {len(fresh)} reference values written ({changed} changed beyond rounding noise)")
         return 1 if failed else 0
     if args.command == "new":
         where = new_from_scene(args.scene, args.root)

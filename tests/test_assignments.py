@@ -89,6 +89,17 @@ def test_stale_values_are_caught(tmp_path, monkeypatch):
     assert any("a_0" in p for p in build.stale(hw, fresh))
 
 
+def test_rebuilding_keeps_references_that_agree_and_takes_those_that_moved():
+    hw = "hw3_slider_crank"
+    committed = build.load_expected(hw)
+    fresh = build.compute(hw)
+    fresh["a_90"] = committed["a_90"] * (1 + 1e-11)  # rounding noise in the last digits: the committed one stays
+    fresh["a_0"] = committed["a_0"] * 1.001  # a real change: taken
+    kept = build._kept(hw, fresh)
+    assert kept["a_90"] == committed["a_90"] and kept["a_0"] == fresh["a_0"]
+    assert kept["x"] == committed["x"]
+
+
 # --------------------------------------------------------------------------
 # the masters and their deliberate mistakes
 # --------------------------------------------------------------------------
