@@ -257,7 +257,7 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
             target.with_source("rms").source_label("abs error"): float(np.sqrt(np.nanmean(err[keep] ** 2))),
             "max rel error": float(np.nanmax(rel)),
             "rms rel error": float(np.sqrt(np.nanmean(rel[keep] ** 2))),
-            f"max at {in_col}": float(np.degrees(t[worst])),
+            f"max at {in_col}": round(float(np.degrees(t[worst])), 9),  # no 6.000000000000001 from rad and back
         })
     table_df = pd.DataFrame(table)
     summary_df = pd.DataFrame(summary).set_index("scheme")
