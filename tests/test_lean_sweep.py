@@ -100,3 +100,33 @@ def test_sweep_memory_per_point_at_36001_points(build):
         tracemalloc.stop()
     assert peak / t.size <= 300
     assert np.max(sweep.residual) <= 10 * sweep.tol
+
+
+def test_written_out_newtons_on_blocks_of_size_one():
+    # f0 = x0^2 - t, f1 = x1 - 2 x0 (a block of size 1 after another): x0 = sqrt(t), x1 = 2 sqrt(t)
+    from numkin.newton_rules import has_converged
+
+    bs = BlockStructure([slice(0, 1), slice(1, 2)], 1.0, [1.0, 1.0], zeros={(0, 1)})
+
+    def kernel(x0, x1, t):
+        return [x0 * x0 - t, x1 - 2.0 * x0, 2.0 * x0, 0.0, -2.0, 1.0]
+
+    t = np.linspace(1.0, 4.0, 7)
+    x = np.vstack([np.sqrt(t) * 1.05, np.zeros(7)])
+    active = np.ones(7, dtype=bool)
+    active[0] = False
+    x[0, 6] = 0.0  # d f0 / d x0 = 0: refused, not moved
+    with np.errstate(all="ignore"):
+        converged, singular, iterations, rows, evaluations = bs.newton_batch(
+            kernel, x, t, (), active, 12, 1.0, 1e-12, 0.0, has_converged)
+    ok = np.array([False, True, True, True, True, True, False])
+    assert (converged == ok).all() and singular[6] and not iterations[0] and evaluations == iterations.max() + 1
+    np.testing.assert_allclose(x[:, ok], np.vstack([np.sqrt(t), 2 * np.sqrt(t)])[:, ok], rtol=1e-15)
+    assert x[0, 0] == np.sqrt(t[0]) * 1.05 and x[0, 6] == 0.0
+    assert np.array_equal(rows[0], x[0] ** 2 - t)
+    # the scalar one, with and without the conditioning rule (blocks of size 1 have condition number 1)
+    for cond_max in (None, 1e12):
+        xs, status, it, res, v, evals = bs.newton1(lambda a, b, tt: kernel(a, b, tt), [1.0, 0.0], 2.0, (), 12,
+                                                   1.0, 1e-12, has_converged, lambda x, t: 0.0, ArithmeticError,
+                                                   cond_max)
+        assert status == "converged" and xs == pytest.approx([math.sqrt(2.0), 2 * math.sqrt(2.0)], rel=1e-15)
