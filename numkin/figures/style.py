@@ -104,6 +104,19 @@ def close(fig) -> None:
         sys.modules["matplotlib.pyplot"].close(fig)
 
 
+def _freeze_layout(fig) -> None:
+    """Keep the axes where the last layout put them: no layout engine at all from now on.
+
+    ``set_layout_engine("none")`` would leave a placeholder engine, and savefig draws a figure
+    that has any engine once more before printing it (a second pass that measures every text).
+    """
+    import matplotlib
+
+    if fig.get_layout_engine() is not None:
+        with matplotlib.rc_context({"figure.autolayout": False, "figure.constrained_layout.use": False}):
+            fig.set_layout_engine(None)
+
+
 def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
     """Save a figure in each format, deterministically, and close it.
 
@@ -153,13 +166,12 @@ def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
                 fig.set_dpi(matplotlib.rcParams["savefig.dpi"])
                 fig.draw_without_rendering()
                 fig.set_dpi(dpi)
-                fig.set_layout_engine("none")
+                _freeze_layout(fig)
             for k in order:
                 fmt = fmts[k]
                 path = stem.with_name(f"{stem.name}.{fmt}")
                 fig.savefig(path, format=fmt, metadata=METADATA[fmt])
-                if fig.get_layout_engine() is not None:
-                    fig.set_layout_engine("none")
+                _freeze_layout(fig)
                 paths[k] = path
         return [paths[k] for k in range(len(fmts))]
     finally:
