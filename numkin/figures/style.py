@@ -104,17 +104,31 @@ def close(fig) -> None:
         sys.modules["matplotlib.pyplot"].close(fig)
 
 
-def _freeze_layout(fig) -> None:
-    """Keep the axes where the last layout put them: no layout engine at all from now on.
+#: rcParams under which a figure gets no layout engine (savefig gives a figure back the engine these
+#: name when it puts back the "no engine" it found, and a figure with an engine is drawn twice).
+_NO_LAYOUT = {"figure.autolayout": False, "figure.constrained_layout.use": False}
+
+
+def _lay_out(fig, dpi: float) -> None:
+    """Run the figure's layout engine at `dpi`, then keep the axes there: no layout engine from now on.
 
     ``set_layout_engine("none")`` would leave a placeholder engine, and savefig draws a figure
-    that has any engine once more before printing it (a second pass that measures every text).
+    that has any engine once more before printing it (a pass that measures every text again).
     """
     import matplotlib
 
-    if fig.get_layout_engine() is not None:
-        with matplotlib.rc_context({"figure.autolayout": False, "figure.constrained_layout.use": False}):
-            fig.set_layout_engine(None)
+    engine = fig.get_layout_engine()
+    if engine is None:
+        return
+    if fig.axes:
+        before = fig.dpi
+        fig.set_dpi(dpi)
+        try:
+            engine.execute(fig)
+        finally:
+            fig.set_dpi(before)
+    with matplotlib.rc_context(_NO_LAYOUT):
+        fig.set_layout_engine(None)
 
 
 def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
@@ -155,25 +169,18 @@ def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
             )
         stem = Path(path_stem)
         stem.parent.mkdir(parents=True, exist_ok=True)
-        # One layout for every format, computed once at the saving resolution, then frozen. A PNG is
-        # drawn at that resolution anyway: it is written first and its own drawing lays the figure out
-        # (one pass instead of a layout pass and a drawing pass, text measured once).
-        order = sorted(range(len(fmts)), key=lambda k: fmts[k] != "png")
-        paths = {}
+        # One layout for every format, computed once at the saving resolution, then frozen: savefig
+        # draws a figure that has no layout engine once (a figure with one is drawn twice, once to lay
+        # it out), and the PNG is drawn with the renderer the layout measured its text with.
+        paths = []
         with style():
-            if fig.get_layout_engine() is not None and len(fmts) > 1 and fmts[order[0]] != "png":
-                dpi = fig.dpi
-                fig.set_dpi(matplotlib.rcParams["savefig.dpi"])
-                fig.draw_without_rendering()
-                fig.set_dpi(dpi)
-                _freeze_layout(fig)
-            for k in order:
-                fmt = fmts[k]
-                path = stem.with_name(f"{stem.name}.{fmt}")
-                fig.savefig(path, format=fmt, metadata=METADATA[fmt])
-                _freeze_layout(fig)
-                paths[k] = path
-        return [paths[k] for k in range(len(fmts))]
+            _lay_out(fig, matplotlib.rcParams["savefig.dpi"])
+            with matplotlib.rc_context(_NO_LAYOUT):
+                for fmt in fmts:
+                    path = stem.with_name(f"{stem.name}.{fmt}")
+                    fig.savefig(path, format=fmt, metadata=METADATA[fmt])
+                    paths.append(path)
+        return paths
     finally:
         close(fig)
 
