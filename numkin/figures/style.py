@@ -26,7 +26,7 @@ from .registries import family_of
 __all__ = [
     "DOC_PARTS",
     "shared_doc",
-    "CYCLE", "METADATA", "SOURCE_MARKERS", "SOURCE_STYLE", "STYLE", "close", "new_figure", "save", "source_label",
+    "CYCLE", "METADATA", "SAVE_OPTIONS", "SOURCE_MARKERS", "SOURCE_STYLE", "STYLE", "close", "new_figure", "save", "source_label",
     "marker_style", "source_style", "style",
 ]
 
@@ -67,6 +67,11 @@ SOURCE_MARKERS = {
 
 #: Colour cycle of sources and curves without a fixed style.
 CYCLE = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000"]
+
+#: Further savefig arguments per format. PNG: zlib level 1 (lossless like every level; about a third
+#: faster to write than the default 6, the files about a tenth larger).
+SAVE_OPTIONS = {"png": {"pil_kwargs": {"compress_level": 1}}}
+
 
 @contextmanager
 def style():
@@ -178,7 +183,7 @@ def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
             with matplotlib.rc_context(_NO_LAYOUT):
                 for fmt in fmts:
                     path = stem.with_name(f"{stem.name}.{fmt}")
-                    fig.savefig(path, format=fmt, metadata=METADATA[fmt])
+                    fig.savefig(path, format=fmt, metadata=METADATA[fmt], **SAVE_OPTIONS.get(fmt, {}))
                     paths.append(path)
         return paths
     finally:
