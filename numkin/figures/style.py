@@ -4,7 +4,8 @@ Every numkin figure is drawn inside :func:`style` (matplotlib's defaults plus
 ``numkin/numkin.mplstyle``), on a :class:`~matplotlib.figure.Figure` with an
 Agg canvas that pyplot does not know (:func:`new_figure`), and written by
 :func:`save` with no date or version in the files, so regenerating a figure
-gives the same bytes.
+gives the same bytes. :func:`save` lays the figure out once, at the saving
+resolution, and draws each format once from that layout.
 
 Examples
 --------
