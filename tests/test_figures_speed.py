@@ -146,3 +146,23 @@ def test_saved_twice_gives_identical_bytes(tmp_path):
     second = figures.save(_position_figure(), tmp_path / "b", ["png", "svg"])
     for a, b in zip(first, second):
         assert a.read_bytes() == b.read_bytes(), a.name
+
+
+def test_gc_paused_restores_the_collector_state():
+    import gc
+
+    from numkin.figures.style import gc_paused
+
+    assert gc.isenabled()
+    with pytest.raises(RuntimeError):
+        with gc_paused():
+            assert not gc.isenabled()
+            raise RuntimeError("inside")
+    assert gc.isenabled()
+    gc.disable()
+    try:
+        with gc_paused():
+            pass
+        assert not gc.isenabled()  # a caller's choice is kept
+    finally:
+        gc.enable()
