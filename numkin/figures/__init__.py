@@ -23,7 +23,8 @@ colours, saving), :mod:`~numkin.figures.labels` (symbols, units, number
 formats), :mod:`~numkin.figures.curves` (curves against the input),
 :mod:`~numkin.figures.error_plots` (error-analysis tables),
 :mod:`~numkin.figures.drawing` (the linkage itself, shared with
-:mod:`numkin.animate`), :mod:`~numkin.figures.dispatch` (figures by name)
+:mod:`numkin.animate`), :mod:`~numkin.figures.dispatch` (figures by name),
+:mod:`~numkin.figures.ticks` (log axes labelled ``10⁻¹²`` in the tick font)
 and :mod:`~numkin.figures.registries` (scheme families and dimension lines).
 
 =========================  ======================================================  ====================

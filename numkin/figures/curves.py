@@ -364,6 +364,8 @@ def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
     ya = frame_column(analytic, acol, "analytic kinematics")
     x = np.degrees(xa_in)
     with style():
+        from .ticks import log_scale
+
         fig, axes = new_figure(2, 1, sharex=True, size=(6.4, 6.0), height_ratios=[3, 2])
         ax, axe = axes[:, 0]
         for k, (key, frame) in enumerate(finite.items()):
@@ -379,7 +381,7 @@ def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
         ax.axhline(0.0, color="black", linewidth=0.4)
         ax.set_ylabel(alabel)
         ax.legend(loc="best")
-        axe.set_yscale("log")
+        log_scale(axe, "y")
         axe.set_ylabel(f"|numerical − analytic| [{unit}]")
         axe.set_xlabel(input_label(sweep))
         degree_ticks(axe, x)

@@ -14,7 +14,7 @@ from .curves import acceleration_comparison, derivative, difference, kinematics,
 from .drawing import mechanism
 from .error_plots import convergence, jacobian_of, newton_residuals, roundoff, work_precision
 from .labels import check_unknown, input_name, is_angle, rate_columns, table_column
-from .style import METADATA, save
+from .style import METADATA, gc_paused, save
 
 __all__ = ["FIGURES", "FigureSkipped", "parse_spec", "render"]
 
@@ -302,10 +302,14 @@ def render(result, names: Sequence[str] | None = None, out_dir=".", formats: Seq
     out = Path(out_dir)
     written: list[Path] = []
     for spec, kind, arg in specs:
-        try:
-            fig, stem = _build(kind, arg, data)
-        except _Missing as why:
-            warnings.warn(f"figure '{spec}' skipped: {why}", FigureSkipped, stacklevel=2)
-            continue
-        written += save(fig, out / stem, formats)
+        # one figure at a time, its objects alive until it is saved; then none is left referenced,
+        # so the first collection after the pause frees them all at once
+        with gc_paused():
+            try:
+                fig, stem = _build(kind, arg, data)
+            except _Missing as why:
+                warnings.warn(f"figure '{spec}' skipped: {why}", FigureSkipped, stacklevel=2)
+                continue
+            written += save(fig, out / stem, formats)
+            del fig
     return written

@@ -282,7 +282,21 @@ def _angle_arcs(sweep, pts: Mapping, values: Mapping, segments: Sequence[tuple[s
 def _clear_labels(ax, labels, joints, span: float) -> None:
     """Move each angle label outward along its arc's bisector (or below the reference line) until it
     covers no joint and no other text; a label that finds no clear place stays where it was."""
+    import matplotlib
+
     fig = ax.figure
+    # measured at the resolution the figure is saved at (the text as the PNG draws it, measured once
+    # for both); the clearance round a joint is 0.07 in
+    dpi = fig.dpi
+    fig.set_dpi(matplotlib.rcParams["savefig.dpi"])
+    try:
+        _place_labels(fig, ax, labels, joints, span, 0.07 * fig.dpi)
+    finally:
+        fig.set_dpi(dpi)
+
+
+def _place_labels(fig, ax, labels, joints, span: float, pad: float) -> None:
+    """The search of :func:`_clear_labels`, at the figure's dpi; `pad` (pixels) round each joint."""
     # the layout (and the equal aspect it leaves room for), so that data coordinates map to the pixels
     # of the drawn figure; nothing is drawn
     if fig.get_layout_engine() is not None:
@@ -293,7 +307,7 @@ def _clear_labels(ax, labels, joints, span: float) -> None:
 
     def clear(text) -> bool:
         box = text.get_window_extent(renderer).expanded(1.04, 1.15)
-        if any(box.x0 - 7 <= x <= box.x1 + 7 and box.y0 - 7 <= y <= box.y1 + 7 for x, y in joints_px):
+        if any(box.x0 - pad <= x <= box.x1 + pad and box.y0 - pad <= y <= box.y1 + pad for x, y in joints_px):
             return False
         others = [t for t in ax.texts if t is not text and t.get_text()]
         return not any(box.overlaps(t.get_window_extent(renderer)) for t in others)

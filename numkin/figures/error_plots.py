@@ -167,6 +167,8 @@ def convergence(table, *, error: str = "max abs error"):
     h_unit = str(hcol)[3:-1]
     groups = _groups(table)
     with style():
+        from .ticks import log_scale
+
         fig, axes = new_figure(1, len(groups), size=(6.4 if len(groups) == 1 else 9.6, 5.4))
         for ax, (quantity, sub) in zip(axes[0], groups):
             qtext, unit = _panel_text(quantity, error, table)
@@ -192,8 +194,7 @@ def convergence(table, *, error: str = "max abs error"):
                 inside = np.flatnonzero(yy >= ylo * 1.5)
                 j = inside[0] if inside.size else hh.size - 1
                 ax.text(hh[j], yy[j], f"slope {p}", fontsize=7.5, color="0.25", ha="right", va="bottom")
-            ax.set_xscale("log")
-            ax.set_yscale("log")
+            log_scale(ax, "xy")
             ax.set_ylim(ylo, yhi)
             ax.set_xlim(hmin / 1.6, hmax * 1.3)
             ax.set_xlabel(f"step $h$ [{h_unit}]")
@@ -285,6 +286,8 @@ def work_precision(table, *, work: str = "work", time: str | None = None, error:
     mcol = table_column(table, "method", what)
     groups = _groups(table)
     with style():
+        from .ticks import log_scale
+
         fig, axes = new_figure(1, len(groups), size=(6.4 if len(groups) == 1 else 9.6, 5.0))
         for ax, (quantity, sub) in zip(axes[0], groups):
             qtext, unit = _panel_text(quantity, error, table)
@@ -302,8 +305,7 @@ def work_precision(table, *, work: str = "work", time: str | None = None, error:
             ax.plot(np.asarray(front[xcol], dtype=float), _positive(front[ecol]), linestyle="none", marker="o",
                     markersize=14, markerfacecolor="none", markeredgecolor="black", markeredgewidth=1.0,
                     label="Pareto front", zorder=5)
-            ax.set_xscale("log")
-            ax.set_yscale("log")
+            log_scale(ax, "xy")
             _plain_log_ticks(ax.xaxis, sub[xcol])
             ax.set_xlabel(xlabel)
             ax.set_ylabel(f"{error} [{unit}]")
@@ -374,6 +376,8 @@ def roundoff(table):
     scan_h = scan_h[scan_order]
     scan = {k: np.asarray(v, dtype=float) for k, v in scan.items() if len(v) == scan_h.size}
     with style():
+        from .ticks import log_scale
+
         fig, axes = new_figure(size=(6.4, 5.2))
         ax = axes[0, 0]
         allv = []
@@ -416,8 +420,7 @@ def roundoff(table):
                 linestyle="none", label=r"textbook $h^* \sim \varepsilon^{1/(p+n)}$")
         if scan:
             ax.plot([], [], color="0.4", linewidth=0.6, label=f"fine scan ({scan_h.size} steps)")
-        ax.set_xscale("log")
-        ax.set_yscale("log")
+        log_scale(ax, "xy")
         lo, hi = _log_limits(allv + [eps])
         ax.set_ylim(lo, hi)
         ax.set_xlabel("step $h$ [rad]")
@@ -461,6 +464,8 @@ def newton_residuals(tables):
     styles = {"symbolic": ("black", "-", "o", 10, "none"), "forward": ("#D55E00", "--", "s", 6.5, "none"),
               "central": ("#0072B2", ":", "^", 4.5, "#0072B2")}
     with style():
+        from .ticks import log_scale
+
         fig, axes = new_figure(size=(6.4, 4.2))
         ax = axes[0, 0]
         kmax = 0
@@ -474,7 +479,7 @@ def newton_residuals(tables):
         from matplotlib.ticker import MaxNLocator
 
         ax.xaxis.set_major_locator(MaxNLocator(integer=True))
-        ax.set_yscale("log")
+        log_scale(ax, "y")
         ax.set_xlabel("iteration $k$ [–]")
         ax.set_ylabel("residual norm (scaled) [–]")
         first = next(iter(tables.values()))
