@@ -317,7 +317,8 @@ def _cond2(p, q, r, s):
 def _step_lines(n, blocks, zeros, singular, indent="    "):
     """Lines computing the Newton step ``d0 .. d{n-1} = -J^-1 F`` from ``v = [F..., J rows...]``
     by forward substitution through the blocks (sizes 1 and 2); ``singular`` is the statement
-    run where a block's determinant is zero or not finite."""
+    run where a block's determinant is zero or not finite. ``singular=None``: whole arrays, no
+    test (the caller tests the result), each 2 x 2 block multiplied by ``1 / det``."""
     lines = []
     for a, b in blocks:
         for i in range(a, b):
@@ -325,20 +326,30 @@ def _step_lines(n, blocks, zeros, singular, indent="    "):
             lines.append(f"r{i} = v[{i}]{terms}")
         if b - a == 2:
             i0 = n + a * n + a
+            lines.append(f"a00 = v[{i0}]; a01 = v[{i0 + 1}]; a10 = v[{i0 + n}]; a11 = v[{i0 + n + 1}]")
+            if singular is None:
+                lines += [
+                    "inv = 1.0 / (a00 * a11 - a01 * a10)",
+                    f"d{a} = (a01 * r{a + 1} - r{a} * a11) * inv",
+                    f"d{a + 1} = (a10 * r{a} - a00 * r{a + 1}) * inv",
+                ]
+                continue
             lines += [
-                f"a00 = v[{i0}]; a01 = v[{i0 + 1}]; a10 = v[{i0 + n}]; a11 = v[{i0 + n + 1}]",
                 "det = a00 * a11 - a01 * a10",
                 f"if not (det != 0.0 and -INF < det < INF): {singular}",
                 f"d{a} = (a01 * r{a + 1} - r{a} * a11) / det",
                 f"d{a + 1} = (a10 * r{a} - a00 * r{a + 1}) / det",
             ]
+        elif singular is None:
+            lines.append(f"d{a} = -r{a} / v[{n + a * n + a}]")
         else:
             lines += [
                 f"det = v[{n + a * n + a}]",
                 f"if not (det != 0.0 and -INF < det < INF): {singular}",
                 f"d{a} = -r{a} / det",
             ]
-    lines.append(f"if not -INF < {' + '.join(f'd{i}' for i in range(n))} < INF: {singular}")
+    if singular is not None:
+        lines.append(f"if not -INF < {' + '.join(f'd{i}' for i in range(n))} < INF: {singular}")
     return [indent + line for line in lines]
 
 
@@ -469,22 +480,7 @@ def _unrolled_newton_batch(n, blocks, zeros, inv_xscale):
         "    for _ in range(maxiter):",
         "        if not act.any():",
         "            break",
-    ]
-    for a, b in blocks:
-        for i in range(a, b):
-            terms = "".join(f" + v[{n + i * n + j}] * d{j}" for j in range(a) if (i, j) not in zeros)
-            lines.append(f"        r{i} = v[{i}]{terms}")
-        if b - a == 2:
-            i0 = n + a * n + a
-            lines += [
-                f"        a00 = v[{i0}]; a01 = v[{i0 + 1}]; a10 = v[{i0 + n}]; a11 = v[{i0 + n + 1}]",
-                "        inv = 1.0 / (a00 * a11 - a01 * a10)",
-                f"        d{a} = (a01 * r{a + 1} - r{a} * a11) * inv",
-                f"        d{a + 1} = (a10 * r{a} - a00 * r{a + 1}) * inv",
-            ]
-        else:
-            lines.append(f"        d{a} = -r{a} / v[{n + a * n + a}]")
-    lines += [
+        *_step_lines(n, blocks, zeros, None, indent="        "),
         f"        upd = ISFINITE({' + '.join(f'd{i}' for i in range(n))})",
         "        bad = act & ~upd",
         "        upd &= act",
