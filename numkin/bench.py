@@ -11,15 +11,16 @@
     mechanism is built before the timing; that one-off cost is measured on
     its own, twice (:func:`build_times`): compiled with sympy in a new
     process with an empty kernel cache (row ``numkin build``), and read from
-    that kernel cache in this process (row ``numkin cached build``).
+    that kernel cache in this process (the line below the table).
 (c) **closed form** -- both four-bars by circle intersection, vectorised with
     numpy over all angles (the reference numkin is checked against).
 
 Each time is the median of ``repeat`` runs (:func:`time.perf_counter`); the
 three are measured in turn within every repeat, so that a busy machine slows
 them alike. sympy is imported, and the textbook way run once, before the
-timing, so that no import is counted (and scaled) in its time. Every method's angles are compared with numkin's (column
-``max |diff| [rad]``): all three compute the same positions.
+timing, so that no import is counted (and scaled) in its time. Every
+method's angles are compared with numkin's (column ``max |diff| [rad]``):
+all three compute the same positions.
 
 Run ``python -m numkin.bench`` (or ``numkin bench``).
 
@@ -134,12 +135,13 @@ def closed_form_sweep(theta) -> np.ndarray:
 
 
 # --------------------------------------------------------------- (b)'s build
-#: Run in a new process: build the chained four-bars and sweep them once; print the seconds taken.
+#: Run in a new process: build the chained four-bars and sweep them once over the input
+#: angles given as JSON (rad) in its first argument; print the seconds taken.
 _BUILD_SCRIPT = """
-import time
+import json, sys, time
 import numpy as np
 from numkin import linkages
-theta = np.radians(np.arange(0.0, 361.0))
+theta = np.array(json.loads(sys.argv[1]), dtype=float)
 t0 = time.perf_counter()
 linkages.chained_four_bars().sweep(theta)
 print(time.perf_counter() - t0)
@@ -147,16 +149,36 @@ print(time.perf_counter() - t0)
 
 
 def build_times(theta) -> tuple:
-    """The one-off cost of numkin's mechanism: ``(compiled, cached, mechanism)``.
+    """The one-off cost of numkin's mechanism, compiled with sympy and read from the kernel cache.
 
-    ``compiled`` is the time, in seconds, of ``chained_four_bars()`` and its
-    first sweep over ``theta`` in a new Python process whose kernel cache
-    (:mod:`numkin.kernel_cache`) is an empty temporary folder: sympy is
-    imported, derives the loop equations and they are compiled to numpy.
-    ``cached`` is the same build in this process, read from the kernel cache
-    that process has just written (no sympy), or NaN if it wrote none.
-    ``mechanism`` is the mechanism of that second build.
+    Parameters
+    ----------
+    theta : array_like
+        Input angles (rad) of the first sweep that is part of the build.
+
+    Returns
+    -------
+    compiled : float
+        Seconds taken by ``chained_four_bars()`` and its first sweep in a new
+        Python process whose kernel cache (:mod:`numkin.kernel_cache`) is an
+        empty temporary folder: sympy is imported, derives the loop equations
+        and they are compiled to numpy.
+    cached : float
+        Seconds taken by the same build in this process, read from the kernel
+        cache the new process has just written (no sympy); NaN if it wrote none.
+    mechanism : Mechanism
+        The mechanism of that second build. The caller's kernel cache setting
+        is left as it was.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> compiled, cached, mech = build_times(np.radians([0.0, 1.0]))
+    >>> mech.unknowns, compiled > 0, cached > 0
+    (('phi', 'psi', 'beta', 'gamma'), True, True)
     """
+    import json
+
     from . import kernel_cache, linkages
 
     with tempfile.TemporaryDirectory(prefix="numkin-bench-") as folder:
@@ -164,7 +186,8 @@ def build_times(theta) -> tuple:
         env[kernel_cache.ENV_VAR] = folder
         source = str(Path(__file__).resolve().parents[1])
         env["PYTHONPATH"] = os.pathsep.join(p for p in (source, env.get("PYTHONPATH")) if p)
-        done = subprocess.run([sys.executable, "-c", _BUILD_SCRIPT], env=env, capture_output=True, text=True)
+        angles = json.dumps(np.asarray(theta, dtype=float).reshape(-1).tolist())
+        done = subprocess.run([sys.executable, "-c", _BUILD_SCRIPT, angles], env=env, capture_output=True, text=True)
         if done.returncode != 0:
             raise RuntimeError(f"the build in a new process failed: {done.stderr.strip().splitlines()[-1:]}")
         compiled = float(done.stdout.split()[-1])
