@@ -54,7 +54,7 @@ are optional. ::
     points = ["B"]           # named points whose x, y (vx, vy, ax, ay) are wanted
     tables = ["positions", "kinematics", "points", "comparison", "summary", "checks"]
     table_formats = ["csv"]  # csv, md, tex
-    figures = ["..."]        # names understood by numkin.figures (default none)
+    figures = ["kinematics:theta4"]   # names of numkin.figures.FIGURES (default none)
 
     [compare]                # finite differences against the analytic solution
     schemes = ["forward", "centred"]            # first derivative -> velocity
@@ -62,7 +62,8 @@ are optional. ::
 
     [[check]]                # a check point; expected values are optional
     at_deg = 100
-    omega_theta4 = 10.633    # agrees to the decimals written, or give
+    theta4_deg = 122.343     # agrees to the decimals written, or give
+    omega_theta4 = 2.3329    # [rad/s]
     tolerance = 1e-3         # an absolute tolerance
 
     [report]                 # settings of the error-analysis tables (numkin.report; without
@@ -83,12 +84,16 @@ are optional. ::
     traces = ["B"]           # named points whose paths (coupler curves) are drawn
     arrows = "velocity"      # "velocity" or "acceleration" arrows (needs [input] speed)
 
-Mechanism written as loops (instead of ``linkage``)::
+The same four-bar written as loops (instead of ``linkage``); a mechanism of
+loops needs its ``[guess]``::
+
+    [scene]
+    description = "the four-bar (4, 1, 3, 3) written as one vector loop"
 
     [mechanism]
     input = "theta2"         # the input symbol (an angle, rad)
     unit = "mm"
-    links = [["O2", "A", "B", "O4"]]    # optional, for drawing
+    links = [["O2", "A", "B", "O4"]]    # optional, for drawing: names of [mechanism.points]
     ground = ["O2", "O4"]
     [mechanism.dimensions]   # parameters: lengths in `unit`; <name>_deg an angle
     r1 = 4
@@ -100,8 +105,27 @@ Mechanism written as loops (instead of ``linkage``)::
     unknowns = ["theta3", "theta4"]
     vectors = [["r2", "theta2"], ["r3", "theta3"], ["-r4", "theta4"], ["-r1", "0"]]
     # or: equations = ["r2*cos(theta2) + ... ", "..."]   (each = 0, or "lhs = rhs")
-    [mechanism.points]
+    [mechanism.points]       # x, y of every point that links and ground name
+    O2 = ["0", "0"]
     A = ["r2*cos(theta2)", "r2*sin(theta2)"]
+    B = ["r2*cos(theta2) + r3*cos(theta3)", "r2*sin(theta2) + r3*sin(theta3)"]
+    O4 = ["r1", "0"]
+
+    [input]
+    speed = "450 rad/min"
+
+    [guess]
+    theta3_deg = 30
+    theta4_deg = 120
+
+    [output]
+    quantities = ["position", "velocity"]
+    points = ["B"]
+
+    [[check]]
+    at_deg = 100
+    theta4_deg = 122.343
+    omega_theta4 = 2.3329
 
 Expressions are sympy-parsable strings in the input, the dimensions, the
 unknowns of this and earlier loops, ``pi`` and ``sin cos tan asin acos atan
