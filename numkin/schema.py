@@ -275,7 +275,14 @@ class Scene:
         """The scene's :class:`~numkin.Mechanism`; names in the scene are checked against it."""
         from .assemble import build_mechanism
 
-        return build_mechanism(self)
+        mech = build_mechanism(self)
+        if self.custom is not None:  # loops: every dimension but the angles (<name>_deg) is a length
+            lengths = {k for k in self.data["mechanism"].get("dimensions", {}) if not k.endswith("_deg")}
+            try:
+                mech.check_lengths(lengths)
+            except ValueError as error:
+                self.fail(f"[mechanism.dimensions] {error.parameter}", str(error))
+        return mech
 
     def guess_values(self, mech) -> dict | None:
         """The ``[guess]`` table as ``{unknown: value}`` (rad, working unit), or None."""
