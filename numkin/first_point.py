@@ -68,17 +68,17 @@ def unsolved(mech, input_value: float, guess, out, cond: float):
     it = int(out.iterations[0])
     residuals = mech.loop_residuals(out.x, t)
     loop = max(residuals, key=lambda k: np.nan_to_num(residuals[k][0], nan=np.inf))
-    msg = f"did not converge: loop '{loop}' residual {float(residuals[loop][0]):.3g} after {it} iterations"
+    why = f"loop '{loop}' residual {float(residuals[loop][0]):.3g} after {it} iterations"
     if out.singular[0]:
         conds = mech.loop_conditions(out.x, t)
         worst = max(conds, key=lambda k: np.nan_to_num(conds[k][0], nan=np.inf))
-        msg += f" (singular Jacobian of loop '{worst}', condition number {cond:.3g}: not divided through)"
+        why += f" (singular Jacobian of loop '{worst}', condition number {cond:.3g}: not divided through)"
     hint = degrees_hint(far_guesses(mech, guess))
     warnings.warn(
-        f"{mech.name}: Newton {msg} at input {deg_text(input_value, 3)}; the result is not a position "
-        f"(converged=False)" + (f"; {hint}" if hint else ""), ConvergenceWarning, stacklevel=3,
+        f"{mech.name}: Newton did not converge at input {deg_text(input_value, 3)}: {why}; the result is not a "
+        f"position (converged=False)" + (f"; {hint}" if hint else ""), ConvergenceWarning, stacklevel=3,
     )
-    return NewtonResult.from_batch(out, 0, cond, msg)
+    return NewtonResult.from_batch(out, 0, cond, f"did not converge: {why}")
 
 
 def solve_start(ctx: Continuation, t0: float, guess, maxiter: int):

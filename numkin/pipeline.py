@@ -19,6 +19,7 @@ from __future__ import annotations
 import copy
 import json
 import math
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable
@@ -229,7 +230,7 @@ def run_scene(
         mech = scene.build_mechanism()
         result.mechanism = mech
         step("positions")
-        result.sweep = mech.sweep(scene.inputs(), guess=scene.guess_values(mech))
+        result.sweep = _sweep(scene, mech)
         if scene.differentiates:
             result.omega, result.alpha = scene.speed, scene.acceleration
             step("velocity and acceleration")
@@ -247,6 +248,38 @@ def run_scene(
         if figures and scene.figures:
             result.written += render_figures(result, out, progress=step)
     return result
+
+
+def _sweep(scene: Scene, mech):
+    """The scene's sweep; a ``[guess]`` angle more than a turn from zero is said in degrees, as written."""
+    from .errors import AssemblyError, GuessWarning
+    from .first_point import degrees_hint
+
+    guess = scene.guess_values(mech)
+    if guess is None:  # the linkage's own default guess, in rad
+        return mech.sweep(scene.inputs())
+
+    def written(far) -> str:
+        values = ", ".join(f"{name}_deg = {scene.guess[f'{name}_deg']:g}" for name, _ in far)
+        return f"[guess] {values} is more than a turn from zero (in degrees)"
+
+    with warnings.catch_warnings(record=True) as caught:
+        try:
+            sweep = mech.sweep(scene.inputs(), guess=guess)
+        except AssemblyError as error:
+            far = getattr(error, "far_guess", None)
+            if far:
+                error.args = (str(error).replace(degrees_hint(far), written(far)),)
+            raise
+    for w in caught:
+        if isinstance(w.message, GuessWarning):
+            starts = ", ".join(f"{name} at {math.degrees(x):.6g}°" for (name, _), x in zip(w.message.far, w.message.starts))
+            warnings.warn(GuessWarning(f"{scene.source}: {written(w.message.far)}; the sweep keeps the guess's turn "
+                                       f"(it starts with {starts})", far=w.message.far, starts=w.message.starts),
+                          stacklevel=3)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    return sweep
 
 
 #: Figures drawn from the error-analysis tables of numkin.report, and the table each needs.
