@@ -53,12 +53,17 @@ class AssemblyError(NumkinError, ValueError):
         Scaled residual norm at the last iterate.
     iterations : int or None
         Newton iterations spent.
+    far_guess : list of (str, float)
+        The guess's angles more than a turn from zero (rad), named in the
+        message as perhaps given in degrees; empty if none.
     """
 
-    def __init__(self, message="", *, input_value=None, loop=None, cause=None, residual=None, iterations=None):
+    def __init__(self, message="", *, input_value=None, loop=None, cause=None, residual=None, iterations=None,
+                 far_guess=()):
         super().__init__(message, input_value=input_value, loop=loop, cause=cause)
         self.residual = residual
         self.iterations = iterations
+        self.far_guess = list(far_guess)
 
 
 class ConvergenceError(NumkinError, RuntimeError):

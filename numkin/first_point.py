@@ -2,7 +2,12 @@
 
 A singular Jacobian met on the way is told apart: dependent loop equations
 (singular wherever tried), a poor guess (singular far from any solution),
-or a singular position of the linkage at the input itself.
+or a singular position of the linkage at the input itself. A guess angle
+more than a turn from zero was most likely given in degrees: a failure
+names every such angle (:func:`degrees_hint`), and so does the
+:class:`~numkin.errors.GuessWarning` of a first point far from such a guess
+and the :class:`~numkin.errors.ConvergenceWarning` of a
+:meth:`~numkin.Mechanism.solve` that did not converge (:func:`unsolved`).
 """
 
 from __future__ import annotations
@@ -11,6 +16,7 @@ import math
 import warnings
 
 import numpy as np
+
 from .errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning
 from .march import FAR, TWO_PI, Continuation, deg_text
 from .newton import COND_MAX, is_singular

@@ -263,23 +263,23 @@ def _sweep(scene: Scene, mech):
         values = ", ".join(f"{name}_deg = {scene.guess[f'{name}_deg']:g}" for name, _ in far)
         return f"[guess] {values} is more than a turn from zero (in degrees)"
 
-    with warnings.catch_warnings(record=True) as caught:
-        try:
-            sweep = mech.sweep(scene.inputs(), guess=guess)
-        except AssemblyError as error:
-            far = getattr(error, "far_guess", None)
-            if far:
-                error.args = (str(error).replace(degrees_hint(far), written(far)),)
-            raise
-    for w in caught:
-        if isinstance(w.message, GuessWarning):
-            starts = ", ".join(f"{name} at {math.degrees(x):.6g}°" for (name, _), x in zip(w.message.far, w.message.starts))
-            warnings.warn(GuessWarning(f"{scene.source}: {written(w.message.far)}; the sweep keeps the guess's turn "
-                                       f"(it starts with {starts})", far=w.message.far, starts=w.message.starts),
-                          stacklevel=3)
-        else:
-            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
-    return sweep
+    caught: list = []
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            return mech.sweep(scene.inputs(), guess=guess)
+    except AssemblyError as error:
+        if error.far_guess:
+            error.args = (str(error).replace(degrees_hint(error.far_guess), written(error.far_guess)),)
+        raise
+    finally:  # the sweep's warnings, issued again: a guess far from its solution said as the scene gives it
+        for w in caught:
+            if not isinstance(w.message, GuessWarning):
+                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+                continue
+            far, starts = w.message.far, w.message.starts
+            where = ", ".join(f"{name} at {math.degrees(x):.6g}°" for (name, _), x in zip(far, starts))
+            warnings.warn(GuessWarning(f"{scene.source}: {written(far)}; the sweep keeps the guess's turn "
+                                       f"(it starts with {where})", far=far, starts=starts), stacklevel=3)
 
 
 #: Figures drawn from the error-analysis tables of numkin.report, and the table each needs.

@@ -16,9 +16,9 @@ import pytest
 import sympy as sp
 
 from numkin import Loop, Mechanism, linkages
-from numkin.cli import main
 from numkin.errors import AssemblyError, ConvergenceWarning, GuessWarning
 from numkin.scene import SceneError, load_scene, run_scene
+from test_cli import one_line_error, run
 
 
 def four_bar_closed_form(t2, r1=4.0, r2=1.0, r3=3.0, r4=3.0):
@@ -30,19 +30,6 @@ def four_bar_closed_form(t2, r1=4.0, r2=1.0, r3=3.0, r4=3.0):
     h = math.sqrt(r3**2 - a**2)
     bx, by = ax + a * dx / d - h * dy / d, ay + a * dy / d + h * dx / d
     return math.atan2(by - ay, bx - ax), math.atan2(by, bx - r1)
-
-
-def run(capsys, *argv):
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def one_line_error(err: str) -> str:
-    lines = err.strip().splitlines()
-    assert len(lines) == 1, err
-    assert lines[0].startswith("numkin: error: ") and "Traceback" not in err
-    return lines[0]
 
 
 LOOPS = """
