@@ -261,7 +261,7 @@ def check_lengths(model: dict, value_of: dict, lengths=None) -> None:
     >>> check_lengths(model, {"r2": -1.0}, lengths={"r2"})
     Traceback (most recent call last):
     ...
-    ValueError: loop 'O2-A': length r2 = -1 is negative; lengths must be positive (a negative length mirrors the linkage): write the vector as (-r2, angle) in the loop
+    ValueError: loop 'O2-A': length r2 = -1 is negative (a negative length mirrors the linkage): lengths must be positive; write the vector as (-r2, angle) in the loop
     """
     declared = lengths is not None
     if lengths is None:
@@ -271,8 +271,8 @@ def check_lengths(model: dict, value_of: dict, lengths=None) -> None:
             value = value_of.get(sym)
             if value is not None and value < 0 and sym in lengths:
                 error = ValueError(
-                    f"loop '{lp['name']}': length {sym} = {value:g} is negative; lengths must be positive (a "
-                    f"negative length mirrors the linkage): write the vector as (-{sym}, angle) in the loop"
+                    f"loop '{lp['name']}': length {sym} = {value:g} is negative (a negative length mirrors the "
+                    f"linkage): lengths must be positive; write the vector as (-{sym}, angle) in the loop"
                     + ("" if declared else f", or declare {sym} real (sympy.Symbol('{sym}', real=True)) if it is "
                        "a signed offset")
                 )

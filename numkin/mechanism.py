@@ -469,11 +469,17 @@ class Mechanism:
 
         Examples
         --------
-        >>> import numpy as np
+        >>> import warnings, numpy as np
         >>> from numkin import linkages
-        >>> res = linkages.four_bar(4, 1, 3, 3).solve(np.radians(90), guess=[0.5, 2.0])
+        >>> m = linkages.four_bar(4, 1, 3, 3)
+        >>> res = m.solve(np.radians(90), guess=[0.5, 2.0])
         >>> res.converged, np.round(np.degrees(res.x), 4)
         (True, array([ 32.5561, 119.3714]))
+        >>> with warnings.catch_warnings(record=True) as caught:
+        ...     warnings.simplefilter("always")
+        ...     res = m.solve(np.radians(90), guess=[30, 120])  # degrees by mistake: angles are in rad
+        >>> res.converged, caught[0].category.__name__
+        (False, 'ConvergenceWarning')
         """
         input_value = finite("input_value (rad)", input_value)
         tol = check_tol(tol)
