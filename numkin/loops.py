@@ -263,7 +263,7 @@ def check_lengths(model: dict, value_of: dict, lengths=None) -> None:
     ...
     ValueError: loop 'O2-A': length r2 = -1 is negative (a negative length mirrors the linkage): lengths must be positive; write the vector as (-r2, angle) in the loop
     """
-    declared = lengths is not None
+    given = lengths is not None
     if lengths is None:
         lengths = {p for p, _, real_unknown in model["parameters"] if real_unknown}
     for lp in model["loops"]:
@@ -273,7 +273,7 @@ def check_lengths(model: dict, value_of: dict, lengths=None) -> None:
                 error = ValueError(
                     f"loop '{lp['name']}': length {sym} = {value:g} is negative (a negative length mirrors the "
                     f"linkage): lengths must be positive; write the vector as (-{sym}, angle) in the loop"
-                    + ("" if declared else f", or declare {sym} real (sympy.Symbol('{sym}', real=True)) if it is "
+                    + ("" if given else f", or declare {sym} real (sympy.Symbol('{sym}', real=True)) if it is "
                        "a signed offset")
                 )
                 error.parameter = sym
