@@ -9,7 +9,7 @@ from (a scene file) without parsing the message.
 
 from __future__ import annotations
 
-__all__ = ["NumkinError", "AssemblyError", "ConvergenceError", "BranchError"]
+__all__ = ["NumkinError", "AssemblyError", "ConvergenceError", "BranchError", "ConvergenceWarning", "GuessWarning"]
 
 
 class NumkinError(Exception):
@@ -53,12 +53,17 @@ class AssemblyError(NumkinError, ValueError):
         Scaled residual norm at the last iterate.
     iterations : int or None
         Newton iterations spent.
+    far_guess : list of (str, float)
+        The guess's angles more than a turn from zero (rad), named in the
+        message as perhaps given in degrees; empty if none.
     """
 
-    def __init__(self, message="", *, input_value=None, loop=None, cause=None, residual=None, iterations=None):
+    def __init__(self, message="", *, input_value=None, loop=None, cause=None, residual=None, iterations=None,
+                 far_guess=()):
         super().__init__(message, input_value=input_value, loop=loop, cause=cause)
         self.residual = residual
         self.iterations = iterations
+        self.far_guess = list(far_guess)
 
 
 class ConvergenceError(NumkinError, RuntimeError):
@@ -105,3 +110,33 @@ class BranchError(NumkinError):
         super().__init__(message, input_value=input_value, loop=loop, cause=cause or kind)
         self.kind = kind
         self.cond = cond
+
+
+class ConvergenceWarning(UserWarning):
+    """Newton-Raphson did not converge, and the caller gets the result anyway.
+
+    :meth:`numkin.Mechanism.solve` returns its :class:`~numkin.NewtonResult`
+    (``converged`` False) and warns with this category, naming the input
+    angle, the loop with the largest residual and that residual; a sweep
+    raises :class:`ConvergenceError` instead.
+    """
+
+
+class GuessWarning(UserWarning):
+    """A sweep's guess of an angle is more than a turn from zero and more than 1 rad from the solution.
+
+    Angles are in rad: such a guess was most likely given in degrees. The
+    sweep keeps the guess's turn.
+
+    Attributes
+    ----------
+    far : list of (str, float)
+        Every such unknown and its guess (rad).
+    starts : list of float
+        Where the sweep starts them (rad), in the same order.
+    """
+
+    def __init__(self, message="", *, far=(), starts=()):
+        super().__init__(message)
+        self.far = list(far)
+        self.starts = list(starts)

@@ -2,7 +2,12 @@
 
 A singular Jacobian met on the way is told apart: dependent loop equations
 (singular wherever tried), a poor guess (singular far from any solution),
-or a singular position of the linkage at the input itself.
+or a singular position of the linkage at the input itself. A guess angle
+more than a turn from zero was most likely given in degrees: a failure
+names every such angle (:func:`degrees_hint`), and so does the
+:class:`~numkin.errors.GuessWarning` of a first point far from such a guess
+and the :class:`~numkin.errors.ConvergenceWarning` of a
+:meth:`~numkin.Mechanism.solve` that did not converge (:func:`unsolved`).
 """
 
 from __future__ import annotations
@@ -10,12 +15,76 @@ from __future__ import annotations
 import math
 import warnings
 
+import numpy as np
 
-from .errors import AssemblyError, BranchError
+from .errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning
 from .march import FAR, TWO_PI, Continuation, deg_text
 from .newton import COND_MAX, is_singular
 
-__all__ = ["solve_start"]
+__all__ = ["solve_start", "far_guesses", "degrees_hint", "unsolved"]
+
+
+def far_guesses(mech, guess) -> list:
+    """``(name, value)`` of every angle of ``guess`` (in unknown order, rad) more than a turn from zero.
+
+    Such a guess was most likely given in degrees.
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> far_guesses(linkages.four_bar(4, 1, 3, 3), [60.0, 2.0])
+    [('theta3', 60.0)]
+    """
+    return [(u, float(g)) for u, g in zip(mech.unknowns, guess) if u in mech.angles and abs(g) > TWO_PI]
+
+
+def degrees_hint(far) -> str:
+    """Why ``far`` (:func:`far_guesses`) looks wrong, naming every such angle; ``""`` if there is none.
+
+    Examples
+    --------
+    >>> degrees_hint([("phi", 45.0), ("psi", 60.0)])
+    'the guess phi = 45, psi = 60 is more than a turn from zero: angles are in rad (was it given in degrees?)'
+    """
+    if not far:
+        return ""
+    values = ", ".join(f"{name} = {value:g}" for name, value in far)
+    return f"the guess {values} is more than a turn from zero: angles are in rad (was it given in degrees?)"
+
+
+def _hinted(error, far):
+    """``error`` with the degrees hint of ``far`` added to its message (and kept as ``far_guess``)."""
+    if far:
+        error.args = (f"{error.args[0]}; {degrees_hint(far)}",)
+    error.far_guess = far
+    return error
+
+
+def unsolved(mech, input_value: float, guess, out, cond: float):
+    """The :class:`~numkin.NewtonResult` of a :meth:`Mechanism.solve` that did not converge, and a warning.
+
+    The message and the :class:`~numkin.errors.ConvergenceWarning` name the
+    input angle, the loop with the largest residual and that residual, a
+    singular Jacobian if Newton met one, and every guess angle more than a
+    turn from zero (:func:`degrees_hint`).
+    """
+    from .newton import NewtonResult
+
+    t = np.array([input_value])
+    it = int(out.iterations[0])
+    residuals = mech.loop_residuals(out.x, t)
+    loop = max(residuals, key=lambda k: np.nan_to_num(residuals[k][0], nan=np.inf))
+    why = f"loop '{loop}' residual {float(residuals[loop][0]):.3g} after {it} iterations"
+    if out.singular[0]:
+        conds = mech.loop_conditions(out.x, t)
+        worst = max(conds, key=lambda k: np.nan_to_num(conds[k][0], nan=np.inf))
+        why += f" (singular Jacobian of loop '{worst}', condition number {cond:.3g}: not divided through)"
+    hint = degrees_hint(far_guesses(mech, guess))
+    warnings.warn(
+        f"{mech.name}: Newton did not converge at input {deg_text(input_value, 3)}: {why}; the result is not a "
+        f"position (converged=False)" + (f"; {hint}" if hint else ""), ConvergenceWarning, stacklevel=3,
+    )
+    return NewtonResult.from_batch(out, 0, cond, f"did not converge: {why}")
 
 
 def solve_start(ctx: Continuation, t0: float, guess, maxiter: int):
@@ -53,6 +122,7 @@ def _solve_first(ctx, t0, x_guess, maxiter, note=""):
     guess = x_guess.tolist()
     x, status, it, res, v = ctx.newton1(guess, t0, maxiter, cond_max=COND_MAX)
     where = f"input {deg_text(t0, 3)}{note}"
+    far = far_guesses(mech, guess)
     if status == "singular":
         loop, cond = ctx.worst1(x, t0, which="cond")
         _, res = ctx.worst1(x, t0)
@@ -64,12 +134,12 @@ def _solve_first(ctx, t0, x_guess, maxiter, note=""):
                 input_value=float(t0), loop=loop, cause="dependent equations", residual=res, iterations=it,
             )
         if not res <= FAR:
-            raise AssemblyError(
+            raise _hinted(AssemblyError(
                 f"{mech.name}: cannot assemble at {where} from the guess: Newton met a singular Jacobian "
                 f"of loop '{loop}' after {it} iterations, far from any solution (scaled residual {res:.3g}); "
                 "give a guess nearer the position (angles in rad)",
                 input_value=float(t0), loop=loop, cause="bad guess", residual=res, iterations=it,
-            )
+            ), far)
         raise BranchError(
             f"{mech.name}: the Jacobian of loop '{loop}' is singular at {where} "
             f"(condition number {cond:.3g}): a toggle or change point, where the branch cannot be chosen; "
@@ -79,24 +149,21 @@ def _solve_first(ctx, t0, x_guess, maxiter, note=""):
         )
     if status != "converged":
         loop, res = ctx.worst1(x, t0)
-        raise AssemblyError(
+        raise _hinted(AssemblyError(
             f"{mech.name}: cannot assemble at {where}: Newton from the guess did not converge "
             f"(loop '{loop}' residual {res:.3g} after {it} iterations); "
             "check the dimensions or give a better guess (angles in rad)",
             input_value=float(t0), loop=loop, cause="bad guess", residual=res, iterations=it,
-        )
+        ), far)
     x, moved = ctx.nearest_turn(x, guess)
     if moved:  # reduced to the guess's turn, then polished there
         x, status, it2, _, v = ctx.newton1(x, t0, maxiter, cond_max=COND_MAX)
         it += it2
-    far = [k for k in ctx.angle_idx if abs(guess[k]) > TWO_PI and abs(x[k] - guess[k]) > 1.0]
+    far = [(name, value) for name, value in far if abs(x[mech.unknowns.index(name)] - value) > 1.0]
     if far:
-        k = far[0]
-        name = mech.unknowns[k]
-        warnings.warn(
-            f"{mech.name}: the guess {name} = {guess[k]:g} is more than a turn from zero and the solution "
-            f"at {where} is {abs(x[k] - guess[k]):.3g} rad away from it: angles are in rad (was the guess "
-            f"in degrees?); the sweep keeps the guess's turn ({name} starts at {math.degrees(x[k]):.6g}°)",
-            UserWarning, stacklevel=4,
-        )
+        starts = ", ".join(f"{name} at {math.degrees(x[mech.unknowns.index(name)]):.6g}°" for name, _ in far)
+        warnings.warn(GuessWarning(
+            f"{mech.name}: {degrees_hint(far)}; the solution at {where} is more than 1 rad from it, and the "
+            f"sweep keeps the guess's turn (it starts with {starts})", far=far, starts=[
+                x[mech.unknowns.index(name)] for name, _ in far]), stacklevel=4)
     return x, it, v

@@ -243,24 +243,41 @@ def describe(loops, input_symbol, parameters, points) -> dict:
     }
 
 
-def check_lengths(model: dict, value_of: dict) -> None:
+def check_lengths(model: dict, value_of: dict, lengths=None) -> None:
     """A parameter that is the length of a vector of a loop must not be negative.
 
     A subtracted vector is written ``(-r4, theta4)``: the sign belongs in
     the loop, not in the value. A signed distance (an offset that may be
     negative) is declared so: ``sympy.Symbol("e", real=True)``. ``model`` is
-    :func:`describe`'s, ``value_of`` maps parameter names to values.
+    :func:`describe`'s, ``value_of`` maps parameter names to values;
+    ``lengths``, if given, names the parameters that are lengths whatever
+    their sympy declaration (the dimensions of a scene written as loops).
+    The ``ValueError`` names the parameter, also as its attribute ``parameter``.
+
+    Examples
+    --------
+    >>> model = {"parameters": [["r2", False, False]], "loops": [{"name": "O2-A", "lengths": ["r2"]}]}
+    >>> check_lengths(model, {"r2": -1.0})                  # declared real: a signed offset
+    >>> check_lengths(model, {"r2": -1.0}, lengths={"r2"})
+    Traceback (most recent call last):
+    ...
+    ValueError: loop 'O2-A': length r2 = -1 is negative (a negative length mirrors the linkage): lengths must be positive; write the vector as (-r2, angle) in the loop
     """
-    undeclared = {p for p, _, real_unknown in model["parameters"] if real_unknown}
+    given = lengths is not None
+    if lengths is None:
+        lengths = {p for p, _, real_unknown in model["parameters"] if real_unknown}
     for lp in model["loops"]:
         for sym in lp["lengths"]:
             value = value_of.get(sym)
-            if value is not None and value < 0 and sym in undeclared:
-                raise ValueError(
-                    f"loop '{lp['name']}': length {sym} = {value:g} is negative (a negative length mirrors "
-                    f"the linkage); write the vector as (-{sym}, angle) in the loop, or declare {sym} "
-                    f"real (sympy.Symbol('{sym}', real=True)) if it is a signed offset"
+            if value is not None and value < 0 and sym in lengths:
+                error = ValueError(
+                    f"loop '{lp['name']}': length {sym} = {value:g} is negative (a negative length mirrors the "
+                    f"linkage): lengths must be positive; write the vector as (-{sym}, angle) in the loop"
+                    + ("" if given else f", or declare {sym} real (sympy.Symbol('{sym}', real=True)) if it is "
+                       "a signed offset")
                 )
+                error.parameter = sym
+                raise error
 
 
 def default_length_scale(model: dict, value_of: dict) -> float:

@@ -148,6 +148,7 @@ class Mechanism:
                 raise ValueError(f"parameter {p} = {v:g} is negative, but {p} is declared non-negative")
         value_of = {p: v for (p, _, _), v in zip(params, values)}
         check_lengths(model, value_of)
+        self._lengths_model = {"parameters": params, "loops": model["loops"]}
         self.unknowns = tuple(u for lp in model["loops"] for u in lp["unknowns"])
         self.angles = tuple(u for lp in model["loops"] for u in lp["unknowns"] if u in lp["angles"])
         self.loop_slices = []
@@ -439,6 +440,11 @@ class Mechanism:
             raise ValueError(f"guess for {bad} is not finite")
         return vec
 
+    def check_lengths(self, lengths=None) -> None:
+        """:func:`numkin.loops.check_lengths` here; ``lengths``: parameters that are lengths whatever their declaration."""
+        value_of = {p: v for (p, _, _), v in zip(self._lengths_model["parameters"], self.parameter_values.tolist())}
+        check_lengths(self._lengths_model, value_of, lengths)
+
     @property
     def default_guess(self):
         """The documented default guess (mapping, sequence, callable or None)."""
@@ -458,7 +464,22 @@ class Mechanism:
         Returns
         -------
         NewtonResult
-            ``x`` in unknown order (``self.unknowns``).
+            ``x`` in unknown order (``self.unknowns``). If ``converged`` is False a
+            :class:`~numkin.errors.ConvergenceWarning` says where and why.
+
+        Examples
+        --------
+        >>> import warnings, numpy as np
+        >>> from numkin import linkages
+        >>> m = linkages.four_bar(4, 1, 3, 3)
+        >>> res = m.solve(np.radians(90), guess=[0.5, 2.0])
+        >>> res.converged, np.round(np.degrees(res.x), 4)
+        (True, array([ 32.5561, 119.3714]))
+        >>> with warnings.catch_warnings(record=True) as caught:
+        ...     warnings.simplefilter("always")
+        ...     res = m.solve(np.radians(90), guess=[30, 120])  # degrees by mistake: angles are in rad
+        >>> res.converged, caught[0].category.__name__
+        (False, 'ConvergenceWarning')
         """
         input_value = finite("input_value (rad)", input_value)
         tol = check_tol(tol)
@@ -472,18 +493,10 @@ class Mechanism:
                       record=True)
         cond = float(scaled_cond(self.compiled.J(out.x, t, self.parameter_values), self.length_scale, self.xscale)[0])
         if out.converged[0]:
-            msg = f"converged in {out.iterations[0]} iterations"
-        elif out.singular[0]:
-            conds = self.loop_conditions(out.x, t)
-            loop = max(conds, key=lambda k: np.nan_to_num(conds[k][0], nan=np.inf))
-            msg = (
-                f"singular Jacobian of loop '{loop}' at input {math.degrees(float(input_value)):.3f}° "
-                f"(condition number {cond:.3g}) after {out.iterations[0]} iterations: not divided through"
-            )
-        else:
-            worst = max(self.loop_residuals(out.x, t).items(), key=lambda kv: np.nan_to_num(kv[1][0], nan=np.inf))
-            msg = f"did not converge: loop '{worst[0]}' residual {worst[1][0]:.3g} after {out.iterations[0]} iterations"
-        return NewtonResult.from_batch(out, 0, cond, msg)
+            return NewtonResult.from_batch(out, 0, cond, f"converged in {out.iterations[0]} iterations")
+        from .first_point import unsolved
+
+        return unsolved(self, float(input_value), x0, out, cond)  # says why, and warns
 
     def polish(self, x, inputs, *, maxiter: int = 30) -> np.ndarray:
         """Positions refined by Newton to the round-off floor, with numkin's one stopping and conditioning rule.

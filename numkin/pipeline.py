@@ -19,6 +19,7 @@ from __future__ import annotations
 import copy
 import json
 import math
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable
@@ -229,7 +230,7 @@ def run_scene(
         mech = scene.build_mechanism()
         result.mechanism = mech
         step("positions")
-        result.sweep = mech.sweep(scene.inputs(), guess=scene.guess_values(mech))
+        result.sweep = _sweep(scene, mech)
         if scene.differentiates:
             result.omega, result.alpha = scene.speed, scene.acceleration
             step("velocity and acceleration")
@@ -247,6 +248,38 @@ def run_scene(
         if figures and scene.figures:
             result.written += render_figures(result, out, progress=step)
     return result
+
+
+def _sweep(scene: Scene, mech):
+    """The scene's sweep; a ``[guess]`` angle more than a turn from zero is said in degrees, as written."""
+    from .errors import AssemblyError, GuessWarning
+    from .first_point import degrees_hint
+
+    guess = scene.guess_values(mech)
+    if guess is None:  # the linkage's own default guess, in rad
+        return mech.sweep(scene.inputs())
+
+    def written(far) -> str:
+        values = ", ".join(f"{name}_deg = {scene.guess[f'{name}_deg']:g}" for name, _ in far)
+        return f"[guess] {values} is more than a turn from zero (in degrees)"
+
+    caught: list = []
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            return mech.sweep(scene.inputs(), guess=guess)
+    except AssemblyError as error:
+        if error.far_guess:
+            error.args = (str(error).replace(degrees_hint(error.far_guess), written(error.far_guess)),)
+        raise
+    finally:  # the sweep's warnings, issued again: a guess far from its solution said as the scene gives it
+        for w in caught:
+            if not isinstance(w.message, GuessWarning):
+                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+                continue
+            far, starts = w.message.far, w.message.starts
+            where = ", ".join(f"{name} at {math.degrees(x):.6g}°" for (name, _), x in zip(far, starts))
+            warnings.warn(GuessWarning(f"{scene.source}: {written(far)}; the sweep keeps the guess's turn "
+                                       f"(it starts with {where})", far=far, starts=starts), stacklevel=3)
 
 
 #: Figures drawn from the error-analysis tables of numkin.report, and the table each needs.

@@ -275,7 +275,14 @@ class Scene:
         """The scene's :class:`~numkin.Mechanism`; names in the scene are checked against it."""
         from .assemble import build_mechanism
 
-        return build_mechanism(self)
+        mech = build_mechanism(self)
+        if self.custom is not None:  # loops: every dimension but the angles (<name>_deg) is a length
+            lengths = {k for k in self.data["mechanism"].get("dimensions", {}) if not k.endswith("_deg")}
+            try:
+                mech.check_lengths(lengths)
+            except ValueError as error:
+                self.fail(f"[mechanism.dimensions] {error.parameter}", str(error))
+        return mech
 
     def guess_values(self, mech) -> dict | None:
         """The ``[guess]`` table as ``{unknown: value}`` (rad, working unit), or None."""
@@ -316,6 +323,8 @@ def scene_path(name_or_path) -> Path:
         return builtin
     path = Path(name_or_path)
     if path.suffix == ".toml" or path.is_file() or "/" in text or "\\" in text:
+        if path.is_dir():
+            raise SceneError(f"scene file {text!r} is a directory; give a scene's .toml file")
         if not path.is_file():
             raise SceneError(f"scene file {text!r} not found")
         return path
@@ -552,8 +561,13 @@ def _read_input(r: SceneReader, scene: Scene, inp: dict) -> None:
         r.fail("[input] step_deg", f"stop_deg - start_deg = {span:g} is not a multiple of step_deg = {scene.step_deg:g}")
     if round(count) < 2 and scene.differentiates:
         r.fail("[input] step_deg", "the sweep needs at least 3 points to be differentiated")
-    if round(count) > 10_000_000:
-        r.fail("[input] step_deg", f"{scene.step_deg:g} gives more than ten million points")
+    if round(count) > 10_000_000:  # blamed on the step or the sweep's end, whichever is further from 1° over 360°
+        end = "start_deg" if abs(scene.start_deg) > abs(scene.stop_deg) else "stop_deg"
+        r.fail(
+            f"[input] {end if span / 360.0 > 1.0 / scene.step_deg else 'step_deg'}",
+            f"{count:.3g} points from start_deg = {scene.start_deg:g} to stop_deg = {scene.stop_deg:g} at "
+            f"step_deg = {scene.step_deg:g}: more than ten million",
+        )
 
 
 def _read_output(r: SceneReader, scene: Scene, out: dict) -> None:

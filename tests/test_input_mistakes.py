@@ -1,0 +1,224 @@
+"""Input mistakes a new user makes are refused or said, never turned into a silently wrong number.
+
+Positions are checked against the four-bar's closed form derived here (two
+circles intersected) and the offset slider-crank's (an arcsine); messages
+by the key parts of their text.
+"""
+
+from __future__ import annotations
+
+import math
+import textwrap
+import warnings
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from numkin import Loop, Mechanism, linkages
+from numkin.errors import AssemblyError, ConvergenceWarning, GuessWarning
+from numkin.scene import SceneError, load_scene, run_scene
+from test_cli import one_line_error, run
+
+
+def four_bar_closed_form(t2, r1=4.0, r2=1.0, r3=3.0, r4=3.0):
+    """(theta3, theta4) of the open four-bar O2-A-B-O4, pivots O2 = (0, 0) and O4 = (r1, 0), rad."""
+    ax, ay = r2 * math.cos(t2), r2 * math.sin(t2)
+    dx, dy = r1 - ax, -ay
+    d = math.hypot(dx, dy)
+    a = (r3**2 - r4**2 + d**2) / (2 * d)
+    h = math.sqrt(r3**2 - a**2)
+    bx, by = ax + a * dx / d - h * dy / d, ay + a * dy / d + h * dx / d
+    return math.atan2(by - ay, bx - ax), math.atan2(by, bx - r1)
+
+
+LOOPS = """
+[scene]
+description = "the four-bar 4, 1, 3, 3 written as loops"
+[mechanism]
+input = "theta2"
+unit = "mm"
+[mechanism.dimensions]
+r1 = 4
+r2 = {r2}
+r3 = 3
+r4 = 3
+[[mechanism.loops]]
+name = "O2-A-B-O4"
+unknowns = ["theta3", "theta4"]
+vectors = [["r2", "theta2"], ["r3", "theta3"], ["-r4", "theta4"], ["-r1", "0"]]
+[input]
+stop_deg = {stop}
+step_deg = {step}
+[guess]
+theta3_deg = {theta3}
+theta4_deg = 120
+"""
+
+
+def loops_scene(tmp_path, r2=1, theta3=60, stop=360, step=1):
+    path = tmp_path / "loops.toml"
+    path.write_text(textwrap.dedent(LOOPS.format(r2=r2, theta3=theta3, stop=stop, step=step)))
+    return str(path)
+
+
+# ---------------------------------------------------------- a negative length
+def test_negative_length_in_a_loops_scene_is_refused(capsys, tmp_path):
+    code, out, err = run(capsys, "run", loops_scene(tmp_path, r2=-1))
+    assert code == 2 and out == ""
+    line = one_line_error(err)
+    assert "loops.toml: [mechanism.dimensions] r2:" in line
+    assert "length r2 = -1 is negative" in line and "lengths must be positive" in line
+    assert "theta3" not in line  # refused before anything is solved
+
+
+def test_negative_length_is_refused_by_the_mechanism_with_the_same_words(tmp_path):
+    t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    r1, r2, r3, r4 = sp.symbols("r1 r2 r3 r4")  # sign undeclared: lengths
+    loop = Loop.from_vectors([(r2, t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4], name="O2-A-B-O4")
+    with pytest.raises(ValueError, match=r"length r2 = -1 is negative .*: lengths must be positive"):
+        Mechanism([loop], t2, {r1: 4, r2: -1, r3: 3, r4: 3})
+    with pytest.raises(SceneError, match=r"\[mechanism.dimensions\] r2: .*lengths must be positive"):
+        load_scene(loops_scene(tmp_path, r2=-1)).build_mechanism()
+
+
+def test_positive_lengths_in_a_loops_scene_solve_to_the_closed_form(tmp_path):
+    result = run_scene(load_scene(loops_scene(tmp_path)), at=90)
+    t3, t4 = four_bar_closed_form(math.radians(90))
+    assert result.at.values["theta3_deg"] == pytest.approx(math.degrees(t3), abs=1e-9)
+    assert result.at.values["theta4_deg"] == pytest.approx(math.degrees(t4), abs=1e-9)
+
+
+SIGNED = """
+[scene]
+description = "offset slider-crank, its offset below the crank pivot"
+[mechanism]
+input = "theta2"
+[mechanism.dimensions]
+r2 = 1
+r3 = 3
+e = -0.4
+[[mechanism.loops]]
+name = "O2-A-B"
+unknowns = ["theta3", "x"]
+equations = ["r2*cos(theta2) + r3*cos(theta3) - x", "r2*sin(theta2) + r3*sin(theta3) - e"]
+[input]
+stop_deg = 180
+step_deg = 10
+[guess]
+theta3_deg = 10
+x = 3.9
+"""
+
+
+def test_a_signed_dimension_that_is_no_vector_length_is_accepted(tmp_path):
+    path = tmp_path / "offset.toml"
+    path.write_text(textwrap.dedent(SIGNED))
+    result = run_scene(load_scene(str(path)), at=90)
+    t3 = math.asin((-0.4 - 1.0) / 3.0)  # r2 sin(theta2) + r3 sin(theta3) = e at theta2 = 90°
+    assert result.at.values["theta3_deg"] == pytest.approx(math.degrees(t3), abs=1e-9)
+    assert result.at.values["x"] == pytest.approx(3.0 * math.cos(t3), abs=1e-9)
+
+
+# ---------------------------------------------------- a solve that fails
+def test_solve_that_does_not_converge_warns_where_and_why():
+    m = linkages.four_bar(4, 1, 3, 3)
+    with pytest.warns(ConvergenceWarning) as record:
+        res = m.solve(np.radians(90), guess=[30, 120])
+    assert not res.converged
+    t2, (t3, t4) = math.pi / 2, res.x
+    loop = [math.cos(t2) + 3 * math.cos(t3) - 3 * math.cos(t4) - 4, math.sin(t2) + 3 * math.sin(t3) - 3 * math.sin(t4)]
+    residual = max(abs(v) for v in loop) / 4.0  # scaled by the largest length
+    text = str(record[0].message)
+    assert "did not converge at input 90.000°" in text and "loop 'O2-A-B-O4'" in text
+    assert f"residual {residual:.3g}" in text and "converged=False" in text
+    assert "theta3 = 30, theta4 = 120 is more than a turn from zero" in text and "degrees" in text
+
+
+def test_solve_that_converges_does_not_warn():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        res = linkages.four_bar(4, 1, 3, 3).solve(np.radians(90), guess=[0.5, 2.0])
+    assert res.converged
+    assert tuple(res.x) == pytest.approx(four_bar_closed_form(math.pi / 2), abs=1e-12)
+
+
+def test_solve_from_a_guess_within_a_turn_does_not_ask_about_degrees():
+    with pytest.warns(ConvergenceWarning) as record:
+        res = linkages.four_bar(4, 1, 3, 3).solve(np.radians(90), guess=[0.5, 2.0], maxiter=1)
+    assert not res.converged
+    assert "degrees" not in str(record[0].message)
+
+
+# --------------------------------------------- guesses given in degrees
+def test_chained_four_bars_first_guess_in_degrees_is_named():
+    with pytest.raises(AssemblyError) as info:
+        linkages.chained_four_bars(guess1=(45, 60)).sweep(np.radians(np.arange(0, 361)))
+    text = str(info.value)
+    assert "the guess phi = 45, psi = 60 is more than a turn from zero" in text
+    assert "was it given in degrees?" in text
+    assert "beta =" not in text and "gamma =" not in text  # those were given in rad
+    assert info.value.far_guess == [("phi", 45.0), ("psi", 60.0)]
+
+
+def test_chained_four_bars_in_rad_solve():
+    sweep = linkages.chained_four_bars().sweep(np.radians([0.0, 1.0]))
+    assert np.all(np.abs(sweep.values) < 2 * math.pi)
+
+
+def test_degrees_warning_names_every_unknown():
+    with pytest.warns(GuessWarning) as record:
+        linkages.four_bar(4, 1, 3, 3).sweep(np.radians([0, 10]), guess={"theta3": 60, "theta4": 120})
+    text = str(record[0].message)
+    assert "theta3 = 60, theta4 = 120 is more than a turn from zero" in text
+    assert [name for name, _ in record[0].message.far] == ["theta3", "theta4"]
+
+
+def test_scene_guess_in_degrees_is_not_asked_whether_it_was_in_degrees(capsys, tmp_path):
+    code, out, err = run(capsys, "run", loops_scene(tmp_path, theta3=1e6, stop=10, step=5))
+    assert code == 0
+    warning = [line for line in err.splitlines() if line.startswith("numkin: warning: ")]
+    assert len(warning) == 1, err
+    assert "[guess] theta3_deg = 1e+06 is more than a turn from zero (in degrees)" in warning[0]
+    assert "was it given in degrees" not in warning[0]
+    # the solution at 0° (theta3 = 60°, an equilateral triangle) on the guess's turn
+    assert f"theta3 at {60 + 360 * round((1e6 - 60) / 360):.6g}°" in warning[0]
+
+
+CHAINED = """
+[scene]
+description = "the homework, its first guess written as rad in a _deg key"
+[mechanism]
+linkage = "chained_four_bars"
+[guess]
+phi_deg = {phi!r}
+psi_deg = {psi!r}
+beta_deg = 30
+gamma_deg = 270
+"""
+
+
+def test_scene_failing_from_a_guess_in_degrees_says_it_in_degrees(capsys, tmp_path):
+    path = tmp_path / "chained.toml"
+    phi, psi = math.degrees(45), math.degrees(60)  # the guesses of linkage 1 that fail in rad, as degrees
+    path.write_text(textwrap.dedent(CHAINED.format(phi=phi, psi=psi)))
+    code, out, err = run(capsys, "run", str(path))
+    assert code == 2
+    line = one_line_error(err)
+    assert f"[guess] phi_deg = {phi:.6g}, psi_deg = {psi:.6g} is more than a turn from zero (in degrees)" in line
+    assert "was it given in degrees" not in line
+
+
+# ------------------------------------------------------------ the command
+def test_a_directory_is_not_a_scene_file(capsys, tmp_path):
+    code, out, err = run(capsys, "run", str(tmp_path))
+    assert code == 2
+    assert "is a directory" in one_line_error(err) and "not found" not in err
+
+
+@pytest.mark.parametrize("stop, step, key", [(1e12, 1, "stop_deg"), (360, 1e-6, "step_deg")])
+def test_too_many_points_blame_the_key_that_makes_them(capsys, tmp_path, stop, step, key):
+    code, out, err = run(capsys, "run", loops_scene(tmp_path, stop=stop, step=step))
+    assert code == 2
+    line = one_line_error(err)
+    assert f"[input] {key}:" in line and "more than ten million" in line
