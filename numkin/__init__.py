@@ -25,7 +25,7 @@ import importlib
 import sys
 import types
 
-from .errors import AssemblyError, BranchError, ConvergenceError, NumkinError
+from .errors import AssemblyError, BranchError, ConvergenceError, ConvergenceWarning, GuessWarning, NumkinError
 
 __version__ = "0.1.0"
 
@@ -51,6 +51,8 @@ __all__ = [
     "AssemblyError",
     "BranchError",
     "ConvergenceError",
+    "ConvergenceWarning",
+    "GuessWarning",
     "Loop",
     "LostDigitsWarning",
     "Mechanism",

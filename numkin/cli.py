@@ -123,6 +123,7 @@ def format_result(result) -> str:
                 lines.append("  " + "  ".join(
                     (f"{c:<{w}}" if k < 2 else f"{c:>{w}}") for k, (c, w) in enumerate(zip(r, widths))
                 ).rstrip())
+            lines.append("  (max rel error: the largest error over the largest |exact value| of the sweep)")
     if result.written:
         lines += ["", "written:"] + [f"  {p}" for p in result.written]
     return "\n".join(lines)

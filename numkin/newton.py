@@ -69,6 +69,10 @@ class NewtonResult:
         included), as scipy counts them.
     njev : int
         Evaluations of the Jacobian (symbolic or by finite differences).
+    success : bool
+        ``converged`` under scipy's name.
+    nit : int
+        ``iterations`` under scipy's name.
     """
 
     x: np.ndarray
@@ -101,6 +105,16 @@ class NewtonResult:
             nfev=int(out.nfev[k]),
             njev=int(out.njev[k]),
         )
+
+    @property
+    def success(self) -> bool:
+        """``converged``, as scipy's ``OptimizeResult`` names it."""
+        return self.converged
+
+    @property
+    def nit(self) -> int:
+        """``iterations``, as scipy's ``OptimizeResult`` names it."""
+        return self.iterations
 
     def __repr__(self) -> str:
         return (

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from numkin import linkages, newton
+from numkin import ConvergenceWarning, linkages, newton
 from numkin.newton import has_converged
 from numkin.newton import NewtonResult
 
@@ -142,8 +142,9 @@ def test_singular_jacobian_is_reported_not_divided_through():
 
 def test_parallelogram_change_point_solve_is_singular():
     m = linkages.four_bar(5, 2, 5, 2)
-    res = m.solve(0.0)
-    assert not res.converged
+    with pytest.warns(ConvergenceWarning, match="singular"):
+        res = m.solve(0.0)
+    assert not res.converged and not res.success
     assert "singular" in res.message
     assert not res.cond < 1e12
     assert np.all(np.isfinite(res.x))
@@ -158,7 +159,8 @@ def test_non_converging_solve_returns_converged_false_with_message():
 
 
 def test_mechanism_solve_where_it_cannot_assemble():
-    res = linkages.four_bar(7, 4, 3, 5).solve(math.pi)  # beyond the triple rocker's 88.98 deg
+    with pytest.warns(ConvergenceWarning, match="O2-A-B-O4"):
+        res = linkages.four_bar(7, 4, 3, 5).solve(math.pi)  # beyond the triple rocker's 88.98 deg
     assert not res.converged
     assert "O2-A-B-O4" in res.message
 
@@ -238,7 +240,7 @@ def test_mechanism_solve_bad_input(args, kwargs, fragment):
 def test_mechanism_solve_matches_circle_intersection(jacobian):
     for deg in (0.0, 75.0, 200.0, 330.0):
         res = linkages.four_bar(4, 1, 3, 3).solve(math.radians(deg), jacobian=jacobian)
-        assert res.converged
+        assert res.converged and res.success and res.nit == res.iterations
         np.testing.assert_allclose(res.x, open_four_bar(math.radians(deg), 4, 1, 3, 3), rtol=0, atol=1e-12)
 
 
