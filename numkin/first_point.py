@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -21,7 +22,7 @@ from .errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning
 from .march import FAR, TWO_PI, Continuation, deg_text
 from .newton import COND_MAX, is_singular
 
-__all__ = ["solve_start", "far_guesses", "degrees_hint", "unsolved"]
+__all__ = ["solve_start", "guess_vector", "far_guesses", "degrees_hint", "unsolved"]
 
 
 def far_guesses(mech, guess) -> list:
@@ -87,6 +88,45 @@ def unsolved(mech, input_value: float, guess, out, cond: float):
     return NewtonResult.from_batch(out, 0, cond, f"did not converge: {why}")
 
 
+def guess_vector(mech, guess, at: float) -> np.ndarray:
+    """A mechanism's guess as a vector in unknown order; ``guess`` may be a mapping, sequence or callable
+    (called with the input ``at``, rad).
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> guess_vector(linkages.four_bar(4, 1, 3, 3), {"theta4": 2.0, "theta3": 0.5}, 0.0).tolist()
+    [0.5, 2.0]
+    """
+    if guess is None:
+        raise ValueError(
+            f"{mech.name}: no guess given and the mechanism has no default; pass guess= "
+            f"with values for {list(mech.unknowns)}"
+        )
+    if callable(guess):
+        guess = guess(at)
+    if isinstance(guess, Mapping):
+        names = {str(k) for k in guess}
+        unknown = sorted(names - set(mech.unknowns))
+        if unknown:
+            raise ValueError(f"guess names {unknown}, which are not unknowns of {mech.name} {list(mech.unknowns)}")
+        absent = [u for u in mech.unknowns if u not in names]
+        if absent:
+            raise ValueError(f"guess lacks values for {absent}")
+        values = {str(k): v for k, v in guess.items()}
+        vec = np.array([values[u] for u in mech.unknowns], dtype=float)
+    else:
+        vec = np.asarray(guess, dtype=float).reshape(-1)
+        if vec.size != len(mech.unknowns):
+            raise ValueError(
+                f"guess has {vec.size} values but {mech.name} has {len(mech.unknowns)} unknowns {list(mech.unknowns)}"
+            )
+    if not np.all(np.isfinite(vec)):
+        bad = mech.unknowns[int(np.flatnonzero(~np.isfinite(vec))[0])]
+        raise ValueError(f"guess for {bad} is not finite")
+    return vec
+
+
 def solve_start(ctx: Continuation, t0: float, guess, maxiter: int):
     """Solve the first point from the guess (continuing from ``guess_input`` if needed).
 
@@ -97,11 +137,11 @@ def solve_start(ctx: Continuation, t0: float, guess, maxiter: int):
     ctx.started_on_default = guess is None
     if guess is None and g is not None and not callable(g) and mech.guess_input is not None and mech.guess_input != t0:
         tg = float(mech.guess_input)
-        x_g, _, v = _solve_first(ctx, tg, mech.guess_vector(g, tg), maxiter, note=" (the default guess's input)")
+        x_g, _, v = _solve_first(ctx, tg, guess_vector(mech, g, tg), maxiter, note=" (the default guess's input)")
         d, o = ctx.local1(v)
         x, _, _, iters = ctx.march(tg, x_g, d, o, t0)
         return x, iters, ctx.eval1(x, t0)
-    return _solve_first(ctx, t0, mech.guess_vector(g, t0), maxiter)
+    return _solve_first(ctx, t0, guess_vector(mech, g, t0), maxiter)
 
 
 def _dependent(ctx, x, t0) -> bool:

@@ -411,34 +411,11 @@ class Mechanism:
         return self.block_structure.signs(rows, rows.shape[1])
 
     def guess_vector(self, guess, at: float) -> np.ndarray:
-        """The guess as a vector in unknown order; ``guess`` may be a mapping, sequence or callable."""
-        if guess is None:
-            raise ValueError(
-                f"{self.name}: no guess given and the mechanism has no default; pass guess= "
-                f"with values for {list(self.unknowns)}"
-            )
-        if callable(guess):
-            guess = guess(at)
-        if isinstance(guess, Mapping):
-            names = {str(k) for k in guess}
-            unknown = sorted(names - set(self.unknowns))
-            if unknown:
-                raise ValueError(f"guess names {unknown}, which are not unknowns of {self.name} {list(self.unknowns)}")
-            absent = [u for u in self.unknowns if u not in names]
-            if absent:
-                raise ValueError(f"guess lacks values for {absent}")
-            values = {str(k): v for k, v in guess.items()}
-            vec = np.array([values[u] for u in self.unknowns], dtype=float)
-        else:
-            vec = np.asarray(guess, dtype=float).reshape(-1)
-            if vec.size != len(self.unknowns):
-                raise ValueError(
-                    f"guess has {vec.size} values but {self.name} has {len(self.unknowns)} unknowns {list(self.unknowns)}"
-                )
-        if not np.all(np.isfinite(vec)):
-            bad = self.unknowns[int(np.flatnonzero(~np.isfinite(vec))[0])]
-            raise ValueError(f"guess for {bad} is not finite")
-        return vec
+        """The guess as a vector in unknown order; ``guess`` may be a mapping, sequence or callable
+        (:func:`numkin.first_point.guess_vector`)."""
+        from .first_point import guess_vector
+
+        return guess_vector(self, guess, at)
 
     def check_lengths(self, lengths=None) -> None:
         """:func:`numkin.loops.check_lengths` here; ``lengths``: parameters that are lengths whatever their declaration."""
