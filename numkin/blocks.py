@@ -463,6 +463,8 @@ def _unrolled_newton_batch(n, blocks, zeros, inv_xscale):
     for i in range(1, n):
         term = f"ABS(d{i})" if inv_xscale[i] == 1.0 else f"ABS(d{i}) * {inv_xscale[i]!r}"
         step = f"MAX({step}, {term})"
+    temporaries = ", ".join(["v", *(f"r{i}" for i in range(n)), *(f"d{i}" for i in range(n))]
+                            + (["a00", "a01", "a10", "a11", "inv"] if any(b - a == 2 for a, b in blocks) else []))
     lines = [
         "def newton_batch(K, x, t, kargs, active, maxiter, fscale, tol, floor, converged):",
         "    N = x.shape[1]",
@@ -486,6 +488,7 @@ def _unrolled_newton_batch(n, blocks, zeros, inv_xscale):
         "        upd &= act",
         *[f"        ADD(x{i}, d{i}, out=x{i}, where=upd)" for i in range(n)],
         f"        step = {step}",
+        f"        del {temporaries}  # freed before the next evaluation: one set of rows alive at a time",
         f"        v = {call}",
         "        evaluations += 1",
         f"        fmax = {fmax}",
