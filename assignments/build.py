@@ -541,10 +541,10 @@ def _run(args) -> int:
                     print(problem)
                 failed |= bool(problems)
             else:
-                kept = _kept(hw, fresh)
-                write(hw, kept)
-                changed = sum(1 for k in fresh if kept[k] is fresh[k] and k in _committed(hw))
-                print(f"{hw}: {len(fresh)} reference values written ({changed} changed beyond rounding noise)")
+                committed = _committed(hw)
+                write(hw, _kept(hw, fresh))
+                moved = sum(1 for k, v in fresh.items() if k not in committed or _differs(committed[k], v))
+                print(f"{hw}: {len(fresh)} reference values written ({moved} new or changed beyond rounding noise)")
         return 1 if failed else 0
     if args.command == "new":
         where = new_from_scene(args.scene, args.root)

@@ -59,7 +59,6 @@ Examples
 from __future__ import annotations
 
 import math
-import warnings
 import weakref
 
 import numpy as np
@@ -79,6 +78,7 @@ from .quantities import input_quantity, point_quantities, unknown_quantities
 from .units import input_rates
 from .complex_solve import COMPLEX_STEP, complex_positions, complex_step, complex_tangent
 from .sweep import COND_MAX, SingularityWarning, check_sweep, record_evaluations
+from .errors import warn
 
 __all__ = [
     "derivatives",
@@ -135,12 +135,11 @@ def _singular_mask(sweep, mech, inputs, what: str, skip=()) -> np.ndarray:
     bad[list(skip)] = False
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
-        warnings.warn(
+        warn(
             f"{mech.name}: {what} undefined at {int(bad.sum())} point(s) where the Jacobian is singular "
             f"(a toggle or change point; first at input {_deg(inputs[k])}, condition number {cond[k]:.3g}): "
             "set to NaN",
             SingularityWarning,
-            stacklevel=3,
         )
     return bad
 

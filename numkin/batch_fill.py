@@ -9,7 +9,6 @@ segment where batch points land on another turn, are marched point by point.
 from __future__ import annotations
 
 import math
-import warnings
 
 import numpy as np
 
@@ -17,6 +16,7 @@ from .march import COND_TANGENT, MAX_CORRECTION, Continuation, deg_text
 from .predictors import QUINTIC_MIN_POINTS, hermite, node_curvatures
 from .newton import COND_MAX, COND_WARN, colmax as _colmax, is_singular, residual_floor
 from .sweep import SweepEvent, SingularityWarning
+from .errors import warn
 
 __all__ = ["nodes_of", "fill", "report_near_singular", "CHUNK"]
 
@@ -205,4 +205,4 @@ def report_near_singular(ctx, t, X, cond):
             f"(condition number up to {cond[k]:.3g} at {deg_text(t[k], 3)}): expect lost digits there",
         )
     )
-    warnings.warn(ctx.events[-1].message, SingularityWarning, stacklevel=3)
+    warn(ctx.events[-1].message, SingularityWarning)

@@ -14,13 +14,13 @@ from __future__ import annotations
 
 import math
 import numbers
-import warnings
 
 import numpy as np
 
 from .march import deg_text
 from .newton import iterate
 from .sweep import COND_MAX, SingularityWarning, check_sweep, record_evaluations
+from .errors import warn
 
 __all__ = ["complex_step", "complex_positions", "complex_tangent", "COMPLEX_STEP"]
 
@@ -177,11 +177,10 @@ def complex_step(sweep, h: float = COMPLEX_STEP, *, order: int = 1) -> np.ndarra
     x, failed, singular = complex_positions(mech, q, t, float(h))
     if failed.any():
         k = int(np.flatnonzero(failed)[0])
-        warnings.warn(
+        warn(
             f"{mech.name}: complex-step Newton failed at {int(failed.sum())} point(s) (first at input "
             f"{deg_text(t[k])}: {'singular Jacobian' if singular[k] else 'no convergence'}): set to NaN",
             SingularityWarning,
-            stacklevel=2,
         )
     d = x.imag / h if order == 1 else complex_tangent(mech, x, t, float(h))
     d[:, failed] = np.nan

@@ -16,12 +16,12 @@ Examples
 from __future__ import annotations
 
 import math
-import warnings
 
 import numpy as np
 
 from .quantities import catalogue
 from .sweep import COND_MAX, SingularityWarning
+from .errors import warn
 
 __all__ = [
     "DIGITS_RTOL",
@@ -116,8 +116,8 @@ def continue_branch(mech, t, cond, change, arrays, what: str, at_change_point: s
         if len(left) < 2 or len(right) < 2:
             for a in arrays:
                 a[:, k] = np.nan
-            warnings.warn(f"{where}; {what} set to NaN there: fewer than 2 regular samples of the kept "
-                          "branch on each side to continue it from", SingularityWarning, stacklevel=3)
+            warn(f"{where}; {what} set to NaN there: fewer than 2 regular samples of the kept "
+                          "branch on each side to continue it from", SingularityWarning)
             continue
         idx = np.array(left[::-1] + right)
         w = _lagrange_at(t[idx] - t[k], 0.0)
@@ -133,7 +133,7 @@ def continue_branch(mech, t, cond, change, arrays, what: str, at_change_point: s
                 a[:, k] = np.nan
             message = (f"{where}; {what} set to NaN there (no value belongs to both branches); {how} with "
                        f"{values}: pass at_change_point='continue' for these values")
-        warnings.warn(message, SingularityWarning, stacklevel=3)
+        warn(message, SingularityWarning)
 
 
 def lost_digits(cond, order: int = 1) -> np.ndarray:
@@ -163,13 +163,12 @@ def warn_lost_digits(mech, t, cond, skip, rtol, what="analytic") -> None:
     over[list(skip)] = False
     if over.any():
         k = int(np.flatnonzero(over)[np.argmax(est[over])])
-        warnings.warn(
+        warn(
             f"{mech.name}: {what} derivatives lose digits near a singular position at {int(over.sum())} "
             f"point(s): at input {_deg(t[k])} (condition number {cond[k]:.3g}) the estimated relative error "
             f"is {lost_digits(cond[k], 1):.1e} for velocities and {est[k]:.1e} for accelerations, above the "
             f"tolerance {rtol:.0e}",
             LostDigitsWarning,
-            stacklevel=3,
         )
 
 
@@ -221,11 +220,10 @@ def warn_rounding(sweep, mech, t, rows, scheme, d, rtol) -> None:
     rel = err / scale[:, None]
     if np.any(rel > rtol):
         j, k = np.unravel_index(int(np.nanargmax(rel)), rel.shape)
-        warnings.warn(
+        warn(
             f"{mech.name}: {scheme.name} loses digits to rounding: at input {math.degrees(t[k]):.3f}° "
             f"(step h = {rows.h:.3g} rad, condition number {cond[k]:.3g}) the estimated rounding error of "
             f"d{'' if scheme.derivative == 1 else '2'}{mech.unknowns[j]} is {rel[j, k]:.1e} of its largest value (or of 1 unit per rad), "
             f"above the tolerance {rtol:.0e}",
             LostDigitsWarning,
-            stacklevel=3,
         )

@@ -9,7 +9,36 @@ from (a scene file) without parsing the message.
 
 from __future__ import annotations
 
-__all__ = ["NumkinError", "AssemblyError", "ConvergenceError", "BranchError", "ConvergenceWarning", "GuessWarning"]
+import os
+import sys
+import warnings
+
+__all__ = ["NumkinError", "AssemblyError", "ConvergenceError", "BranchError", "ConvergenceWarning", "GuessWarning",
+           "warn"]
+
+_PACKAGE = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+
+def warn(message, category=None) -> None:
+    """``warnings.warn``, attributed to the first caller outside numkin: the user's own line.
+
+    A warning may arise several calls deep inside numkin (a sweep inside a
+    scene inside the command); a fixed ``stacklevel`` would point at one of
+    numkin's lines instead, and a notebook would show numkin's path.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warn("a test", UserWarning)
+    >>> "numkin" + os.sep in caught[0].filename
+    False
+    """
+    frame, level = sys._getframe(1), 2
+    while frame.f_back is not None and frame.f_code.co_filename.startswith(_PACKAGE):
+        frame, level = frame.f_back, level + 1
+    warnings.warn(message, category, stacklevel=level)
 
 
 class NumkinError(Exception):

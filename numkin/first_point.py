@@ -13,12 +13,11 @@ and the :class:`~numkin.errors.ConvergenceWarning` of a
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Mapping
 
 import numpy as np
 
-from .errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning
+from .errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning, warn
 from .march import FAR, TWO_PI, Continuation, deg_text
 from .newton import COND_MAX, is_singular
 
@@ -81,9 +80,9 @@ def unsolved(mech, input_value: float, guess, out, cond: float):
         worst = max(conds, key=lambda k: np.nan_to_num(conds[k][0], nan=np.inf))
         why += f" (singular Jacobian of loop '{worst}', condition number {cond:.3g}: not divided through)"
     hint = degrees_hint(far_guesses(mech, guess))
-    warnings.warn(
+    warn(
         f"{mech.name}: Newton did not converge at input {deg_text(input_value, 3)}: {why}; the result is not a "
-        f"position (converged=False)" + (f"; {hint}" if hint else ""), ConvergenceWarning, stacklevel=3,
+        f"position (converged=False)" + (f"; {hint}" if hint else ""), ConvergenceWarning,
     )
     return NewtonResult.from_batch(out, 0, cond, f"did not converge: {why}")
 
@@ -202,8 +201,8 @@ def _solve_first(ctx, t0, x_guess, maxiter, note=""):
     far = [(name, value) for name, value in far if abs(x[mech.unknowns.index(name)] - value) > 1.0]
     if far:
         starts = ", ".join(f"{name} at {math.degrees(x[mech.unknowns.index(name)]):.6g}°" for name, _ in far)
-        warnings.warn(GuessWarning(
+        warn(GuessWarning(
             f"{mech.name}: {degrees_hint(far)}; the solution at {where} is more than 1 rad from it, and the "
             f"sweep keeps the guess's turn (it starts with {starts})", far=far, starts=[
-                x[mech.unknowns.index(name)] for name, _ in far]), stacklevel=4)
+                x[mech.unknowns.index(name)] for name, _ in far]))
     return x, it, v

@@ -45,7 +45,6 @@ for beta (the exact values are 10.6329 and -28.3750).
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -54,6 +53,7 @@ from . import derivatives as _d
 from .analytic import check_sweep, input_rates, kinematics_frame
 from .conditioning import DIGITS_RTOL, rounding_error, warn_rounding
 from . import schemes as _schemes
+from .errors import warn
 
 __all__ = ["finite_difference", "rounding_error", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "PARTNER"]
 
@@ -151,12 +151,11 @@ def _unwrapped(y: np.ndarray, angle: np.ndarray, names, inputs) -> np.ndarray:
         rows = np.flatnonzero(angle)[changed]
         r = rows[0]
         k = int(np.flatnonzero(np.abs(np.diff(y[r])) > math.pi)[0])
-        warnings.warn(
+        warn(
             f"angle(s) {[names[i] for i in rows]} jump by more than 180° between neighbouring samples "
             f"(first {names[r]} between inputs {math.degrees(inputs[k]):.3f}° and "
             f"{math.degrees(inputs[k + 1]):.3f}°): wrapped data; unwrapped before differencing",
             UserWarning,
-            stacklevel=4,
         )
         y[angle] = un
     return y
@@ -261,7 +260,7 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
             )
             if periodic is True:
                 raise ValueError(msg)
-            warnings.warn(msg + "; differenced as an open grid", UserWarning, stacklevel=3)
+            warn(msg + "; differenced as an open grid", UserWarning)
             is_periodic, offset = False, None
     return Rows(y, grid.h, is_periodic, grid.reverse, offset)
 

@@ -12,12 +12,11 @@ acceptance tests, and the description of the change points passed. See
 from __future__ import annotations
 
 import math
-import warnings
 
 import numpy as np
 
 from .compiled import MATH_ERRORS, stack_rows
-from .errors import BranchError, ConvergenceError
+from .errors import BranchError, ConvergenceError, warn
 from .newton import (
     COMPACT_MIN,
     fd_jacobian,
@@ -26,7 +25,7 @@ from .newton import (
     residual_floor,
     solve_batch,
 )
-from .predictors import MAX_PREDICTION, SANE_DISTANCE, predict
+from .predictors import MAX_PREDICTION, predict
 from .sweep import SweepEvent, SingularityWarning
 
 __all__ = ["Continuation", "deg_text", "MAX_CORRECTION", "CORRECTOR_ITERATIONS",
@@ -280,8 +279,9 @@ class Continuation:
                 # few columns: every column at every iteration, the iteration written out
                 if not (overwrite and x.flags.writeable and x.flags.c_contiguous):
                     x = np.array(x, dtype=float, order="C")
-                out = self.blocks.newton_batch(comp.FJ_kernel, x, t, (*fixed_all, *self.pt), np.asarray(active, dtype=bool),
-                                               maxiter, self.fscale, self.tol, floor, has_converged)
+                act = np.ones(N, dtype=bool) if active is None else np.asarray(active, dtype=bool)
+                out = self.blocks.newton_batch(comp.FJ_kernel, x, t, (*fixed_all, *self.pt), act, maxiter, self.fscale,
+                                               self.tol, floor, has_converged)
                 if out is not None:
                     converged, _, iterations, v, evaluations = out
                     self.nfev += evaluations * N
@@ -331,7 +331,7 @@ class Continuation:
             if e.kind == kind and e.loop == loop and abs(e.input_value - t) <= 1e-6 * max(1.0, abs(t)):
                 return
         self.events.append(SweepEvent(kind, float(t), loop, message, **extra))
-        warnings.warn(message, SingularityWarning, stacklevel=4)
+        warn(message, SingularityWarning)
 
     def crossing(self, t, x, t_new, v_new, k):
         """Input where loop ``k``'s Jacobian determinant, linear between two solved points, is zero."""

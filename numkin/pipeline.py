@@ -29,6 +29,7 @@ import numpy as np
 from . import outputs
 from .assemble import scene_quantities, scene_unit
 from .schema import Scene, SceneReader, in_range, load_scene, nearest
+from .errors import warn
 
 __all__ = ["CheckResult", "SceneResult", "run_scene", "render_figures", "written_tolerance"]
 
@@ -278,8 +279,8 @@ def _sweep(scene: Scene, mech):
                 continue
             far, starts = w.message.far, w.message.starts
             where = ", ".join(f"{name} at {math.degrees(x):.6g}°" for (name, _), x in zip(far, starts))
-            warnings.warn(GuessWarning(f"{scene.source}: {written(far)}; the sweep keeps the guess's turn "
-                                       f"(it starts with {where})", far=far, starts=starts), stacklevel=3)
+            warn(GuessWarning(f"{scene.source}: {written(far)}; the sweep keeps the guess's turn "
+                                       f"(it starts with {where})", far=far, starts=starts))
 
 
 #: Figures drawn from the error-analysis tables of numkin.report, and the table each needs.

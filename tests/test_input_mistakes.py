@@ -111,9 +111,15 @@ x = 3.9
 """
 
 
-def test_a_signed_dimension_that_is_no_vector_length_is_accepted(tmp_path):
+@pytest.mark.parametrize("loop", [
+    'equations = ["r2*cos(theta2) + r3*cos(theta3) - x", "r2*sin(theta2) + r3*sin(theta3) - e"]',
+    # a vector of fixed direction is an offset: its length may be negative
+    'vectors = [["r2", "theta2"], ["r3", "theta3"], ["-x", "0"], ["-e", "pi/2"]]',
+])
+def test_a_signed_offset_is_accepted(tmp_path, loop):
     path = tmp_path / "offset.toml"
-    path.write_text(textwrap.dedent(SIGNED))
+    path.write_text(textwrap.dedent(SIGNED).replace(
+        'equations = ["r2*cos(theta2) + r3*cos(theta3) - x", "r2*sin(theta2) + r3*sin(theta3) - e"]', loop))
     result = run_scene(load_scene(str(path)), at=90)
     t3 = math.asin((-0.4 - 1.0) / 3.0)  # r2 sin(theta2) + r3 sin(theta3) = e at theta2 = 90°
     assert result.at.values["theta3_deg"] == pytest.approx(math.degrees(t3), abs=1e-9)

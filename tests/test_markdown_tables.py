@@ -10,6 +10,7 @@ each source row is split into cells by the rule of GitHub-flavoured Markdown.
 from __future__ import annotations
 
 import re
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -17,10 +18,20 @@ import pytest
 markdown_it = pytest.importorskip("markdown_it")
 
 ROOT = Path(__file__).resolve().parents[1]
-PAGES = sorted(
-    p for p in ROOT.rglob("*.md")
-    if not {".venv", "_build", "node_modules", ".git"} & set(p.relative_to(ROOT).parts)
-)
+
+
+def _pages() -> list[Path]:
+    """The project's Markdown pages: the files git tracks (outside a git checkout, every page but build
+    outputs and environments)."""
+    try:
+        listed = subprocess.run(["git", "ls-files", "*.md"], cwd=ROOT, capture_output=True, text=True, check=True)
+        return sorted(ROOT / name for name in listed.stdout.split())
+    except (OSError, subprocess.CalledProcessError):
+        return sorted(p for p in ROOT.rglob("*.md") if not {"_build", ".git"} & set(p.relative_to(ROOT).parts)
+                      and not any(part.startswith(".") or part.endswith("venv") for part in p.relative_to(ROOT).parts))
+
+
+PAGES = _pages()
 
 
 def cells(line: str) -> list[str]:

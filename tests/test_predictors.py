@@ -151,6 +151,10 @@ def test_batch_newton_solves_active_columns_and_leaves_the_others(written_out, m
     assert np.abs(got[0, solved] - t3[solved]).max() < 1e-14 and np.abs(got[1, solved] - t4[solved]).max() < 1e-14
     # from errors of 1e-2: about 1e-4, 1e-8, 1e-16, and a last step to see it
     assert 3 <= iterations[solved].min() and iterations.max() <= 4
+    # active=None: every column
+    with np.errstate(all="ignore"):
+        every = ctx.newton_batch(start.copy(), t, None)
+    assert every[1].sum() == t.size - 1 and not every[1][3]
     # the residuals and Jacobian rows returned are those at the returned positions
     rows = mech.compiled.FJ_rows(got, t, mech.parameter_values)
     assert np.array_equal(f, np.array(rows[:2])) and all(np.array_equal(a, b) for a, b in zip(jac, rows[2:]))

@@ -692,3 +692,14 @@ def test_roundoff_works_for_every_scheme_of_the_registry(slider):
     exact = t.set_index("scheme")["exact value [unit of quantity]"]
     assert exact["richardson"] == pytest.approx(dx, rel=1e-12)
     assert exact["five_point_second"] == pytest.approx(d2x, rel=1e-12)
+
+
+def test_columns_no_view_names_are_written_after_the_views(tmp_path):
+    df = pd.DataFrame({"scheme": ["centred"], "h [deg]": [1.0], "max abs error [rad/s]": [2.5e-4], "note": ["x"],
+                       0: [3.0]})
+    df.attrs["views"] = [("errors", ["scheme", "h [deg]", "max abs error [rad/s]"])]
+    df.attrs["row_keys"] = ["scheme"]
+    md, _, tex = (p.read_text() for p in report.write_tables({"t": df}, tmp_path))
+    for text in (md, tex):  # "note" and the column named 0 are not lost, and the row stays named
+        assert "other columns" in text and "note" in text and "x" in text and "| 3 |" in md
+    assert tex.count("\\begin{tabular}") == 2 and "\\begin{tabular}{lrr}" in tex

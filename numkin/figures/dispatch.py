@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 import re
-import warnings
 from pathlib import Path
 from typing import Sequence
 
@@ -15,6 +14,7 @@ from .drawing import mechanism
 from .error_plots import convergence, jacobian_of, newton_residuals, roundoff, work_precision
 from .labels import check_unknown, input_name, is_angle, rate_columns, table_column
 from .style import METADATA, gc_paused, save
+from ..errors import warn
 
 __all__ = ["FIGURES", "FigureSkipped", "parse_spec", "render"]
 
@@ -308,7 +308,7 @@ def render(result, names: Sequence[str] | None = None, out_dir=".", formats: Seq
             try:
                 fig, stem = _build(kind, arg, data)
             except _Missing as why:
-                warnings.warn(f"figure '{spec}' skipped: {why}", FigureSkipped, stacklevel=2)
+                warn(f"figure '{spec}' skipped: {why}", FigureSkipped)
                 continue
             written += save(fig, out / stem, formats)
             del fig

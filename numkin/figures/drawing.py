@@ -7,6 +7,7 @@ The pieces are shared by :func:`mechanism` (one position, dimensioned) and
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Iterable, Mapping, Sequence
 
 import numpy as np
@@ -15,6 +16,7 @@ from .labels import (
     deg_text, input_name, is_angle, length_text, length_unit, mechanism_title, no_negative_zero, sym,
     value_text,
 )
+from ..errors import ConvergenceWarning
 from .registries import dimensions_of
 from .style import CYCLE, new_figure, shared_doc, style
 
@@ -390,7 +392,9 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
     k = sweep.index(at)
     q = sweep.values[:, k]
     if abs(sweep.inputs[k] - at) > 1e-12 * max(1.0, abs(at)):
-        res = mech.solve(at, guess=q)
+        with warnings.catch_warnings():  # a failure is raised below, in the drawing's words
+            warnings.simplefilter("ignore", ConvergenceWarning)
+            res = mech.solve(at, guess=q)
         if not res.converged:
             raise ValueError(f"{mech.name}: cannot solve the position at input {deg_text(at)} to draw it")
         q = np.asarray(res.x, dtype=float).reshape(-1)

@@ -431,10 +431,10 @@ def set_views(df, views: Sequence, row_keys: Sequence | None = None) -> object:
     """Say how a wide table is read: ``attrs["views"]``, a list of ``[title, [columns]]``.
 
     Each view is one idea of the table, a few columns wide, and becomes a
-    table of its own in Markdown and on the terminal
-    (:mod:`~numkin.report.writers`); CSV and LaTeX keep every column in one
-    table. Columns not in `df` are dropped from a view; empty views are left
-    out. `row_keys` (``attrs["row_keys"]``) are the columns that name a row;
+    table of its own in Markdown, LaTeX and on the terminal
+    (:mod:`~numkin.report.writers`; columns no view names make a last
+    part); CSV keeps every column in one table. Columns not in `df` are
+    dropped from a view; empty views are left out. `row_keys` (``attrs["row_keys"]``) are the columns that name a row;
     the terminal repeats them in each part of a view too wide for one screen.
     """
     if row_keys is not None:

@@ -34,7 +34,7 @@ def column_format(column: str) -> str:
     ...                              "h [deg]", "exact value [unit of quantity]")]
     ['.3g', '.2f', 'int', '.6g', 'exact']
     """
-    c = column.lower()
+    c = str(column).lower()
     if c.endswith("optimal h [rad]"):
         return ".2g"
     if c.startswith("exact value"):
@@ -87,10 +87,12 @@ def format_cell(value, column: str = "") -> str:
 
 
 def table_views(df) -> list:
-    """The parts a table is read in: ``[(title, DataFrame)]`` from ``attrs["views"]``, else the whole table."""
-    views = df.attrs.get("views") or []
-    out = [(str(title), df[[c for c in cols if c in df.columns]]) for title, cols in views]
-    return [(t, v) for t, v in out if v.shape[1]] or [("", df)]
+    """The parts a table is read in: ``[(title, DataFrame)]`` from ``attrs["views"]``, else the whole table.
+
+    Columns that no view names are not lost: they make a last part, "other
+    columns", after the row keys (``attrs["row_keys"]``).
+    """
+    return [(title, df[cols]) for title, cols in _view_columns(df)]
 
 
 def _md_escape(text: str) -> str:
@@ -165,7 +167,15 @@ def _view_columns(df) -> list:
     views = df.attrs.get("views") or []
     present = set(df.columns)
     out = [(str(title), [c for c in cols if c in present]) for title, cols in views]
-    return [(t, cols) for t, cols in out if cols] or [("", list(df.columns))]
+    out = [(t, cols) for t, cols in out if cols]
+    if not out:
+        return [("", list(df.columns))]
+    named = {c for _, cols in out for c in cols}
+    rest = [c for c in df.columns if c not in named]
+    if rest:
+        keys = [c for c in df.attrs.get("row_keys") or () if c in present]
+        out.append(("other columns", keys + rest))
+    return out
 
 
 def _text_table(columns: list, formatted: dict) -> str:
@@ -290,8 +300,9 @@ def write_tables(tables: Mapping, out_dir, formats: Sequence[str] = ("md", "csv"
         Markdown (GitHub-flavoured pipe tables, ``|`` escaped, numbers with
         the significant figures of their column, :func:`format_cell`; a
         wide table in the parts named by ``attrs["views"]``, one idea
-        each), CSV (every column, full precision, empty cells for NaN) and
-        LaTeX with booktabs rules (every column). A table's
+        each, and the columns no part names in a last one), CSV (every
+        column, full precision, empty cells for NaN) and LaTeX with booktabs
+        rules (the parts of the Markdown, the same digits). A table's
         ``attrs["caption"]`` heads the Markdown and becomes the LaTeX
         caption.
 
