@@ -228,3 +228,12 @@ def test_too_many_points_blame_the_key_that_makes_them(capsys, tmp_path, stop, s
     assert code == 2
     line = one_line_error(err)
     assert f"[input] {key}:" in line and "more than ten million" in line
+
+
+def test_warnings_point_at_the_line_that_called_numkin():
+    m = linkages.four_bar(4, 1, 3, 3)
+    with pytest.warns(ConvergenceWarning) as solved:
+        m.solve(np.radians(90), guess=[30, 120])
+    with pytest.warns(UserWarning, match="more than a turn from zero") as swept:  # from deep in the sweep
+        m.sweep(np.radians([0.0, 10.0]), guess={"theta3": 60, "theta4": 120})
+    assert solved[0].filename == __file__ and swept[0].filename == __file__
