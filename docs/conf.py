@@ -83,14 +83,20 @@ html_last_updated_fmt = None
 
 # -- MathJax ---------------------------------------------------------------------
 # Equations are typeset by MathJax in the browser. Where Debian's libjs-mathjax
-# (MathJax 2) is installed, the pages load that copy (readable offline; SVG
-# output, which needs no web fonts); otherwise Sphinx's default (a CDN).
-# NUMKIN_DOCS_MATHJAX overrides: "cdn" for the default, or the URL of a MathJax
-# script. The build itself never needs MathJax.
+# (MathJax 2) is installed, the files its SVG output needs (about 3 MB) are
+# copied into the site (_static/mathjax), so the pages typeset their equations
+# wherever they are served or opened, offline too (SVG output needs no web
+# fonts); otherwise Sphinx's default (a CDN). NUMKIN_DOCS_MATHJAX overrides: "cdn"
+# for the default, or the URL of a MathJax script. The build itself never needs MathJax.
 _mathjax = os.environ.get("NUMKIN_DOCS_MATHJAX", "")
 _debian_mathjax = Path("/usr/share/javascript/mathjax/MathJax.js")
+#: The parts of MathJax 2 that the TeX-AMS-MML_SVG configuration loads.
+_MATHJAX_FILES = ("MathJax.js", "config/TeX-AMS-MML_SVG.js", "jax/input/TeX", "jax/input/MathML", "jax/element",
+                  "jax/output/SVG/config.js", "jax/output/SVG/jax.js", "jax/output/SVG/autoload",
+                  "jax/output/SVG/fonts/TeX", "extensions")
+_copy_mathjax = not _mathjax and _debian_mathjax.exists()
 if _mathjax != "cdn" and (_mathjax or _debian_mathjax.exists()):
-    _url = _mathjax or _debian_mathjax.as_uri()
+    _url = _mathjax or "mathjax/MathJax.js"  # relative: in the site's _static folder
     if "MathJax.js" in _url:  # MathJax 2
         mathjax_path = _url if "?" in _url else _url + "?config=TeX-AMS-MML_SVG"
         myst_update_mathjax = False  # myst's setting is MathJax 3's
@@ -107,6 +113,7 @@ autosummary_context = {"api": numkin_docs.ApiIndex("numkin")}
 autosummary_filename_map = autosummary_context["api"].filename_map()
 autodoc_default_options = {"member-order": "bysource"}
 autodoc_typehints = "none"  # numpydoc sections carry the types
+autodoc_preserve_defaults = True  # signatures show defaults as written: max_step=math.radians(30.0)
 autodoc_mock_imports: list[str] = []
 numpydoc_show_class_members = False  # members are documented on the class page itself
 numpydoc_class_members_toctree = False
@@ -139,3 +146,22 @@ nitpicky = True
 nitpick_ignore_regex = [
     (r"py:.*", r"(numpy|pandas|matplotlib|sympy|scipy|mpmath|PIL|tqdm|time|math|fractions|dataclasses|argparse|pathlib|typing|collections)(\..*)?"),
 ]
+
+
+def _copy_mathjax_files(app) -> None:
+    """Copy the MathJax 2 files the pages load into the site's _static/mathjax (HTML builds), before the
+    pages are written (and their links checked)."""
+    if not _copy_mathjax or app.builder.format != "html":
+        return
+    root, dest = _debian_mathjax.parent, Path(app.outdir) / "_static" / "mathjax"
+    for name in _MATHJAX_FILES:
+        src = root / name
+        if src.is_dir():
+            shutil.copytree(src, dest / name, dirs_exist_ok=True)
+        else:
+            (dest / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(src, dest / name)
+
+
+def setup(app):
+    app.connect("builder-inited", _copy_mathjax_files)
