@@ -437,12 +437,19 @@ class Mechanism:
             Input (rad for an angle).
         guess : mapping, sequence or callable, optional
             Defaults to the mechanism's default guess.
+        jacobian : {"symbolic", "forward", "central"}
+            How Newton's Jacobian is computed (the step rule of the finite
+            differences: :mod:`numkin.newton_rules`).
+        tol : float
+            Relative tolerance of the stopping rule (:mod:`numkin.newton_rules`).
+        maxiter : int
+            Newton steps allowed.
 
         Returns
         -------
         NewtonResult
             ``x`` in unknown order (``self.unknowns``). If ``converged`` is False a
-            :class:`~numkin.errors.ConvergenceWarning` says where and why.
+            :class:`~numkin.ConvergenceWarning` says where and why.
 
         Examples
         --------
@@ -566,6 +573,14 @@ class Mechanism:
         Returns
         -------
         Sweep
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from numkin import linkages
+        >>> sweep = linkages.four_bar(4, 1, 3, 3).sweep(np.radians(np.arange(0, 361)))
+        >>> np.round(np.degrees(sweep["theta4"][[0, 90]]), 4)
+        array([120.    , 119.3714])
         """
         from .continuation import run_sweep
 

@@ -19,21 +19,45 @@ if TYPE_CHECKING:  # pragma: no cover - for annotations only
 __all__ = ["predict", "hermite", "node_curvatures", "cubic_bases", "quintic_bases", "MAX_PREDICTION",
            "SANE_DISTANCE", "QUINTIC_MIN_POINTS"]
 
-#: Largest predicted change of an unknown in one step (scaled): with MAX_CORRECTION well below
-#: pi, an accepted point is never a whole turn away from its predecessor.
+#: Largest predicted change of an unknown in one step (scaled), 1.0: with the largest accepted
+#: correction (:data:`numkin.march.MAX_CORRECTION`, 0.3) well below pi, an accepted point is never a
+#: whole turn away from its predecessor.
 MAX_PREDICTION = 1.0
-#: The quadratic predictor uses the previous point only if it is at least this fraction of
-#: the step away (closer points make the quadratic term blow up).
+#: The quadratic (or cubic) predictor uses the previous point only if it is at least this fraction
+#: of the step away, 0.2 (closer points make the added terms blow up).
 SANE_DISTANCE = 0.2
-#: Grid points per node from which the batch is predicted by quintic Hermite polynomials (the nodes'
-#: curvatures cost a few kernel calls on the nodes; a prediction error of order h^6 instead of h^4
-#: saves a Newton iteration on every point once the segments hold this many).
+#: Grid points per node, 100, from which the batch is predicted by quintic Hermite polynomials (the
+#: nodes' curvatures cost a few kernel calls on the nodes; a prediction error of order h^6 instead of
+#: h^4 saves a Newton iteration on every point once the segments hold this many).
 QUINTIC_MIN_POINTS = 100
 
 
 def predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate, d_prev=None):
     """Predictor of a continuation step that cannot blow up.
 
+    Parameters
+    ----------
+    t, x, d : float, list of float, list of float or None
+        The last accepted point: input (rad), unknowns (rad or length) and
+        tangent dq/dt (None where unknown).
+    t_prev, x_prev : float, list of float, or None
+        The point before it (None at the first step).
+    t_new : float
+        The input to predict at (rad).
+    inv_xs : list of float or None
+        The unknowns' inverse scales (None: all one).
+    rate : float
+        The largest scaled entry of ``d``.
+    d_prev : list of float, optional
+        The previous point's tangent.
+
+    Returns
+    -------
+    list of float
+        The predicted unknowns at ``t_new``.
+
+    Notes
+    -----
     The tangent ``x + d s``; plus, through the previous point, the cubic
     term as well when its tangent ``d_prev`` is known (the cubic through
     both points and both tangents), else the quadratic one, only when that
@@ -41,8 +65,7 @@ def predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate, d_prev=None):
     terms (scaled) stay below the step times (1 + ``rate``), ``rate`` the
     largest scaled entry of the tangent (else the quadratic, else the
     tangent alone). Without a tangent: the secant through a sane previous
-    point, or ``x`` itself. ``inv_xs`` are the unknowns' inverse scales
-    (None: all one).
+    point, or ``x`` itself.
 
     Examples
     --------
@@ -107,7 +130,8 @@ def node_curvatures(ctx: Continuation, t, X, D, nodes) -> np.ndarray:
 
 
 def hermite(tc, t, X, D, D2n, nodes, k):
-    """The Hermite predictor at the inputs ``tc`` from their nodes' values, tangents and curvatures (n, M).
+    """The Hermite predictor at the inputs ``tc`` from their nodes' values, tangents and curvatures: an
+    array (n, M), n unknowns by the M inputs of ``tc``.
 
     Quintic (values, first and second derivatives at both nodes: error of
     order h^6) on a segment whose nodes both have a curvature in ``D2n``
