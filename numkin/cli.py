@@ -17,9 +17,16 @@ that disagrees with its expected value gives exit status 1.
 
 Examples
 --------
+The command prints; ``main`` returns the exit status:
+
+>>> import contextlib, io, json
 >>> from numkin.cli import main
->>> main(["run", "quick-return", "--at", "30", "--format", "json"])  # doctest: +SKIP
-0
+>>> printed = io.StringIO()
+>>> with contextlib.redirect_stdout(printed):
+...     status = main(["run", "quick-return", "--at", "30", "--format", "json"])
+>>> result = json.loads(printed.getvalue())
+>>> status, result["passed"], round(result["checks"][0]["values"]["r3"], 3)
+(0, True, 87.178)
 """
 
 from __future__ import annotations
