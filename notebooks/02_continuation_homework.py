@@ -258,7 +258,9 @@ plt.show()
 # From the fixed guess, Newton lands on the other assembly at about half the angles, and at
 # one angle (40°) it does not converge at all: it stops after its 50 allowed iterations, a
 # failure the loop would have to check `converged` to notice. That solve is left out of the
-# table's first column and of the plot.
+# table's first column and of the plot. Which basin the guess falls into is decided in the last
+# bits of the arithmetic: the same loop with $F$ written with $-r_4\cos\theta$ instead of
+# $r_4\cos(\theta + \pi)$ puts two more angles on the homework's assembly.
 #
 # Starting from the previous solution keeps Newton inside the basin of the branch it is on,
 # because a 1° step moves the solution by a little, and Newton converges from any guess close
