@@ -141,7 +141,8 @@ print(pointwise.loc[[1.0, 2.0, 178.0, 179.0, 180.0, 181.0, 182.0, 358.0, 359.0],
                     ["analytic [rad/s]", "forward rel error", "centred rel error", "five_point rel error"]]
       .to_string(float_format="{:.2e}".format))
 # by hand: at theta2 = 180 deg the crank tip A = (-2, 0) is 6 from O4 = (4, 0), against r3 + r4 = 6.0001
-print(f"theta2 = 180 deg: |A - O4| = {abs(-2.0 - 4.0):.4f}, r3 + r4 = {4.0001 + 2:.4f}: coupler and rocker nearly in line")
+print(f"theta2 = 180 deg: |A - O4| = {abs(-2.0 - 4.0):.4f}, r3 + r4 = {4.0001 + 2:.4f}: "
+      "coupler and rocker nearly in line")
 worst = cmp_toggle.summary["max at theta2 [deg]"]
 assert 178 <= worst["forward"] <= 182 and 178 <= worst["centred"] <= 182
 assert worst["five_point"] in (1.0, 359.0)
@@ -149,13 +150,13 @@ assert worst["five_point"] in (1.0, 359.0)
 # %% [markdown]
 # The errors peak in two places:
 #
-# * **Near 180°**, where the linkage is nearly extended the other way: the crank tip is 6 from
-#   $O_4$ against $r_3 + r_4 = 6.0001$, coupler and rocker almost in line. The rocker reverses
-#   within about 1.3° (the suite's row for this case in section 7 says so), $\omega_4$ falls from
-#   about 0.9 to $-0.2$ rad/s between 179° and 181°, and a 1° grid does not resolve that. The
-#   forward difference is worst at 180° itself, whose forward stencil straddles the turn; the
-#   centred difference is worst at 179° (and equally at 181°), while at 180° its symmetric
-#   stencil happens to be almost exact.
+# * **Near 180°**, where coupler and rocker are almost stretched out in line: the crank tip is
+#   6 from $O_4$ against $r_3 + r_4 = 6.0001$ (at the limit positions they fold instead,
+#   $|A - O_4| = r_3 - r_4$). The rocker reverses within about 1.3° (the suite's row for this
+#   case in section 7 says so), $\omega_4$ falls from about 0.9 to $-0.2$ rad/s between 179°
+#   and 181°, and a 1° grid does not resolve that. The forward difference is worst at 180°
+#   itself, whose forward stencil straddles the turn; the centred difference is worst at 179°
+#   (and equally at 181°), while at 180° its symmetric stencil happens to be almost exact.
 # * **At the ends of the sweep**, 1° and 359°, 0.6° from the limit positions at $\pm 0.405°$,
 #   where $\omega_4$ grows like $(\theta_2 - \theta_{lim})^{-1/2}$ and the sweep is an open grid
 #   (one-sided stencils at its ends). The five-point formula is worst there (359°, and almost
@@ -356,8 +357,9 @@ assert grids.loc[("alpha_beta", "five_point_second"), 100_000] > 0.5 * grids.loc
 # are good, but the second difference, the five-point and the spectral second derivatives all
 # end near $10^{-6}$, whatever their order: the spectral one is about a hundred thousand times
 # *worse* than on 360 points, and the five-point one is hardly better than on 360 points (with
-# 278 times as many points), where its error was truncation. The grid is so fine that the rounding error of the computed
-# positions, divided by $h^2 \approx 4\times10^{-9}$, dominates. Lesson 4 measures this floor.
+# 278 times as many points), where its error was truncation. The grid is so fine that the
+# rounding error of the computed positions, divided by $h^2 \approx 4\times10^{-9}$,
+# dominates. Lesson 4 measures this floor.
 
 # %% [markdown]
 # ## 7. The whole suite in one table
