@@ -122,7 +122,7 @@ assert abs(numkin_values["r5 [mm]"] - 51.962) < 1e-3
 #   $r_3 = 87.17$ instead of 87.178 it gives 130.755, written down as 130.75. With the
 #   unrounded $r_3$ it is 130.767 mm — the value the report's own Newton code printed.
 # * Its **Newton code printed $\theta_3 = 13.7285$**, in radians, which the report read as 66.58°.
-#   That is not a conversion: see section 4.
+#   That is not a conversion: see section 3.
 
 # %%
 r3_truncated = 87.17

@@ -91,6 +91,25 @@ print(f"at {dist[0]:.0e} deg from the limit: cond(J) = {near.cond[0]:.3g}, |omeg
 assert abs(slope + 0.5) < 0.05
 
 # %% [markdown]
+# The `LostDigitsWarning` the cell above prints is intended. Solving the velocity and acceleration
+# equations with a Jacobian of condition number $\kappa$ costs digits: the positions are known to
+# about $\varepsilon\kappa$ (relative, $\varepsilon \approx 2.2\times10^{-16}$) and the derivative
+# equations amplify that by $\kappa$ again, so numkin estimates the relative error of an $n$-th
+# derivative as $(2n - 1)\,\varepsilon\,\kappa^2$ (`numkin.conditioning.lost_digits`). At
+# $10^{-5}$ degrees from the limit $\kappa \approx 5\times10^{4}$, and the estimate for the
+# accelerations passes the tolerance $10^{-6}$: `analytic.kinematics` warns
+# (`LostDigitsWarning`) naming the input angle, the condition number and the estimated errors,
+# rather than returning numbers that look exact. The velocities plotted here are still good to
+# about six digits:
+
+# %%
+from numkin.conditioning import lost_digits
+
+print(f"cond(J) = {near.cond[0]:.3g} at {dist[0]:.0e} deg from the limit: estimated relative error "
+      f"{lost_digits(near.cond[0], 1):.1e} (velocities), {lost_digits(near.cond[0], 2):.1e} (accelerations)")
+assert lost_digits(near.cond[0], 1) < 1e-6 < lost_digits(near.cond[0], 2)
+
+# %% [markdown]
 # The velocity grows like $(\theta_2 - \theta_{lim})^{-1/2}$: a square-root singularity. A
 # linkage written by hand, without the ready-made assembly check, and driven *past* the limit
 # does not get a silently wrong answer either: the continuation stops at the toggle.
@@ -109,13 +128,42 @@ assert isinstance(caught, (numkin.BranchError, numkin.ConvergenceError))
 assert abs(math.degrees(caught.input_value) - limit) < 0.1
 
 # %% [markdown]
-# Over the reachable part of the turn, finite differences of the sampled rocker angle are least
-# accurate next to the limit:
+# Over the reachable part of the turn, 1° to 359° on a 1° grid, where do finite differences of
+# the sampled rocker angle err most? (Relative errors are divided by the largest $|\omega_4|$
+# of the turn.)
 
 # %%
 reach = toggle.sweep(np.radians(np.arange(1.0, 360.0, 1.0)))
 cmp_toggle = compare(reach, 1.0, "omega_theta4", schemes=("forward", "centred", "five_point"))
 print(cmp_toggle.summary[["max rel error", "rms rel error", "max at theta2 [deg]"]].to_string(float_format="{:.2e}".format))
+pointwise = cmp_toggle.table.set_index("theta2 [deg]")
+print(pointwise.loc[[1.0, 2.0, 178.0, 179.0, 180.0, 181.0, 182.0, 358.0, 359.0],
+                    ["analytic [rad/s]", "forward rel error", "centred rel error", "five_point rel error"]]
+      .to_string(float_format="{:.2e}".format))
+# by hand: at theta2 = 180 deg the crank tip A = (-2, 0) is 6 from O4 = (4, 0), against r3 + r4 = 6.0001
+print(f"theta2 = 180 deg: |A - O4| = {abs(-2.0 - 4.0):.4f}, r3 + r4 = {4.0001 + 2:.4f}: "
+      "coupler and rocker nearly in line")
+worst = cmp_toggle.summary["max at theta2 [deg]"]
+assert 178 <= worst["forward"] <= 182 and 178 <= worst["centred"] <= 182
+assert worst["five_point"] in (1.0, 359.0)
+
+# %% [markdown]
+# The errors peak in two places:
+#
+# * **Near 180°**, where coupler and rocker are almost stretched out in line: the crank tip is
+#   6 from $O_4$ against $r_3 + r_4 = 6.0001$ (at the limit positions they fold instead,
+#   $|A - O_4| = r_3 - r_4$). The rocker reverses within about 1.3° (the suite's row for this
+#   case in section 7 says so), $\omega_4$ falls from about 0.9 to $-0.2$ rad/s between 179°
+#   and 181°, and a 1° grid does not resolve that. The forward difference is worst at 180°
+#   itself, whose forward stencil straddles the turn; the centred difference is worst at 179°
+#   (and equally at 181°), while at 180° its symmetric stencil happens to be almost exact.
+# * **At the ends of the sweep**, 1° and 359°, 0.6° from the limit positions at $\pm 0.405°$,
+#   where $\omega_4$ grows like $(\theta_2 - \theta_{lim})^{-1/2}$ and the sweep is an open grid
+#   (one-sided stencils at its ends). The five-point formula is worst there (359°, and almost
+#   the same at 1°); at the turn near 180° its error is less than half as large. The centred
+#   error at the ends is nearly as large as its peak at 179°.
+#
+# Section 2 takes the nearly-in-line case apart.
 
 # %% [markdown]
 # ## 2. Coupler and rocker nearly aligned: ground 4, crank 1, coupler 3, rocker $2 + \delta$
@@ -174,9 +222,9 @@ width = turns["sharpest turn [deg]"].to_numpy()
 assert 0.5 < width[1] < 3 and width[2] < 0.5  # about one 1 deg step, then far less than one
 
 # %% [markdown]
-# At $\delta = 10^{-2}$ the turn spans several grid steps (blank: wider than 3 steps) and is
-# resolved. At $10^{-4}$ it is about one step wide: the centred difference at the neighbours
-# of 180° straddles the turn and is worst. At $10^{-6}$ the turn is a tenth of a step, a corner
+# At $\delta = 10^{-2}$ the turn spans several grid steps (NaN: wider than 3 steps) and is
+# resolved. At $10^{-4}$ it is one to two steps wide: the centred difference at the neighbours
+# of 180° straddles the turn and is worst. At $10^{-6}$ the turn is about a fifth of a step, a corner
 # between grid points: the neighbours see straight lines on either side and only the point at
 # the corner is wrong, so the first-derivative error falls again. The second difference
 # divides by $h^2$ and feels the corner's sharpness: its error keeps growing.
@@ -308,9 +356,10 @@ assert grids.loc[("alpha_beta", "five_point_second"), 100_000] > 0.5 * grids.loc
 # On 12 points every scheme is poor: the step is 30°. On 100 000 points the first derivatives
 # are good, but the second difference, the five-point and the spectral second derivatives all
 # end near $10^{-6}$, whatever their order: the spectral one is about a hundred thousand times
-# *worse* than on 360 points, and the five-point one is no better than on 360 points, where
-# its error was truncation. The grid is so fine that the rounding error of the computed
-# positions, divided by $h^2 \approx 4\times10^{-9}$, dominates. Lesson 4 measures this floor.
+# *worse* than on 360 points, and the five-point one is hardly better than on 360 points (with
+# 278 times as many points), where its error was truncation. The grid is so fine that the
+# rounding error of the computed positions, divided by $h^2 \approx 4\times10^{-9}$,
+# dominates. Lesson 4 measures this floor.
 
 # %% [markdown]
 # ## 7. The whole suite in one table

@@ -1,0 +1,84 @@
+"""Claims the lessons make in words, checked against independent computations.
+
+Lesson 2 counts where Newton from the homework's fixed guess lands; lesson 5 says
+where the finite differences of the near-toggle four-bar err most. Both are
+checked here without the notebooks (fast): the assemblies are the two
+intersections of circles, and the rocker's angular velocity comes from the
+closed-form rocker angle differentiated by mpmath.
+"""
+
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+
+import numkin
+from numkin import linkages
+from numkin.compare import compare
+
+
+def _angle_gap(a, b):
+    """|a - b| modulo 2 pi, in rad."""
+    return np.abs(np.angle(np.exp(1j * (np.asarray(a) - np.asarray(b)))))
+
+
+def test_lesson2_fixed_guess_lands_on_both_assemblies_and_fails_once():
+    """Newton from (45, 60) deg at every angle: every converged solve is one of the two
+    circle intersections, about half on each, and one angle (40 deg) does not converge."""
+    r1, r4, r3, r2 = 7.0, 1.94, 6.86, 2.36
+    theta = np.radians(np.arange(0, 361, 1.0))
+
+    def F(x, th):  # written as the lesson writes it: the counts below depend on the last bits
+        return np.array([r2 * np.cos(x[0]) + r3 * np.cos(x[1]) + r4 * np.cos(th + np.pi) - r1,
+                         r2 * np.sin(x[0]) + r3 * np.sin(x[1]) + r4 * np.sin(th + np.pi)])
+
+    def J(x, th):
+        return np.array([[-r2 * np.sin(x[0]), -r3 * np.sin(x[1])], [r2 * np.cos(x[0]), r3 * np.cos(x[1])]])
+
+    results = [numkin.newton(F, np.radians([45.0, 60.0]), args=(th,), jacobian=J, fscale=r1) for th in theta]
+    ok = np.array([r.converged for r in results])
+    phi = np.array([r.x[0] for r in results])
+    A = r1 + r4 * np.exp(1j * theta)
+    gap = np.arccos((r2**2 + np.abs(A) ** 2 - r3**2) / (2 * r2 * np.abs(A)))
+    plus = ok & (_angle_gap(phi, np.angle(A) + gap) < 1e-6)
+    minus = ok & (_angle_gap(phi, np.angle(A) - gap) < 1e-6)
+    assert np.array_equal(plus | minus, ok)
+    assert list(np.degrees(theta[~ok])) == [40.0]
+    assert results[40].iterations == 50  # maxiter
+    assert (plus.sum(), minus.sum()) == (182, 178)  # "about half" on the other assembly
+
+
+def test_lesson5_difference_errors_peak_at_the_nearly_extended_position():
+    """Four-bar 4, 2, 4.0001, 2 on 1..359 deg: forward and centred differences err most next
+    to 180 deg (coupler and rocker nearly in line), the five-point formula at an end of the
+    open grid, 0.6 deg from a limit position; numkin's comparison reports the same places."""
+    r1, r2, r3, r4 = 4.0, 2.0, 4.0001, 2.0
+    mpmath.mp.dps = 30
+
+    def rocker(sign):
+        def theta4(t2):  # closed form: B at r4 from O4 = (r1, 0) and at r3 from A = r2 e^{i t2}
+            d = mpmath.mpc(r2 * mpmath.cos(t2) - r1, r2 * mpmath.sin(t2))
+            return mpmath.arg(d) + sign * mpmath.acos((r4**2 + abs(d) ** 2 - r3**2) / (2 * r4 * abs(d)))
+        return theta4
+
+    deg = np.arange(1.0, 360.0, 1.0)
+    t = np.radians(deg)
+    sweep = linkages.four_bar(r1, r2, r3, r4).sweep(t)
+    # the sweep's assembly is one of the two intersections over the whole range
+    candidates = [(rocker(s), np.array([float(rocker(s)(mpmath.mpf(x))) for x in t])) for s in (1, -1)]
+    theta4, exact_q = min(candidates, key=lambda c: _angle_gap(c[1], sweep["theta4"]).max())
+    assert _angle_gap(exact_q, sweep["theta4"]).max() < 1e-9
+    omega = np.array([float(mpmath.diff(theta4, mpmath.mpf(x))) for x in t])
+    h = math.radians(1.0)
+    q = np.unwrap(exact_q)
+    forward = np.abs((q[1:] - q[:-1]) / h - omega[:-1])
+    centred = np.abs((q[2:] - q[:-2]) / (2 * h) - omega[1:-1])
+    assert 178 <= deg[:-1][np.argmax(forward)] <= 182
+    assert 178 <= deg[1:-1][np.argmax(centred)] <= 182
+    worst = compare(sweep, 1.0, "omega_theta4", schemes=("forward", "centred", "five_point")).summary[
+        "max at theta2 [deg]"]
+    assert worst["forward"] == deg[:-1][np.argmax(forward)]
+    assert abs(worst["centred"] - deg[1:-1][np.argmax(centred)]) <= 2  # 179 and 181 tie by symmetry
+    assert worst["five_point"] in (1.0, 359.0)
