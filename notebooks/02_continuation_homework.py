@@ -209,7 +209,7 @@ print(f"fixed guess: {ok.sum()} of {theta.size} angles converge; {other_branch.s
       f"whole turns away")
 for k in np.flatnonzero(~ok):
     print(f"theta = {theta_deg[k]:.0f} deg: no convergence, stopped after {iters_fixed[k]} iterations (maxiter)")
-assert other_branch.sum() > 50 and (~ok).sum() == 1
+assert other_branch.sum() > 50 and 1 <= (~ok).sum() <= 3
 
 iterations = pd.DataFrame({
     "fixed guess (45, 60) deg, converged solves": pd.Series(iters_fixed[ok]).describe(),
