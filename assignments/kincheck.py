@@ -24,6 +24,7 @@ import math
 import numpy as np
 
 __all__ = [
+    "ALTERNATIVE_CLOSER",
     "SUSPECTS",
     "angles",
     "array",
@@ -42,6 +43,7 @@ __all__ = [
     "read_angles",
     "six_bar_gap",
     "explain_factor",
+    "matches_alternative",
     "series",
     "unit_of",
     "value",
@@ -97,7 +99,9 @@ def _not_set(x) -> bool:
 def floats(x, name: str, what: str = "an array of numbers") -> np.ndarray:
     """``x`` as a float array, or the student's message: not set yet, or not ``what``."""
     if _not_set(x):
-        raise AssertionError(f"`{name}` is not set yet: run the cell that computes it")
+        raise AssertionError(
+            f"`{name}` is not set yet: replace its `...` with your answer and run the cell that computes it"
+        )
     try:
         return np.asarray(x, dtype=float)
     except (TypeError, ValueError):
@@ -273,13 +277,45 @@ def _describe(factor: float, terms, sign: float) -> str:
     return text
 
 
-def explain_factor(ratio: float, suspects=("deg", "rad/min")) -> str | None:
+def _missing_step(ratio: float, step_rad: float | None) -> str | None:
+    """The hint for a difference quotient that is ``h`` or ``h²`` times too small, else None.
+
+    ``np.diff(y)`` without ``/ h`` (or a step of 1 where ``h`` is a degree in
+    radians) gives exactly that ratio; it is named before any unit factor,
+    because a missing division is the likelier slip when the quantity is a
+    difference quotient.
+    """
+    if step_rad is None or not math.isfinite(ratio) or ratio == 0:
+        return None
+    for power, what in ((1, "a division by the step h is missing"), (2, "the division by h² is missing")):
+        factor = step_rad**power
+        if abs(math.log(abs(ratio) / factor)) < _FACTOR_TOLERANCE:
+            symbol = "h" if power == 1 else "h²"
+            text = (
+                f"off by a factor 1/{1 / factor:.4g} (= {symbol}, with h = {step_rad:.4g} rad): "
+                f"{what}? A difference quotient divides the differences (np.diff) by "
+                f"{symbol}, with h in radians, not in degrees."
+            )
+            if ratio < 0:
+                text += " The sign is flipped as well."
+            return text
+    return None
+
+
+def explain_factor(ratio: float, suspects=("deg", "rad/min"), *, step_rad: float | None = None) -> str | None:
     """Name a unit mix-up that turns the right answer into ``ratio`` times it.
 
     Tries the listed ``SUSPECTS`` alone and in pairs, to the powers ±1 and ±2
     (an acceleration goes with ω², a second difference with 1/h²), with either
     sign.  Returns a message such as ``"off by a factor 60: rad/min where
     rad/s is asked? ..."``, or None when no combination fits within 2 %.
+
+    ``step_rad`` is the grid step h (rad) when the quantity is a difference
+    quotient: a ratio of h or h² is then named first as a missing division by
+    the step (for a 1° grid that ratio is also π/180, which a degree slip gives).
+
+    >>> explain_factor(math.pi / 180, ("deg",), step_rad=math.pi / 180)[:55]
+    'off by a factor 1/57.3 (= h, with h = 0.01745 rad): a d'
     """
     if not math.isfinite(ratio) or ratio == 0:
         return None
@@ -288,6 +324,9 @@ def explain_factor(ratio: float, suspects=("deg", "rad/min")) -> str | None:
     size, sign = abs(ratio), math.copysign(1.0, ratio)
     if abs(size - 1.0) < _FACTOR_TOLERANCE:
         return None
+    step_hint = _missing_step(ratio, step_rad)
+    if step_hint:
+        return step_hint
     best = None
     for factor, terms in _combinations(suspects):
         miss = abs(math.log(size / factor))
@@ -333,14 +372,17 @@ def series(
     alternatives: tuple = (),
     suspects=("deg", "rad/min"),
     small_hint: str | None = NEWTON_HINT,
+    step_rad: float | None = None,
 ) -> None:
     """Compare an array over the grid with reference values at some angles.
 
     Passes when every ``|x - ref| <= atol + rtol * max|ref|``.  Otherwise
     ``alternatives`` — ``(reference dict, message)`` pairs such as the forward
-    difference when the centred one is asked — are tried first, then a unit
-    factor (see :func:`explain_factor`), then the largest difference is
-    reported.
+    difference when the centred one is asked — are tried first (named when
+    every value lies within that tolerance of the alternative and the largest
+    miss from it is ``ALTERNATIVE_CLOSER`` times smaller than from ``ref``), then a unit
+    factor (see :func:`explain_factor`; ``step_rad`` is the step h of a
+    difference quotient), then the largest difference is reported.
     """
     values = array(x, name, grid)
     _current[0] = name
@@ -349,11 +391,12 @@ def series(
         return
     for alt_ref, message in alternatives:
         _, alt_got, alt_want = _pick(values, alt_ref, grid)
-        if _close(alt_got, alt_want, rtol, atol).all():
+        closer = ALTERNATIVE_CLOSER * np.max(np.abs(alt_got - alt_want)) <= np.max(np.abs(got - want))
+        if _close(alt_got, alt_want, rtol, atol).all() and closer:
             raise AssertionError(f"`{name}`: {message}")
     ratio = _ratio(got, want)
     if ratio is not None:
-        hint = explain_factor(ratio, suspects)
+        hint = explain_factor(ratio, suspects, step_rad=step_rad)
         if hint:
             raise AssertionError(f"`{name}`: {hint}")
     worst = int(np.argmax(np.abs(got - want)))
@@ -384,29 +427,56 @@ def value(
     rtol: float = 5e-3,
     alternatives: tuple = (),
     suspects=("deg", "rad/min"),
+    step_rad: float | None = None,
 ) -> float:
     """Compare one number (or the value at θ = ``deg`` of an array) with ``want``.
 
     Passes within the relative tolerance ``rtol`` (0.5 % by default).
-    ``alternatives`` are ``(value, message)`` pairs tried when it fails.
-    Returns the student's number.
+    ``alternatives`` are ``(value, message)`` pairs tried when it fails; an
+    alternative's message is given only when the number matches that
+    alternative (see :func:`matches_alternative`).  Then a unit factor is
+    tried (see :func:`explain_factor`; ``step_rad`` is the step h of a
+    difference quotient), then the miss is reported.  Returns the student's
+    number.
     """
     got = at(x, name, deg, grid) if deg is not None else at(x, name, 0, grid)
     if abs(got - want) <= rtol * abs(want):
         return got
     where = f" at θ = {deg:g}°" if deg is not None else ""
-    for alt, message in alternatives:
-        if abs(got - alt) <= rtol * abs(alt) and abs(alt - want) > rtol * abs(want):
-            raise AssertionError(f"`{name}`{where} = {_fmt(got)}: {message}")
-    hint = explain_factor(got / want, suspects) if want else None
     unit_text = f" {unit}" if unit else ""
+    for alt, message in alternatives:
+        if matches_alternative(got, alt, want, rtol):
+            raise AssertionError(f"`{name}`{where} = {got:.6g}{unit_text}, expected {want:.6g}{unit_text}: {message}")
+    hint = explain_factor(got / want, suspects, step_rad=step_rad) if want else None
     if hint:
         raise AssertionError(f"`{name}`{where} = {_fmt(got)}{unit_text}: {hint}")
+    shown_want, shown_got = _pair(want, got)
     raise AssertionError(
-        f"`{name}`{where} = {_fmt(got)}{unit_text}, expected {_fmt(want)}{unit_text} "
+        f"`{name}`{where} = {shown_got}{unit_text}, expected {shown_want}{unit_text} "
         f"(within {_tolerance(rtol)}): "
         f"off by {100 * (got - want) / want:+.3g} %"
     )
+
+
+ALTERNATIVE_CLOSER = 10.0
+"""How many times closer to an alternative than to the reference a number must be for the alternative to be named."""
+
+
+def matches_alternative(got: float, alt: float, want: float, rtol: float) -> bool:
+    """Whether ``got`` is evidence of the alternative formula ``alt`` rather than of ``want``.
+
+    Both must hold: ``got`` lies within the check's own tolerance of the
+    alternative (``|got - alt| <= rtol |alt|``), and it is at least
+    ``ALTERNATIVE_CLOSER`` (10) times closer to the alternative than to the
+    reference.  A number between the two, or near neither, names no formula.
+
+    >>> matches_alternative(-28.1266, -28.1266, -28.375, 5e-3)
+    True
+    >>> matches_alternative(-28.0, -28.1266, -28.375, 5e-3)  # 0.45 % from it, 1.3 % from the reference
+    False
+    """
+    to_alt, to_want = abs(got - alt), abs(got - want)
+    return to_alt <= rtol * abs(alt) and ALTERNATIVE_CLOSER * to_alt <= to_want
 
 
 def band(
@@ -420,18 +490,27 @@ def band(
     grid=FULL_TURN,
     unit: str = "",
     suspects=("deg", "rad/min"),
+    step_rad: float | None = None,
 ) -> float:
     """A loose check: the number (or the value at θ = ``deg``) lies in [low, high].
 
     ``about`` is the rough value the assignment quotes; a miss by a unit
-    factor from it is named.  Returns the student's number.
+    factor from it is named, or, when ``step_rad`` (the step h of a difference
+    quotient) is given, a missing division by h or h².  Returns the student's
+    number.
     """
     got = at(x, name, deg, grid) if deg is not None else at(x, name, 0, grid)
     if low <= got <= high:
         return got
     where = f" at θ = {deg:g}°" if deg is not None else ""
     unit_text = f" {unit}" if unit else ""
-    hint = _loose_factor(got, low, high, suspects)
+    hint = None
+    if step_rad is not None:
+        for power in (1, 2):
+            if low <= got / step_rad**power <= high:
+                hint = _missing_step(step_rad**power, step_rad)
+                break
+    hint = hint or _loose_factor(got, low, high, suspects)
     if hint:
         raise AssertionError(f"`{name}`{where} = {_fmt(got)}{unit_text}: {hint}")
     raise AssertionError(

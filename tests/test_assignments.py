@@ -311,3 +311,151 @@ def test_chained_angles_are_read_in_the_unit_that_closes_each_loop():
     phi_rad, beta_rad, unit, residual = kc.chained_four_bar_angles(phi, np.degrees(beta))
     assert unit == "deg" and np.max(residual) < 1e-9
     assert np.allclose(beta_rad, beta) and np.allclose(phi_rad, phi)
+
+
+# --------------------------------------------------------------------------
+# the hidden tests of homework 1 on answers near, but not at, the reference
+# --------------------------------------------------------------------------
+
+HW1 = "hw1_chained_four_bar"
+H_RAD = math.radians(1.0)  # the homework's grid step
+
+
+def _master_cells(hw):
+    jupytext = pytest.importorskip("jupytext")
+    return jupytext.read(build.master_path(hw)).cells
+
+
+def _master_test(hw, name):
+    """The test function ``name`` of a master, defined as otter defines it (kincheck importable)."""
+    (source,) = [c.source for c in _master_cells(hw) if c.cell_type == "code" and f"def {name}(" in c.source]
+    namespace: dict = {}
+    exec(source, namespace)
+    return namespace[name]
+
+
+@pytest.fixture(scope="module")
+def hw1_sweep():
+    """φ and β over θ = 0°, 1°, …, 360° (rad), from numkin's chained four-bars."""
+    from numkin import linkages
+
+    sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(361.0)))
+    return np.asarray(sweep["phi"]), np.asarray(sweep["beta"])
+
+
+def test_alpha_between_the_centred_and_the_forward_twice_value_names_no_formula():
+    ref = build.load_expected(HW1)
+    centred, forward_twice = ref["alpha_beta_100"], ref["alpha_beta_fw_100"]
+    assert forward_twice == pytest.approx(-28.1266, abs=1e-4) and centred == pytest.approx(-28.375, abs=1e-3)
+    check = _master_test(HW1, "test_alpha_100")
+    # -28.0 is 0.45 % from the forward difference applied twice and 1.3 % from the reference: neither
+    message = _fails(check, -28.0)
+    assert "forward difference applied twice" not in message
+    assert message == "`alpha_100` at θ = 100° = -28 rad/s², expected -28.375 rad/s² (within 0.50%): off by -1.32 %"
+    # the forward difference applied twice itself is named, with the number and its unit
+    message = _fails(check, forward_twice)
+    assert message.startswith("`alpha_100` at θ = 100° = -28.1266 rad/s², expected -28.375 rad/s²: ")
+    assert "this matches the forward difference applied twice" in message
+    assert kc.matches_alternative(-28.13, forward_twice, centred, 5e-3)
+    assert not kc.matches_alternative(-28.0, forward_twice, centred, 5e-3)
+
+
+def test_an_array_between_the_asked_and_another_difference_names_no_formula():
+    centred = {10: 6.0, 100: 10.633, 190: -9.09}
+    forward = {d: v * 1.003 for d, v in centred.items()}
+    y = np.zeros(361)
+    for d, v in centred.items():
+        y[d] = v * 1.002  # within 1e-3 of the forward values, but barely closer to them
+    message = _fails(kc.series, "w", y, centred, rtol=1e-3, alternatives=[(forward, "matches the forward difference")])
+    assert "matches the forward difference" not in message and "off by up to" in message
+
+
+def test_np_diff_without_h_is_named_as_a_missing_division_by_h(hw1_sweep):
+    phi, beta = hw1_sweep
+    message = _fails(_master_test(HW1, "test_dphi_forward"), np.diff(phi))
+    assert message.startswith("`dphi_fw`: off by a factor 1/57.3 (= h, with h = 0.01745 rad): "
+                              "a division by the step h is missing?")
+    assert "radians where degrees are asked" not in message
+    # the reference values agree with the division made: h times the forward difference
+    ref = build.load_expected(HW1)["dphi_forward"]
+    assert np.diff(phi)[100] / H_RAD == pytest.approx(ref[100], rel=1e-6)
+    # a second difference without / h² is named the same way, and so is the public check near -25 rad/s²
+    omega = 7.5
+    second = omega**2 * np.diff(beta, 2)  # starts at 1°: interior values
+    message = _fails(_master_test(HW1, "test_d2beta_dt2_centred"), second)
+    assert "(= h², with h = 0.01745 rad): the division by h² is missing?" in message
+    message = _fails(_master_test(HW1, "test_near_the_assignment_check"), 10.63, second, omega, beta)
+    assert message.startswith("`alpha_100` at θ = 100° = -0.0086") and "the division by h² is missing?" in message
+
+
+def test_missing_step_is_named_only_for_difference_quotients():
+    # without a step the degree slip is named, as before; with it the missing division comes first
+    assert "radians where degrees are asked" in kc.explain_factor(H_RAD, ("deg",))
+    assert "division by the step h is missing" in kc.explain_factor(H_RAD, ("deg",), step_rad=H_RAD)
+    assert "sign is flipped as well" in kc.explain_factor(-H_RAD, ("deg",), step_rad=H_RAD)
+    assert kc.explain_factor(1 / H_RAD, ("deg",), step_rad=H_RAD).startswith("off by a factor 57.3")
+    assert kc.explain_factor(1.3, ("deg",), step_rad=H_RAD) is None
+
+
+# --------------------------------------------------------------------------
+# the solution and the student version of the masters
+# --------------------------------------------------------------------------
+
+
+def test_hw1_solution_sweep_keeps_angles_continuous_across_a_full_turn():
+    """The reference solution's continuation does not wrap angles to [0, 2π): on a drag-link,
+    whose output turns fully, its angles pass 2π without a jump that differences would see."""
+    cells = [c.source for c in _master_cells(HW1) if c.cell_type == "code"]
+    namespace: dict = {}
+    exec(cells[0], namespace)  # imports, dimensions, θ grid
+    (solver,) = [s for s in cells if "def four_bar_sweep(" in s]
+    exec(solver, namespace)
+    theta = np.radians(np.arange(0.0, 721.0))
+    # fixed link shortest: both cranks turn fully (Grashof drag-link); guess near θ = 0's solution
+    out, coupler = namespace["four_bar_sweep"](theta, 1.0, 3.0, 3.5, 3.0, np.radians([10.0, 100.0]))
+    gap = kc.four_bar_gap(out, theta, 1.0, 3.0, 3.5, 3.0)
+    assert gap.max() < 1e-9
+    assert np.ptp(out) > 2 * np.pi  # it turned fully, past 2π
+    assert np.degrees(np.abs(np.diff(out))).max() < 5.0
+    assert np.degrees(np.abs(np.diff(coupler))).max() < 5.0
+
+
+def _student_code(hw):
+    """The code cells of the student notebook otter assign makes from a master (tests left out)."""
+    pytest.importorskip("otter")
+    from otter.assign.solutions import replace_solutions
+
+    code, in_solution, in_tests = [], False, False
+    for cell in _master_cells(hw):
+        text = cell.source.strip()
+        if cell.cell_type == "raw":
+            in_solution = {"# BEGIN SOLUTION": True, "# END SOLUTION": False}.get(text, in_solution)
+            in_tests = {"# BEGIN TESTS": True, "# END TESTS": False}.get(text, in_tests)
+        elif cell.cell_type == "code" and not in_tests:
+            code.append("\n".join(replace_solutions(cell.source.split("\n"), "python")) if in_solution else cell.source)
+    return code
+
+
+@pytest.mark.parametrize("hw", HOMEWORK)
+def test_student_notebook_runs_all_cells(hw, monkeypatch, tmp_path):
+    """"Run All" on the student version: the stubs (``...``) run, and the checks then say what is missing."""
+    pytest.importorskip("matplotlib").use("Agg")
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.syspath_prepend(str(build.folder(hw)))
+    namespace: dict = {}
+    for number, source in enumerate(_student_code(hw)):
+        try:
+            exec(source, namespace)
+        except Exception as error:  # noqa: BLE001 - the cell and the error are the message
+            pytest.fail(f"{hw}: student cell {number} raises {type(error).__name__}: {error}\n{source}")
+    if hw == HW1:
+        assert namespace["phi"] is Ellipsis and namespace["beta"] is Ellipsis
+        assert "`phi` is not set yet: replace its `...`" in _fails(kc.array, namespace["phi"], "phi")
+
+
+def test_the_scene_format_is_linked_to_its_page():
+    readme = (ASSIGNMENTS / "README.md").read_text()
+    assert "numkin/scene.py" not in readme
+    assert "](../docs/scene.rst)" in readme and (ROOT / "docs" / "scene.rst").exists()
+    # the docs page includes the README with links under ../docs/ made relative to docs/
+    assert ":relative-docs: ../docs/" in (ROOT / "docs" / "assignments.md").read_text()

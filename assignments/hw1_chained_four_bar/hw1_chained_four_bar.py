@@ -113,13 +113,16 @@ def four_bar_sweep(inputs, r_fixed, r_in, r_coupler, r_out, guess):
                 [r_out * np.cos(x[0]), r_coupler * np.cos(x[1])],
             ])
 
-        x = np.mod(newton(F, J, x), 2 * np.pi)  # the next solve starts here
+        x = newton(F, J, x)  # the next solve starts here; not wrapped, so differences stay small
         result[k] = x
     return result[:, 0], result[:, 1]
     # END SOLUTION
 
 
-phi, psi = four_bar_sweep(theta, FIXED_1, INPUT_1, COUPLER_1, OUTPUT_1, np.radians([45.0, 60.0]))  # SOLUTION
+""" # BEGIN PROMPT
+phi, psi = ..., ...  # replace each ... with an array of 361 angles: phi (output), psi (coupler)
+""" # END PROMPT
+phi, psi = four_bar_sweep(theta, FIXED_1, INPUT_1, COUPLER_1, OUTPUT_1, np.radians([45.0, 60.0]))  # SOLUTION NO PROMPT
 
 # %% [raw]
 # # END SOLUTION
@@ -238,7 +241,7 @@ def test_dphi_centred(dphi_c):
             (FORWARD, "this matches the forward difference; the question asks for centred"),
             (BACKWARD, "this matches the backward difference; the question asks for centred"),
         ],
-        suspects=("deg",),
+        suspects=("deg",), step_rad=0.017453292519943295,  # h = 1° in radians
     )
 
 # %%
@@ -257,7 +260,7 @@ def test_dphi_forward(dphi_fw):
             (CENTRED, "this matches the centred difference; the question asks for forward"),
             (BACKWARD, "this matches the backward difference (φᵢ − φᵢ₋₁)/h; the question asks for forward (φᵢ₊₁ − φᵢ)/h"),
         ],
-        suspects=("deg",),
+        suspects=("deg",), step_rad=0.017453292519943295,  # h = 1° in radians
     )
 
 # %% [raw]
@@ -342,7 +345,10 @@ def test_orders(more_accurate, order_forward, order_centred):
 
 # %%
 alpha_in = phi + np.radians(OFFSET_DEG)  # SOLUTION
-beta, gamma = four_bar_sweep(alpha_in, FIXED_2, INPUT_2, COUPLER_2, OUTPUT_2, np.radians([30.0, 270.0]))  # SOLUTION
+""" # BEGIN PROMPT
+beta, gamma = ..., ...  # replace each ... with an array of 361 angles: beta (output), gamma (coupler)
+""" # END PROMPT
+beta, gamma = four_bar_sweep(alpha_in, FIXED_2, INPUT_2, COUPLER_2, OUTPUT_2, np.radians([30.0, 270.0]))  # SOLUTION NO PROMPT
 
 # %% [raw]
 # # END SOLUTION
@@ -448,8 +454,9 @@ def test_near_the_assignment_check(omega_100, alpha_100, omega, beta):
     b = kc.array(beta, "beta")
     if suspects == ["deg"] and np.nanmax(np.abs(b)) <= 2 * np.pi + 0.5:
         suspects = []  # beta is in radians and omega is right: neither unit explains a miss
-    kc.band("omega_100", omega_100, 8.0, 12.0, about=10.0, deg=100, unit="rad/s", suspects=suspects)
-    kc.band("alpha_100", alpha_100, -32.5, -17.5, about=-25.0, deg=100, unit="rad/s²", suspects=suspects)
+    h = np.radians(1.0)  # a missing division by h (or h²) is named first
+    kc.band("omega_100", omega_100, 8.0, 12.0, about=10.0, deg=100, unit="rad/s", suspects=suspects, step_rad=h)
+    kc.band("alpha_100", alpha_100, -32.5, -17.5, about=-25.0, deg=100, unit="rad/s²", suspects=suspects, step_rad=h)
 
 # %%
 """ # BEGIN TEST CONFIG
@@ -459,7 +466,7 @@ def test_omega_100(omega_100):
     import kincheck as kc
 
     OMEGA_100 = 10.6328964886  # numkin: omega_beta_100
-    kc.value("omega_100", omega_100, OMEGA_100, deg=100, rtol=5e-3, unit="rad/s")
+    kc.value("omega_100", omega_100, OMEGA_100, deg=100, rtol=5e-3, unit="rad/s", step_rad=0.017453292519943295)
 
 # %%
 """ # BEGIN TEST CONFIG
@@ -471,7 +478,7 @@ def test_alpha_100(alpha_100):
     ALPHA_100 = -28.3749666204  # numkin: alpha_beta_100
     ALPHA_100_FW = -28.1265557975  # numkin: alpha_beta_fw_100
     kc.value(
-        "alpha_100", alpha_100, ALPHA_100, deg=100, rtol=5e-3, unit="rad/s²",
+        "alpha_100", alpha_100, ALPHA_100, deg=100, rtol=5e-3, unit="rad/s²", step_rad=0.017453292519943295,
         alternatives=[(ALPHA_100_FW, "this matches the forward difference applied twice; the question asks for the centred second difference")],
     )
 
@@ -486,7 +493,7 @@ def test_dbeta_dt_centred(dbeta_dt_c):
     FORWARD = {10: 6.1539575112, 40: 13.7627006538, 70: 12.9095510357, 100: 10.5999795275, 130: 8.5867169372, 160: 3.32443065016, 190: -9.24976225005, 220: -13.1364439499, 250: -12.8885650637, 280: -11.1909207485, 310: -7.00095892645, 340: -1.83373672838}  # numkin: dbeta_dt_forward
     BACKWARD = {10: 5.82535941365, 40: 13.6615378892, 70: 12.9937886847, 100: 10.6660146395, 130: 8.66889990148, 160: 3.65529973138, 190: -8.93605573479, 220: -13.1151918752, 250: -12.9133736458, 280: -11.289247993, 310: -7.16381887055, 340: -2.02826076113}  # numkin: dbeta_dt_backward
     kc.series(
-        "dbeta_dt_c", dbeta_dt_c, CENTRED, rtol=1e-5, unit="rad/s",
+        "dbeta_dt_c", dbeta_dt_c, CENTRED, rtol=1e-5, unit="rad/s", step_rad=0.017453292519943295,
         alternatives=[
             (FORWARD, "this matches the forward difference; the question asks for centred"),
             (BACKWARD, "this matches the backward difference; the question asks for centred"),
@@ -503,7 +510,7 @@ def test_dbeta_dt_forward(dbeta_dt_fw):
     CENTRED = {10: 5.98965846242, 40: 13.7121192715, 70: 12.9516698602, 100: 10.6329970835, 130: 8.62780841934, 160: 3.48986519077, 190: -9.09290899242, 220: -13.1258179125, 250: -12.9009693547, 280: -11.2400843708, 310: -7.0823888985, 340: -1.93099874476}  # numkin: dbeta_dt_centred
     FORWARD = {10: 6.1539575112, 40: 13.7627006538, 70: 12.9095510357, 100: 10.5999795275, 130: 8.5867169372, 160: 3.32443065016, 190: -9.24976225005, 220: -13.1364439499, 250: -12.8885650637, 280: -11.1909207485, 310: -7.00095892645, 340: -1.83373672838}  # numkin: dbeta_dt_forward
     kc.series(
-        "dbeta_dt_fw", dbeta_dt_fw, FORWARD, rtol=1e-5, unit="rad/s",
+        "dbeta_dt_fw", dbeta_dt_fw, FORWARD, rtol=1e-5, unit="rad/s", step_rad=0.017453292519943295,
         alternatives=[(CENTRED, "this matches the centred difference; the question asks for forward")],
     )
 
@@ -518,7 +525,7 @@ def test_d2beta_dt2_centred(d2beta_dt2_c):
     FORWARD_TWICE = {10: 141.834312181, 40: 38.0004175175, 70: -36.3696217271, 100: -28.1265557975, 130: -36.417933694, 160: -148.743488111, 190: -128.172584077, 220: -7.63602782686, 250: 11.1778128316, 280: 43.7021492814, 310: 70.1928583397, 340: 85.0328710984}  # numkin: d2beta_dt2_forward_twice
     GRADIENT_TWICE = {10: 141.15020446, 40: 43.4968361987, 70: -36.1776377673, 100: -28.3810960095, 130: -35.3383400878, 160: -142.191413548, 190: -134.807188983, 220: -9.16255435504, 250: 10.667562033, 280: 42.252398488, 310: 69.9758272445, 340: 83.6149448045}  # numkin: d2beta_dt2_gradient_twice
     kc.series(
-        "d2beta_dt2_c", d2beta_dt2_c, SECOND, rtol=1e-4, unit="rad/s²",
+        "d2beta_dt2_c", d2beta_dt2_c, SECOND, rtol=1e-4, unit="rad/s²", step_rad=0.017453292519943295,
         alternatives=[
             (FORWARD_TWICE, "this matches the forward difference applied twice; the question asks for the centred second difference"),
             (GRADIENT_TWICE, "this matches np.gradient applied twice, a centred difference of step 2h; the question asks for the centred second difference (βᵢ₊₁ − 2βᵢ + βᵢ₋₁)/h²"),
@@ -535,7 +542,7 @@ def test_d2beta_dt2_forward(d2beta_dt2_fw):
     SECOND = {10: 141.204631092, 40: 43.47149589, 70: -36.1984632388, 100: -28.3764991377, 130: -35.3155275092, 160: -142.180514443, 190: -134.805444974, 220: -9.13240639217, 250: 10.6607028756, 280: 42.2530209027, 310: 69.9839058636, 340: 83.5905456819}  # numkin: d2beta_dt2_second
     FORWARD_TWICE = {10: 141.834312181, 40: 38.0004175175, 70: -36.3696217271, 100: -28.1265557975, 130: -36.417933694, 160: -148.743488111, 190: -128.172584077, 220: -7.63602782686, 250: 11.1778128316, 280: 43.7021492814, 310: 70.1928583397, 340: 85.0328710984}  # numkin: d2beta_dt2_forward_twice
     kc.series(
-        "d2beta_dt2_fw", d2beta_dt2_fw, FORWARD_TWICE, rtol=1e-4, unit="rad/s²",
+        "d2beta_dt2_fw", d2beta_dt2_fw, FORWARD_TWICE, rtol=1e-4, unit="rad/s²", step_rad=0.017453292519943295,
         alternatives=[(SECOND, "this matches the centred second difference; the question asks for the forward difference applied twice")],
     )
 
@@ -553,7 +560,7 @@ def test_dbeta_dt_is_your_omega_times_the_centred_difference(dbeta_dt_c, omega, 
         "dbeta_dt_c", dbeta_dt_c, kc.own_difference(b, degs, h, "centred", w), rtol=1e-6, unit="rad/s",
         alternatives=[(kc.own_difference(b, degs, h, "forward", w),
                        "this matches the forward difference of your `beta`; the question asks for centred")],
-        suspects=("deg",), small_hint=None,
+        suspects=("deg",), small_hint=None, step_rad=h,
     )
 
 # %%
@@ -574,7 +581,7 @@ def test_d2beta_dt2_is_your_omega_squared_times_the_second_difference(d2beta_dt2
             (kc.own_difference(b, degs, h, "gradient_twice", w**2),
              "this matches np.gradient applied twice to your `beta`, a centred difference of step 2h; the question asks for (βᵢ₊₁ − 2βᵢ + βᵢ₋₁)/h²"),
         ],
-        suspects=("deg",), small_hint=None,
+        suspects=("deg",), small_hint=None, step_rad=h,
     )
 
 # %% [raw]

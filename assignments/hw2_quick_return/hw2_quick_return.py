@@ -187,7 +187,7 @@ def newton(x0, theta2, tol=1e-10, maxiter=50):
 
 """ # BEGIN PROMPT
 guess = ...  # [r3, theta3, r4, r5] read off a sketch
-r3, theta3, r4, r5 = ...
+r3, theta3, r4, r5 = ..., ..., ..., ...  # replace each ... with the solution at theta2 = 30 degrees
 """ # END PROMPT
 # BEGIN SOLUTION NO PROMPT
 guess = [80.0, np.radians(60.0), 130.0, 50.0]  # from a sketch of the linkage at 30 degrees

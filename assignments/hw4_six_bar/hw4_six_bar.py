@@ -90,7 +90,7 @@ def newton(F, J, x0, tol=1e-10, maxiter=50):
 
 
 """ # BEGIN PROMPT
-theta3, theta4, theta5, x_D = ...
+theta3, theta4, theta5, x_D = ..., ..., ..., ...  # replace each ... with an array over theta2
 """ # END PROMPT
 # BEGIN SOLUTION NO PROMPT
 def loop1(t2):
