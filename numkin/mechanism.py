@@ -148,7 +148,7 @@ class Mechanism:
                 raise ValueError(f"parameter {p} = {v:g} is negative, but {p} is declared non-negative")
         value_of = {p: v for (p, _, _), v in zip(params, values)}
         check_lengths(model, value_of)
-        self._lengths_model = {"parameters": params, "loops": model["loops"]}
+        self._description = model  # numkin.loops.describe's names: what check_lengths reads
         self.unknowns = tuple(u for lp in model["loops"] for u in lp["unknowns"])
         self.angles = tuple(u for lp in model["loops"] for u in lp["unknowns"] if u in lp["angles"])
         self.loop_slices = []
@@ -419,8 +419,8 @@ class Mechanism:
 
     def check_lengths(self, lengths=None) -> None:
         """:func:`numkin.loops.check_lengths` here; ``lengths``: parameters that are lengths whatever their declaration."""
-        value_of = {p: v for (p, _, _), v in zip(self._lengths_model["parameters"], self.parameter_values.tolist())}
-        check_lengths(self._lengths_model, value_of, lengths)
+        params = self._description["parameters"]
+        check_lengths(self._description, {p: v for (p, _, _), v in zip(params, self.parameter_values.tolist())}, lengths)
 
     @property
     def default_guess(self):
