@@ -63,10 +63,8 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
     ok = np.empty(N, dtype=bool)
     residual = np.empty(N)
     jac = None
-    if N >= QUINTIC_MIN_POINTS * nodes.size:
-        D2n = node_curvatures(ctx, t, X, D, nodes)
-    else:  # few points per segment: the curvatures would cost more than the iteration they save
-        D2n = np.full((X.shape[0], nodes.size), np.nan)
+    # few points per segment: the curvatures would cost more than the iteration they save
+    D2n = node_curvatures(ctx, t, X, D, nodes) if N >= QUINTIC_MIN_POINTS * nodes.size else None
     for c0 in range(0, N, CHUNK):
         c = slice(c0, min(N, c0 + CHUNK))
         fm, kc, tc = fine_mask[c], k[c], t[c]
@@ -100,12 +98,10 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
     if ctx.angle_idx:
         # Both nodes of a segment are right (marched), so a run of batch points on another turn
         # shows as a neighbour step of half a turn or more: march that whole segment.
-        jump = None
-        for i in ctx.angle_idx:
-            d = np.diff(X[i])
-            np.abs(d, out=d)
-            jump = d if jump is None else np.maximum(jump, d, out=jump)
-        jump = np.flatnonzero(jump >= math.pi)
+        rows = ctx.angle_idx
+        steps = np.diff(X[rows[0]] if len(rows) == 1 else X.take(rows, axis=0), axis=-1)
+        np.abs(steps, out=steps)
+        jump = np.flatnonzero((steps if len(rows) == 1 else steps.max(axis=0)) >= math.pi)
         if jump.size:
             ok &= ~(fine_mask & np.isin(k, k.take(jump)))
     cond = _conds(ctx, jac, N)

@@ -14,6 +14,8 @@ import math
 
 import numpy as np
 
+from .unrolled import cond2, unrolled_local, unrolled_newton, unrolled_newton_batch, unrolled_solve, unrolled_update
+
 __all__ = ["BlockStructure", "stack_rows"]
 
 
@@ -66,17 +68,19 @@ class BlockStructure:
         self._step = None
         self.newton1 = None
         self.newton_batch = None
+        self._local = None
         if self._small:
             zeros = set(zeros)
-            self.solve1 = _unrolled_solve(n, self.blocks, zeros, batch=False)
-            self._step = _unrolled_solve(n, self.blocks, zeros, batch=True)
-            self.update1 = _unrolled_update(n, self.blocks, zeros, self.inv_xscale)
+            self.solve1 = unrolled_solve(n, self.blocks, zeros, batch=False)
+            self._step = unrolled_solve(n, self.blocks, zeros, batch=True)
+            self.update1 = unrolled_update(n, self.blocks, zeros, self.inv_xscale)
+            self._local = unrolled_local(n, self.blocks, zeros, self._col)
             #: Newton-Raphson at one point with every update written out for these blocks; called with
             #: the kernel, the point and the stopping rule (see :meth:`numkin.march.Continuation.newton1`).
-            self.newton1 = _unrolled_newton(n, self.blocks, zeros, self.inv_xscale, self._col)
+            self.newton1 = unrolled_newton(n, self.blocks, zeros, self.inv_xscale, self._col)
             #: Newton-Raphson on whole arrays with every update written out (see
             #: :meth:`numkin.march.Continuation.newton_batch`).
-            self.newton_batch = _unrolled_newton_batch(n, self.blocks, zeros, self.inv_xscale)
+            self.newton_batch = unrolled_newton_batch(n, self.blocks, zeros, self.inv_xscale)
 
     def newton_step(self, J, f):
         """The Newton step ``-J^-1 f`` at every point: J rows, f (n, N) -> (dx (n, N), bad (N,)).
@@ -152,6 +156,28 @@ class BlockStructure:
             return None, None
         return [a + b for a, b in zip(x, dx)], max([abs(a) * w for a, w in zip(dx, self.inv_xscale)])
 
+    def local1(self, v):
+        """Tangent, orientations and largest condition number at one solved point.
+
+        ``v`` holds the residuals, the Jacobian rows and dF/dt (one point,
+        floats). Returns ``(dq/dt, signs, cond)``: the tangent ``-J^-1 dF/dt``
+        and the signs of the blocks' determinants (None, None where a block
+        is singular), and the largest condition number of the scaled blocks
+        (:meth:`cond1`).
+
+        Examples
+        --------
+        >>> bs = BlockStructure([slice(0, 2)], 1.0, [1.0, 1.0])
+        >>> d, o, c = bs.local1([0.0, 0.0, 2.0, 0.0, 0.0, 4.0, -1.0, -1.0])
+        >>> d, o, round(c, 12)
+        ([0.5, 0.25], [1.0], 2.0)
+        """
+        if self._local is not None:
+            return self._local(v)
+        n, nn = self.n, self.n * self.n
+        d, o = self.solve1(v[n : n + nn], [-a for a in v[n + nn :]])
+        return d, o, max(self.cond1(v[n : n + nn]))
+
     def cond1(self, J):
         """Condition numbers of the scaled diagonal blocks at one point (list, one per loop)."""
         if not self._small:
@@ -165,7 +191,7 @@ class BlockStructure:
                 continue
             i0 = a * n + a
             ca, cb = self._col[a], self._col[a + 1]
-            out.append(_cond2(J[i0] * ca, J[i0 + 1] * cb, J[i0 + n] * ca, J[i0 + n + 1] * cb))
+            out.append(cond2(J[i0] * ca, J[i0 + 1] * cb, J[i0 + n] * ca, J[i0 + n + 1] * cb))
         return out
 
     # ------------------------------------------------------------ many points
@@ -299,274 +325,3 @@ def stack_rows(rows, N):
     for i, r in enumerate(rows):
         out[i] = r
     return out
-
-
-
-def _cond2(p, q, r, s):
-    """2-norm condition number of [[p, q], [r, s]] (closed form; see ``BlockStructure.cond``)."""
-    det = p * s - q * r
-    if not (det != 0.0 and math.isfinite(det)):
-        return math.inf
-    fro = p * p + q * q + r * r + s * s
-    gap = (p - s) ** 2 + (q + r) ** 2 if det > 0 else (p + s) ** 2 + (q - r) ** 2
-    ad = abs(det)
-    c = (fro + math.sqrt(gap * (fro + 2.0 * ad))) / (2.0 * ad)
-    return c if c >= 1.0 else (1.0 if math.isfinite(c) else math.inf)
-
-
-def _step_lines(n, blocks, zeros, singular, indent="    "):
-    """Lines computing the Newton step ``d0 .. d{n-1} = -J^-1 F`` from ``v = [F..., J rows...]``
-    by forward substitution through the blocks (sizes 1 and 2); ``singular`` is the statement
-    run where a block's determinant is zero or not finite. ``singular=None``: whole arrays, no
-    test (the caller tests the result), each 2 x 2 block multiplied by ``1 / det``."""
-    lines = []
-    for a, b in blocks:
-        for i in range(a, b):
-            terms = "".join(f" + v[{n + i * n + j}] * d{j}" for j in range(a) if (i, j) not in zeros)
-            lines.append(f"r{i} = v[{i}]{terms}")
-        if b - a == 2:
-            i0 = n + a * n + a
-            lines.append(f"a00 = v[{i0}]; a01 = v[{i0 + 1}]; a10 = v[{i0 + n}]; a11 = v[{i0 + n + 1}]")
-            if singular is None:
-                lines += [
-                    "inv = 1.0 / (a00 * a11 - a01 * a10)",
-                    f"d{a} = (a01 * r{a + 1} - r{a} * a11) * inv",
-                    f"d{a + 1} = (a10 * r{a} - a00 * r{a + 1}) * inv",
-                ]
-                continue
-            lines += [
-                "det = a00 * a11 - a01 * a10",
-                f"if not (det != 0.0 and -INF < det < INF): {singular}",
-                f"d{a} = (a01 * r{a + 1} - r{a} * a11) / det",
-                f"d{a + 1} = (a10 * r{a} - a00 * r{a + 1}) / det",
-            ]
-        elif singular is None:
-            lines.append(f"d{a} = -r{a} / v[{n + a * n + a}]")
-        else:
-            lines += [
-                f"det = v[{n + a * n + a}]",
-                f"if not (det != 0.0 and -INF < det < INF): {singular}",
-                f"d{a} = -r{a} / det",
-            ]
-    if singular is not None:
-        lines.append(f"if not -INF < {' + '.join(f'd{i}' for i in range(n))} < INF: {singular}")
-    return [indent + line for line in lines]
-
-
-def _scaled_max(names, weights):
-    """Source of ``max(|name_i| * weight_i)`` (a weight of one left out)."""
-    terms = [f"abs({a})" if w == 1.0 else f"abs({a}) * {w!r}" for a, w in zip(names, weights)]
-    return terms[0] if len(terms) == 1 else f"max({', '.join(terms)})"
-
-
-def _unrolled_update(n, blocks, zeros, inv_xscale):
-    """Generate ``update1(v, x) -> (x_new, step)``: one Newton update at one point, written out.
-
-    ``v`` holds the residuals then the Jacobian rows (from offset n).
-    """
-    lines = ["def update1(v, x):", *_step_lines(n, blocks, zeros, "return None, None")]
-    step = _scaled_max([f"d{i}" for i in range(n)], inv_xscale)
-    lines.append(f"    return [{', '.join(f'x[{i}] + d{i}' for i in range(n))}], {step}")
-    namespace = {"INF": math.inf}
-    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers only
-    return namespace["update1"]
-
-
-def _unrolled_newton(n, blocks, zeros, inv_xscale, col):
-    """Generate ``newton1(K, x, t, pt, maxiter, fscale, tol, converged, floor, errors, cond_max=None)``:
-    Newton-Raphson at one point with every update written out.
-
-    ``K(*x, t, *pt)`` is the fused scalar kernel (residuals, Jacobian rows,
-    ...), ``converged`` the stopping rule (:func:`numkin.newton_rules.has_converged`)
-    and ``floor(x, t)`` the residual's round-off floor (consulted only when the
-    steps stall above ``tol``). Returns ``(x, status, iterations, residual, v,
-    evaluations)`` as :meth:`numkin.march.Continuation.newton1` does: a
-    Jacobian singular where the residual is already within ``tol`` (a root
-    on a singular position, predicted exactly) has converged; with
-    ``cond_max``, a Jacobian whose scaled blocks (``col``: the unknowns'
-    scales over the residuals') have a larger condition number is refused
-    as singular.
-    """
-    xs = [f"x{i}" for i in range(n)]
-    xl = "[" + ", ".join(xs) + "]"
-    res = "max(" + ", ".join(f"abs(v[{i}])" for i in range(n)) + ")" if n > 1 else "abs(v[0])"
-    # the conditioning rule on the scaled 2 x 2 blocks (a block of size 1 is refused only where it is
-    # exactly singular, by the step itself, as in BlockStructure.cond1)
-    conds = [f"COND2(v[{n + a * n + a}] * {col[a]!r}, v[{n + a * n + a + 1}] * {col[a + 1]!r}, "
-             f"v[{n + (a + 1) * n + a}] * {col[a]!r}, v[{n + (a + 1) * n + a + 1}] * {col[a + 1]!r})"
-             for a, b in blocks if b - a == 2]
-    cond_check = []
-    if conds:
-        worst = conds[0] if len(conds) == 1 else f"max({', '.join(conds)})"
-        cond_check = [f"        if cond_max is not None and not {worst} <= cond_max:",
-                      "            status = 'singular'",
-                      "            break"]
-    lines = [
-        "def newton1(K, x, t, pt, maxiter, fscale, tol, converged, floor, errors, cond_max=None):",
-        f"    {', '.join(xs)}{',' if n == 1 else ''} = x",
-        "    try:",
-        f"        v = K({', '.join(xs)}, t, *pt)",
-        "    except errors:",
-        "        return x, 'diverged', 0, NAN, None, 1",
-        "    if not -INF < sum(v) < INF:",
-        "        return x, 'diverged', 0, NAN, None, 1",
-        f"    res = {res} / fscale",
-        "    prev = INF",
-        "    it = 0",
-        "    status = 'maxiter'",
-        "    while it < maxiter:",
-        *cond_check,
-        *_step_lines(n, blocks, zeros, "status = 'converged' if res <= tol and cond_max is None else 'singular'; break",
-                     indent="        "),
-        *[f"        x{i} += d{i}" for i in range(n)],
-        f"        step = {_scaled_max([f'd{i}' for i in range(n)], inv_xscale)}",
-        "        it += 1",
-        "        try:",
-        f"            v = K({', '.join(xs)}, t, *pt)",
-        "        except errors:",
-        f"            return {xl}, 'diverged', it, NAN, None, it + 1",
-        "        if not -INF < sum(v) < INF:",
-        f"            return {xl}, 'diverged', it, NAN, None, it + 1",
-        f"        res = {res} / fscale",
-        f"        low = floor({xl}, t) if res > tol and step >= 0.9 * prev else 0.0",
-        "        if converged(res, step, prev, tol, low):",
-        "            status = 'converged'",
-        "            break",
-        "        prev = step",
-        f"    return {xl}, status, it, res, v, it + 1",
-    ]
-    namespace = {"INF": math.inf, "NAN": math.nan, "COND2": _cond2}
-    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
-    return namespace["newton1"]
-
-
-def _unrolled_newton_batch(n, blocks, zeros, inv_xscale):
-    """Generate ``newton_batch(K, x, t, kargs, active, maxiter, fscale, tol, floor, converged)``:
-    Newton-Raphson on whole arrays with every update written out.
-
-    The iteration of :func:`numkin.newton.solve_batch` without compaction
-    (every column is computed at every iteration, the inactive ones are not
-    moved) and without histories: ``K(*x, t, *kargs)`` is the fused kernel
-    (residual rows, then Jacobian rows), ``x`` (n, N) is iterated in place,
-    ``converged`` the stopping rule (:func:`numkin.newton_rules.has_converged`).
-    Returns ``(converged, singular, iterations, rows, evaluations)``, ``rows``
-    the kernel's rows at the returned ``x``, ``evaluations`` the kernel's
-    calls; or None, before any step, if a residual row
-    is not an (N,) array (a constant residual: the caller's general loop
-    takes it).
-    """
-    xs = ", ".join(f"x{i}" for i in range(n))
-    call = f"K({xs}, t, *kargs)"
-    fmax = "ABS(v[0])" if n == 1 else "MAX(" * (n - 1) + "ABS(v[0])" + "".join(
-        f", ABS(v[{i}]))" for i in range(1, n))
-    step = f"ABS(d0) * {inv_xscale[0]!r}" if inv_xscale[0] != 1.0 else "ABS(d0)"
-    for i in range(1, n):
-        term = f"ABS(d{i})" if inv_xscale[i] == 1.0 else f"ABS(d{i}) * {inv_xscale[i]!r}"
-        step = f"MAX({step}, {term})"
-    temporaries = ", ".join(["v", *(f"r{i}" for i in range(n)), *(f"d{i}" for i in range(n))]
-                            + (["a00", "a01", "a10", "a11", "inv"] if any(b - a == 2 for a, b in blocks) else []))
-    lines = [
-        "def newton_batch(K, x, t, kargs, active, maxiter, fscale, tol, floor, converged):",
-        "    N = x.shape[1]",
-        *[f"    x{i} = x[{i}]" for i in range(n)],
-        f"    v = {call}",
-        f"    if not all(type(v[i]) is NDARRAY and v[i].shape == (N,) for i in range({n})):",
-        "        return None",
-        f"    fmax = {fmax}",
-        "    done_all = ZEROS(N, dtype=bool)",
-        "    singular = ZEROS(N, dtype=bool)",
-        "    iterations = ZEROS(N, dtype=int)",
-        "    act = active & ISFINITE(fmax)",
-        "    prev = FULL(N, INF)",
-        "    evaluations = 1",
-        "    for _ in range(maxiter):",
-        "        if not act.any():",
-        "            break",
-        *_step_lines(n, blocks, zeros, None, indent="        "),
-        f"        upd = ISFINITE({' + '.join(f'd{i}' for i in range(n))})",
-        "        bad = act & ~upd",
-        "        upd &= act",
-        *[f"        ADD(x{i}, d{i}, out=x{i}, where=upd)" for i in range(n)],
-        f"        step = {step}",
-        f"        del {temporaries}  # freed before the next evaluation: one set of rows alive at a time",
-        f"        v = {call}",
-        "        evaluations += 1",
-        f"        fmax = {fmax}",
-        "        iterations += upd",
-        "        singular |= bad",
-        "        done = upd & converged(fmax / fscale, step, prev, tol, floor)",
-        "        done_all |= done",
-        "        act &= ~(done | bad) & ISFINITE(fmax)",
-        "        prev = WHERE(upd, step, prev)",
-        "    return done_all, singular, iterations, v, evaluations",
-    ]
-    namespace = {"INF": math.inf, "ABS": np.abs, "MAX": np.maximum, "ADD": np.add, "ISFINITE": np.isfinite,
-                 "WHERE": np.where, "ZEROS": np.zeros, "FULL": np.full, "NDARRAY": np.ndarray}
-    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
-    return namespace["newton_batch"]
-
-
-def _unrolled_solve(n, blocks, zeros=frozenset(), batch=False):
-    """Generate the block forward substitution written out (blocks of size 1 or 2).
-
-    ``batch=False``: ``solve1(J, r) -> (dx, signs)`` for one point (floats),
-    ``(None, None)`` if a block is singular or a result not finite: the
-    fastest plain-Python form. ``batch=True``: ``step(J, f) -> rows of
-    -J^-1 f`` for arrays (no checks: the caller tests the result). Entries
-    in ``zeros`` are left out.
-    """
-
-    def term(i, j):
-        return (i, j) not in zeros
-
-    lines = ["def solve(J, r):"] if not batch else ["def solve(J, f, out):"]
-    for k, (a, b) in enumerate(blocks):
-        for i in range(a, b):
-            # batch: g_i = f_i + sum J_ij d_j  (d = -J^-1 f is solved as J d = -f)
-            if batch:
-                terms = "".join(f" + J[{i * n + j}] * d{j}" for j in range(a) if term(i, j))
-                lines.append(f"    r{i} = f[{i}]{terms}")
-            else:
-                terms = "".join(f" - J[{i * n + j}] * d{j}" for j in range(a) if term(i, j))
-                lines.append(f"    r{i} = r[{i}]{terms}")
-        if b - a == 2:
-            i0 = a * n + a
-            lines += [
-                f"    a00 = J[{i0}]; a01 = J[{i0 + 1}]; a10 = J[{i0 + n}]; a11 = J[{i0 + n + 1}]",
-                f"    det{k} = a00 * a11 - a01 * a10",
-            ]
-            if batch:
-                lines += [
-                    f"    inv = -1.0 / det{k}",
-                    f"    out[{a}] = (r{a} * a11 - a01 * r{a + 1}) * inv",
-                    f"    out[{a + 1}] = (a00 * r{a + 1} - a10 * r{a}) * inv",
-                    f"    d{a} = out[{a}]; d{a + 1} = out[{a + 1}]",
-                    f"    del inv, det{k}, r{a}, r{a + 1}",
-                ]
-            else:
-                lines += [
-                    f"    if not (det{k} != 0.0 and -INF < det{k} < INF): return None, None",
-                    f"    d{a} = (r{a} * a11 - a01 * r{a + 1}) / det{k}",
-                    f"    d{a + 1} = (a00 * r{a + 1} - a10 * r{a}) / det{k}",
-                ]
-        else:
-            lines.append(f"    det{k} = J[{a * n + a}]")
-            if batch:
-                lines += [f"    out[{a}] = -r{a} / det{k}", f"    d{a} = out[{a}]", f"    del det{k}, r{a}"]
-            else:
-                lines += [
-                    f"    if not (det{k} != 0.0 and -INF < det{k} < INF): return None, None",
-                    f"    d{a} = r{a} / det{k}",
-                ]
-    d = ", ".join(f"d{i}" for i in range(n))
-    if batch:
-        lines.append("    return out")
-    else:
-        sg = ", ".join(f"(1.0 if det{k} > 0 else -1.0)" for k in range(len(blocks)))
-        lines += [
-            f"    if not -INF < {' + '.join(f'd{i}' for i in range(n))} < INF: return None, None",
-            f"    return [{d}], [{sg}]",
-        ]
-    namespace = {"INF": math.inf}
-    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers only
-    return namespace["solve"]

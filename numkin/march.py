@@ -25,7 +25,8 @@ from .newton import (
     residual_floor,
     solve_batch,
 )
-from .predictors import MAX_PREDICTION, predict
+from .predictors import MAX_PREDICTION, unrolled_predict
+from .unrolled import scaled_distance
 from .sweep import SweepEvent, SingularityWarning
 
 __all__ = ["Continuation", "deg_text", "MAX_CORRECTION", "CORRECTOR_ITERATIONS",
@@ -99,6 +100,8 @@ class Continuation:
         self.unit_scale = all(w == 1.0 for w in self.inv_xs)  # angles only: no scaling in the step tests
         self.loop_names = [lp.name for lp in mech.loops]
         self.angle_idx = [k for k, u in enumerate(mech.unknowns) if u in mech.angles]
+        self.predict1 = unrolled_predict(self.n, None if self.unit_scale else tuple(self.inv_xs))
+        self.distance = scaled_distance(self.n, tuple(self.inv_xs))  # max |a - b| / xscale of two points
         self._fjt = comp.scalar_FJT
         self._newton1 = self.blocks.newton1 if self.symbolic else None
         self._f = comp.scalar_F
@@ -163,8 +166,8 @@ class Continuation:
         """
         n, nn, fscale, tol = self.n, self.nn, self.fscale, self.tol
         if self._newton1 is not None:
-            x, status, it, res, v, evals = self._newton1(self._fjt, x, t, self.pt, maxiter, fscale, tol, has_converged,
-                                                         self._floor, MATH_ERRORS, cond_max)
+            x, status, it, res, v, evals = self._newton1(self._fjt, x, t, self.pt, maxiter, fscale, tol, self._floor,
+                                                         MATH_ERRORS, cond_max)
             self.nfev += evals
             self.njev += evals
             return x, status, it, res, v
@@ -230,9 +233,8 @@ class Continuation:
         return self.blocks.solve1(v[n : n + nn], [-a for a in v[n + nn :]])
 
     def small_correction(self, x, x_pred) -> bool:
-        if self.unit_scale:
-            return max([abs(a - b) for a, b in zip(x, x_pred)]) <= MAX_CORRECTION
-        return max([abs(a - b) * w for a, b, w in zip(x, x_pred, self.inv_xs)]) <= MAX_CORRECTION
+        """Whether Newton moved the prediction ``x_pred`` by at most :data:`MAX_CORRECTION` (scaled)."""
+        return self.distance(x, x_pred) <= MAX_CORRECTION
 
     def worst1(self, x, t, which="residual"):
         """(loop name, value) of the loop with the largest residual or condition number at one point."""
@@ -459,14 +461,14 @@ class Continuation:
                 t_new = t + direction * dt
             if dt < min_step or t_new == t:
                 self.fail(t0, x0, t, x, t_new, x, "singular", "singular", 0, math.nan)
-            x_pred = predict(t, x, d, t_prev, x_prev, t_new, None if unit else inv_xs, rate, d_prev)
+            x_pred = self.predict1(t, x, d, t_prev, x_prev, t_new, rate, d_prev)
             x_new, status, it, res, v = self.correct(x_pred, t_new)
             reason = status
             ok = status == "converged"
             if ok and not self.small_correction(x_new, x_pred):
                 ok, reason = False, "correction"
             if ok:
-                d_new, o_new = self.local1(v)
+                d_new, o_new, cond = self.blocks.local1(v) if v is not None else (None, None, math.inf)
                 if o_new is None and d is not None and v is not None:
                     # a root where the Jacobian is singular (a change point on the grid, reached exactly):
                     # no tangent or orientation of its own; the branch's go on from the side it came from
@@ -480,7 +482,7 @@ class Continuation:
                     else:
                         self.change_point(t, t_new, self.loop_names[k], self.crossing(t, x, t_new, v, k))
             if ok and d is not None:
-                if not max(self.blocks.cond1(v[n : n + nn])) <= COND_TANGENT:
+                if not cond <= COND_TANGENT:
                     if dt > crossing_step:
                         # Next to a singular position the tangent is noise, so neither it nor the orientation
                         # (the other branch keeps it) tells the branches apart: localise as for a crossing.
@@ -524,11 +526,7 @@ class Continuation:
         :data:`MAX_TANGENT_TURN` (1 + ``|dq/dt|``)."""
         if d_new is None:
             return False
-        if self.unit_scale:
-            jump = max([abs(a - b) for a, b in zip(d_new, d)])
-        else:
-            jump = max([abs(a - b) * w for a, b, w in zip(d_new, d, self.inv_xs)])
-        return jump > MAX_TANGENT_TURN * (1.0 + rate)
+        return self.distance(d_new, d) > MAX_TANGENT_TURN * (1.0 + rate)
 
     def fail(self, t0, x0, t, x, t_next, x_try, status, reason, iterations, res):
         """Explain why the continuation cannot go from t to t_next, and raise.

@@ -9,6 +9,7 @@ the nodes' values and tangents (cubic), and their curvatures where known
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -16,7 +17,7 @@ import numpy as np
 if TYPE_CHECKING:  # pragma: no cover - for annotations only
     from .march import Continuation
 
-__all__ = ["predict", "hermite", "node_curvatures", "cubic_bases", "quintic_bases", "MAX_PREDICTION",
+__all__ = ["predict", "unrolled_predict", "hermite", "node_curvatures", "cubic_bases", "quintic_bases", "MAX_PREDICTION",
            "SANE_DISTANCE", "QUINTIC_MIN_POINTS"]
 
 #: Largest predicted change of an unknown in one step (scaled), 1.0: with the largest accepted
@@ -106,6 +107,63 @@ def predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate, d_prev=None):
     return [a + q for a, q in zip(lin, quad)]
 
 
+@lru_cache(maxsize=64)
+def unrolled_predict(n, inv_xs=None):
+    """Generate :func:`predict` written out for ``n`` unknowns and their inverse scales ``inv_xs``.
+
+    ``inv_xs`` is a tuple (or None: all one); the function is generated
+    once per argument pair. ``predict1(t, x, d, t_prev, x_prev, t_new, rate, d_prev)`` gives the
+    same numbers as ``predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate,
+    d_prev)`` where the tangent ``d`` is known (a step from a solved point);
+    without it, it calls :func:`predict`.
+
+    Examples
+    --------
+    >>> predict1 = unrolled_predict(1)
+    >>> predict1(1.0, [1.0], [3.0], 0.0, [0.0], 1.5, 3.0, [0.0])
+    [3.375]
+    """
+    w = [1.0] * n if inv_xs is None else list(inv_xs)
+
+    def biggest(name):
+        terms = [f"abs({name}{i})" if w[i] == 1.0 else f"abs({name}{i}) * {w[i]!r}" for i in range(n)]
+        return terms[0] if n == 1 else f"max({', '.join(terms)})"
+
+    def listed(fmt):
+        return "[" + ", ".join(fmt.format(i=i) for i in range(n)) + "]"
+
+    unpack = ", ".join(f"{{0}}{i}" for i in range(n)) + ("," if n == 1 else "")
+    lines = [
+        "def predict1(t, x, d, t_prev, x_prev, t_new, rate, d_prev=None):",
+        "    if d is None:",
+        "        return PREDICT(t, x, d, t_prev, x_prev, t_new, INV_XS, rate, d_prev)",
+        "    s = t_new - t",
+        f"    {unpack.format('x')} = x",
+        f"    {unpack.format('d')} = d",
+        *[f"    lin{i} = x{i} + d{i} * s" for i in range(n)],
+        "    if x_prev is None:",
+        f"        return {listed('lin{i}')}",
+        "    h = t_prev - t",
+        "    if abs(h) < SANE * abs(s):",
+        f"        return {listed('lin{i}')}",
+        "    bound = abs(s) * (1.0 + rate)",
+        "    r = s / h",
+        *[f"    e{i} = x_prev[{i}] - x{i} - d{i} * h" for i in range(n)],
+        "    if d_prev is not None:",
+        *[f"        g{i} = (d_prev[{i}] - d{i}) * h" for i in range(n)],
+        *[f"        q{i} = ((3.0 * e{i} - g{i}) + (g{i} - 2.0 * e{i}) * r) * r * r" for i in range(n)],
+        f"        if {biggest('q')} <= bound:",
+        f"            return {listed('lin{i} + q{i}')}",
+        *[f"    q{i} = e{i} * r * r" for i in range(n)],
+        f"    if not {biggest('q')} <= bound:",
+        f"        return {listed('lin{i}')}",
+        f"    return {listed('lin{i} + q{i}')}",
+    ]
+    namespace = {"PREDICT": predict, "INV_XS": inv_xs, "SANE": SANE_DISTANCE}
+    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
+    return namespace["predict1"]
+
+
 def node_curvatures(ctx: Continuation, t, X, D, nodes) -> np.ndarray:
     """d2q/dt2 at the nodes (n, nodes): the tangent's central difference along the curve.
 
@@ -136,7 +194,7 @@ def hermite(tc, t, X, D, D2n, nodes, k):
     Quintic (values, first and second derivatives at both nodes: error of
     order h^6) on a segment whose nodes both have a curvature in ``D2n``
     (n, nodes; NaN where unknown), cubic (values and tangents: order h^4)
-    on the others. ``k`` is the left node of every input (its index in
+    on the others (on every segment where ``D2n`` is None). ``k`` is the left node of every input (its index in
     ``nodes``), ``t`` the sweep's inputs; built row by row, so that few
     temporaries are alive at once.
 
@@ -160,26 +218,29 @@ def hermite(tc, t, X, D, D2n, nodes, k):
     s /= delta
     del ta
     u = 1.0 - s
-    s2 = s * s
-    known = np.isfinite(D2n).all(axis=0)
-    quintic = known.take(k) & known.take(kb)
-    if quintic.all():
+    quintic = None  # cubic everywhere
+    if D2n is not None:
+        known = np.isfinite(D2n).all(axis=0)
+        quintic = known.take(k) & known.take(kb)
+    if quintic is not None and quintic.all():
         h01, h10, h11 = quintic_bases(s, u)
         c = 0.5 * delta * delta
         D2 = D2n
     else:
         h01, h10, h11 = cubic_bases(s, u)
         c = None
-        if quintic.any():
+        if quintic is not None and quintic.any():
             q = quintic
             h01[q], h10[q], h11[q] = quintic_bases(s[q], u[q])
             c = np.where(q, 0.5 * delta * delta, 0.0)
             D2 = np.nan_to_num(D2n, nan=0.0)
     h20 = h21 = None
     if c is not None:
+        s2 = s * s
         h20 = s2 * u * u * u * c  # s^2 (1 - s)^3 / 2, times delta^2
         h21 = s2 * s * u * u * c  # s^3 (1 - s)^2 / 2, times delta^2
-    del s, u, s2
+        del s2
+    del s, u
     h10 *= delta
     h11 *= delta
     del delta

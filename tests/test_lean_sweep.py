@@ -127,6 +127,6 @@ def test_written_out_newtons_on_blocks_of_size_one():
     # the scalar one, with and without the conditioning rule (blocks of size 1 have condition number 1)
     for cond_max in (None, 1e12):
         xs, status, it, res, v, evals = bs.newton1(lambda a, b, tt: kernel(a, b, tt), [1.0, 0.0], 2.0, (), 12,
-                                                   1.0, 1e-12, has_converged, lambda x, t: 0.0, ArithmeticError,
+                                                   1.0, 1e-12, lambda x, t: 0.0, ArithmeticError,
                                                    cond_max)
         assert status == "converged" and xs == pytest.approx([math.sqrt(2.0), 2 * math.sqrt(2.0)], rel=1e-15)

@@ -47,6 +47,8 @@ def slider_crank(crank, rod, offset=0.0, *, length_unit: str = "mm"):
         return {"theta3": math.atan2(-s, math.sqrt(rod_l**2 - s**2)), "x": r * math.cos(theta) + math.sqrt(rod_l**2 - s**2)}
 
     def check(inputs):
+        if r + abs(e) <= rod_l:  # the rod reaches at every crank angle: nothing to test
+            return None
         s = r * np.sin(inputs) - e
         bad = np.abs(s) > rod_l * (1 + 1e-12)
         if not bad.any():
