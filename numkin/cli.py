@@ -567,7 +567,7 @@ def main(argv=None) -> int:
         return exit_.code if isinstance(exit_.code, int) else (0 if exit_.code is None else 2)
     try:
         with warnings.catch_warnings():
-            warnings.showwarning = _show_warning
+            warnings.showwarning = _WarningLines()
             return args.func(args)
     except (NumkinError, ValueError) as error:
         print(f"{PROG}: error: {_where(error)}{_one_line(error)}", file=sys.stderr)
@@ -585,9 +585,18 @@ def main(argv=None) -> int:
         return 130
 
 
-def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
-    """Warnings (near-singular positions, skipped figures) as one line on stderr."""
-    print(f"{PROG}: warning: {_one_line(message)}", file=sys.stderr)
+class _WarningLines:
+    """``warnings.showwarning`` of a command: each warning (near-singular positions, skipped figures, a
+    far guess) as one line on stderr, and each distinct line once, however many stages meet it."""
+
+    def __init__(self):
+        self.shown: set = set()
+
+    def __call__(self, message, category, filename, lineno, file=None, line=None) -> None:
+        text = f"{PROG}: warning: {_one_line(message)}"
+        if text not in self.shown:
+            self.shown.add(text)
+            print(text, file=sys.stderr)
 
 
 def _where(error: BaseException) -> str:

@@ -20,6 +20,7 @@ import copy
 import json
 import math
 import warnings
+from contextlib import ExitStack, contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable
@@ -31,7 +32,7 @@ from .assemble import scene_quantities, scene_unit
 from .schema import Scene, SceneReader, in_range, load_scene, nearest
 from .errors import warn
 
-__all__ = ["CheckResult", "SceneResult", "run_scene", "render_figures", "written_tolerance"]
+__all__ = ["CheckResult", "SceneResult", "run_scene", "render_figures", "written_tolerance", "guess_as_written"]
 
 
 # --------------------------------------------------------------------- results
@@ -210,6 +211,13 @@ def run_scene(
         scene = load_scene(scene)
     step = progress or (lambda stage: None)
     result = SceneResult(scene=scene)
+    with ExitStack() as scope:
+        _run(scene, result, scope, out, at, figures, step)
+    return result
+
+
+def _run(scene: Scene, result: SceneResult, scope: ExitStack, out, at, figures: bool, step) -> None:
+    """The stages of :func:`run_scene`; from the mechanism on, inside :func:`guess_as_written`."""
     if scene.kind == "stability":
         if at is not None:
             scene.fail("--at", "applies to a scene with a mechanism, not to the stability suite")
@@ -230,8 +238,9 @@ def run_scene(
         step("mechanism")
         mech = scene.build_mechanism()
         result.mechanism = mech
+        scope.enter_context(guess_as_written(scene, mech))
         step("positions")
-        result.sweep = _sweep(scene, mech)
+        result.sweep = mech.sweep(scene.inputs(), guess=scene.guess_values(mech))
         if scene.differentiates:
             result.omega, result.alpha = scene.speed, scene.acceleration
             step("velocity and acceleration")
@@ -248,39 +257,65 @@ def run_scene(
             result.written += outputs.write_tables(scene, result.tables, out)
         if figures and scene.figures:
             result.written += render_figures(result, out, progress=step)
-    return result
 
 
-def _sweep(scene: Scene, mech):
-    """The scene's sweep; a ``[guess]`` angle more than a turn from zero is said in degrees, as written."""
-    from .errors import AssemblyError, GuessWarning
-    from .first_point import degrees_hint
+@contextmanager
+def guess_as_written(scene: Scene, mech):
+    """Inside: errors and warnings that blame a ``[guess]`` angle more than a turn from zero name it as
+    the scene writes it (``theta3_deg = 1950``, in degrees) instead of in rad; each warning is issued
+    once, however many solves inside give it (a report sweeps many grids from the same guess).
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from numkin.scene import load_scene
+    >>> scene = load_scene("homework")
+    >>> mech = scene.build_mechanism()
+    >>> with warnings.catch_warnings(record=True) as caught, guess_as_written(scene, mech):
+    ...     warnings.simplefilter("always")
+    ...     for _ in range(3):
+    ...         warnings.warn("the same thing", UserWarning)
+    >>> len(caught)
+    1
+    """
+    from .errors import GuessWarning, NumkinError
+    from .first_point import degrees_hint, far_guesses
 
     guess = scene.guess_values(mech)
-    if guess is None:  # the linkage's own default guess, in rad
-        return mech.sweep(scene.inputs())
+    every = far_guesses(mech, [guess[u] for u in mech.unknowns]) if guess else []
 
-    def written(far) -> str:
+    def as_written(text: str, far=None) -> str:
+        """``text`` with the hint about ``far`` (default: every far guess) said as the scene writes it."""
+        far = every if far is None else far
+        hint = degrees_hint(far)
+        if not hint or hint not in text:
+            return text
         values = ", ".join(f"{name}_deg = {scene.guess[f'{name}_deg']:g}" for name, _ in far)
-        return f"[guess] {values} is more than a turn from zero (in degrees)"
+        return text.replace(hint, f"[guess] {values} is more than a turn from zero (in degrees)")
 
-    caught: list = []
-    try:
-        with warnings.catch_warnings(record=True) as caught:
-            return mech.sweep(scene.inputs(), guess=guess)
-    except AssemblyError as error:
-        if error.far_guess:
-            error.args = (str(error).replace(degrees_hint(error.far_guess), written(error.far_guess)),)
-        raise
-    finally:  # the sweep's warnings, issued again: a guess far from its solution said as the scene gives it
-        for w in caught:
-            if not isinstance(w.message, GuessWarning):
-                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
-                continue
-            far, starts = w.message.far, w.message.starts
-            where = ", ".join(f"{name} at {math.degrees(x):.6g}°" for (name, _), x in zip(far, starts))
-            warn(GuessWarning(f"{scene.source}: {written(far)}; the sweep keeps the guess's turn "
-                                       f"(it starts with {where})", far=far, starts=starts))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")  # every warning recorded; the caller's filters apply when issued again
+        try:
+            yield
+        except NumkinError as error:
+            if error.args and isinstance(error.args[0], str):
+                error.args = (as_written(error.args[0], getattr(error, "far_guess", None) or None), *error.args[1:])
+            raise
+        finally:
+            issued = list(caught)
+    seen = set()
+    for w in issued:
+        guess_warning = isinstance(w.message, GuessWarning)
+        text = as_written(str(w.message), w.message.far if guess_warning else None)
+        if (w.category, text) in seen:
+            continue
+        seen.add((w.category, text))
+        if text == str(w.message):
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+        elif guess_warning:
+            warn(GuessWarning(text, far=w.message.far, starts=w.message.starts))
+        else:
+            warn(text, w.category)
 
 
 #: Figures drawn from the error-analysis tables of numkin.report, and the table each needs.
@@ -311,7 +346,8 @@ def render_figures(result: SceneResult, out_dir, *, formats=("png", "svg"), prog
         span = math.radians(scene.stop_deg - scene.start_deg)
         common = {k: options[k] for k in ("quantity", "guess")}
         sweep_opts = {"start": options["start"], "span": span, **{k: options[k] for k in ("grids", "schemes") if k in options}}
-        with report.shared_results():  # the convergence and work-precision tables sweep the same grids
+        # the convergence and work-precision tables sweep the same grids; a far guess is said once, as written
+        with report.shared_results(), guess_as_written(scene, result.mechanism):
             for kind in wanted:
                 step(f"{kind} table")
                 if kind == "convergence":

@@ -215,6 +215,40 @@ def test_scene_failing_from_a_guess_in_degrees_says_it_in_degrees(capsys, tmp_pa
     assert "was it given in degrees" not in line
 
 
+def test_report_says_a_far_guess_once_and_in_degrees(capsys, tmp_path):
+    # the report sweeps many grids from the same guess: one warning, as the scene writes the guess
+    code, out, err = run(capsys, "report", loops_scene(tmp_path, theta3=1950, stop=360, step=10))
+    assert code == 0
+    warning = [line for line in err.splitlines() if line.startswith("numkin: warning: ")]
+    assert len(warning) == 1, err
+    assert "[guess] theta3_deg = 1950 is more than a turn from zero (in degrees)" in warning[0]
+    assert "was it given in degrees" not in warning[0]
+    assert f"theta3 at {60 + 360 * 5:.6g}°" in warning[0]  # 1950° is nearest 60° + 5 turns
+
+
+def test_figures_say_a_far_guess_once_and_in_degrees(capsys, tmp_path):
+    # the positions, then the convergence figure's table from many grids: one warning line in all
+    path = loops_scene(tmp_path, theta3=1950, stop=360, step=10)
+    text = open(path).read().replace("[input]\n", '[input]\nspeed = "10 rad/s"\n') + '[output]\nfigures = ["convergence"]\n'
+    open(path, "w").write(text)
+    code, out, err = run(capsys, "figures", path, "--out", str(tmp_path / "figures"), "--formats", "png")
+    assert code == 0
+    warning = [line for line in err.splitlines() if line.startswith("numkin: warning: ")]
+    assert len(warning) == 1, err
+    assert "[guess] theta3_deg = 1950 is more than a turn from zero (in degrees)" in warning[0]
+
+
+def test_report_failing_from_a_guess_in_degrees_says_it_in_degrees(capsys, tmp_path):
+    path = tmp_path / "chained.toml"
+    phi, psi = math.degrees(45), math.degrees(60)
+    path.write_text(textwrap.dedent(CHAINED.format(phi=phi, psi=psi)))
+    code, out, err = run(capsys, "report", str(path))
+    assert code == 2
+    line = one_line_error(err)
+    assert f"[guess] phi_deg = {phi:.6g}, psi_deg = {psi:.6g} is more than a turn from zero (in degrees)" in line
+    assert "was it given in degrees" not in line
+
+
 # ------------------------------------------------------------ the command
 def test_a_directory_is_not_a_scene_file(capsys, tmp_path):
     code, out, err = run(capsys, "run", str(tmp_path))

@@ -257,7 +257,10 @@ def scene_report(scene, *, repeat: int | None = None) -> dict:
         options["omega"] = 1.0
     if repeat:
         options["repeat"] = repeat
-    tables = full_report(mech, **options)
+    from ..pipeline import guess_as_written
+
+    with guess_as_written(scene, mech):
+        tables = full_report(mech, **options)
     if per_unit:
         for table in tables.values():
             table.attrs["caption"] = (
