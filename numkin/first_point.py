@@ -105,14 +105,12 @@ def guess_vector(mech, guess, at: float) -> np.ndarray:
     if callable(guess):
         guess = guess(at)
     if isinstance(guess, Mapping):
-        names = {str(k) for k in guess}
-        unknown = sorted(names - set(mech.unknowns))
-        if unknown:
-            raise ValueError(f"guess names {unknown}, which are not unknowns of {mech.name} {list(mech.unknowns)}")
-        absent = [u for u in mech.unknowns if u not in names]
-        if absent:
-            raise ValueError(f"guess lacks values for {absent}")
         values = {str(k): v for k, v in guess.items()}
+        if values.keys() != set(mech.unknowns):
+            unknown = sorted(set(values) - set(mech.unknowns))
+            if unknown:
+                raise ValueError(f"guess names {unknown}, which are not unknowns of {mech.name} {list(mech.unknowns)}")
+            raise ValueError(f"guess lacks values for {[u for u in mech.unknowns if u not in values]}")
         vec = np.array([values[u] for u in mech.unknowns], dtype=float)
     else:
         vec = np.asarray(guess, dtype=float).reshape(-1)
