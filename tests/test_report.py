@@ -396,6 +396,19 @@ def test_work_precision_rows_and_determinism(slider_wp):
     assert a["Pareto front (varies)"].any() and a["Pareto front by work"].any()
 
 
+def test_work_precision_errors_for_an_input_turning_clockwise(slider):
+    # omega < 0: the errors are magnitudes, those of the closed form at |omega| (the sign turns the
+    # derivatives, not the size of their errors)
+    kw = dict(quantity="x", grids=(36,), schemes=("forward",))
+    neg = report.work_precision_table(slider, omega="-6000 rpm", **kw)
+    th = 2 * np.pi * np.arange(36) / 36
+    x, dx, _ = piston(th)
+    fwd = (np.roll(x, -1) - x) / th[1]
+    row = _row(neg, method="forward", **{"points per turn": 36})
+    assert row["max abs error [unit of quantity]"] == pytest.approx(W_SC * np.abs(fwd - dx).max(), rel=1e-6)
+    assert (neg["max abs error [unit of quantity]"] >= 0).all()
+
+
 def test_work_counts_are_exact(slider, slider_wp):
     a, _ = slider_wp
     assert all(a[c].dtype.kind == "i" for c in WORK_COLS)

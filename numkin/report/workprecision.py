@@ -182,7 +182,7 @@ def work_precision_table(
                     est = (out[1] if order == 2 and isinstance(out, tuple) else out)
                     est = est[j] if np.ndim(est) == 2 else est
                     ref = exact
-                err = scale * np.abs(est - ref)
+                err = abs(scale) * np.abs(est - ref)  # the input may turn either way: omega < 0
                 ref_peak = float(np.max(np.abs(scale * ref)))
                 if periodic:  # the last sample repeats the first
                     err = err[:-1]
