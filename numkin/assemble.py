@@ -334,7 +334,9 @@ def guess_values(scene: Scene, mech) -> dict | None:
             out[u] = SceneReader(scene.source).length(value, where, scene.unit, positive=False)
     missing = [k for k, u in expect.items() if u not in out]
     if missing:
-        scene.fail("[guess]", f"lacks {', '.join(missing)} (give every unknown, or leave out [guess] for the linkage's default)")
+        how = ("give every unknown: a mechanism written as loops has no default guess" if scene.custom is not None
+               else "give every unknown, or leave out [guess] for the linkage's default")
+        scene.fail("[guess]", f"lacks {', '.join(missing)} ({how})")
     return out
 
 def scene_key(quantity) -> str:

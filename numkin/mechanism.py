@@ -328,6 +328,15 @@ class Mechanism:
     # ------------------------------------------------------------------ checks
     def _check_symbols(self):
         known = {self.input_symbol} | set(self.parameters)
+        used = set().union(*(r.free_symbols for lp in self.loops for r in lp.residuals))
+        if self.input_symbol not in used:
+            unknowns = set().union(*(set(lp.unknowns) for lp in self.loops))
+            others = sorted(map(str, used - known - unknowns))
+            raise ValueError(
+                f"the input {self.input_symbol} appears in no loop"
+                + (f": the loops use {', '.join(others)}, " + ("which has no value; is it the input?" if len(others) == 1
+                   else "which have no values; is one of them the input?") if others else "")
+            )
         for lp in self.loops:
             clash = set(lp.unknowns) & known
             if clash:
