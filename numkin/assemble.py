@@ -443,7 +443,11 @@ def parse_expression(scene: Scene, text, names: Mapping, where: str):
 
 
 def parse_equation(scene: Scene, text, names: Mapping, where: str):
-    if isinstance(text, str) and text.count("=") == 1:
+    if not isinstance(text, str):
+        scene.fail(where, f"must be a string: an expression (= 0) or \"lhs = rhs\", got {text!r}")
+    if text.count("=") > 1:
+        scene.fail(where, f"{text!r} has {text.count('=')} '=' signs: an equation is an expression (= 0) or one \"lhs = rhs\"")
+    if text.count("=") == 1:
         lhs, rhs = text.split("=")
         return parse_expression(scene, lhs, names, where) - parse_expression(scene, rhs, names, where)
     return parse_expression(scene, text, names, where)

@@ -573,9 +573,11 @@ class Mechanism:
             orientation); the grid points between them are then solved in
             one batch.
         on_singular : {"raise", "report"}
-            What to do at a toggle or change point: raise
-            :class:`~numkin.BranchError`, or record it in ``Sweep.events``,
-            warn, and go on along the branch whose tangent is continuous.
+            What to do at a change point (or a grid point on a singular
+            position): raise :class:`~numkin.BranchError`, or record it in
+            ``Sweep.events``, warn, and go on along the branch whose tangent
+            is continuous. A toggle (limit position) cannot be driven past:
+            it raises :class:`~numkin.BranchError` either way.
         progress : bool
             Show a progress bar (tqdm) over the sequentially solved steps.
 

@@ -240,7 +240,7 @@ def _run(scene: Scene, result: SceneResult, scope: ExitStack, out, at, figures: 
         result.mechanism = mech
         scope.enter_context(guess_as_written(scene, mech))
         step("positions")
-        result.sweep = mech.sweep(scene.inputs(), guess=scene.guess_values(mech))
+        result.sweep = _sweep(scene, mech)
         if scene.differentiates:
             result.omega, result.alpha = scene.speed, scene.acceleration
             step("velocity and acceleration")
@@ -257,6 +257,19 @@ def _run(scene: Scene, result: SceneResult, scope: ExitStack, out, at, figures: 
             result.written += outputs.write_tables(scene, result.tables, out)
         if figures and scene.figures:
             result.written += render_figures(result, out, progress=step)
+
+
+def _sweep(scene: Scene, mech):
+    """The scene's sweep; the advice of a change point said as a scene takes it (a key of ``[input]``)."""
+    from .errors import BranchError
+
+    try:
+        return mech.sweep(scene.inputs(), guess=scene.guess_values(mech), on_singular=scene.on_singular)
+    except BranchError as error:
+        if error.args and isinstance(error.args[0], str):
+            error.args = (error.args[0].replace("pass on_singular='report'", 'set on_singular = "report" in [input]'),
+                          *error.args[1:])
+        raise
 
 
 @contextmanager

@@ -43,6 +43,8 @@ are optional. ::
     start_deg = 0            # sweep of the input, inclusive, uniform step
     stop_deg = 360
     step_deg = 1
+    on_singular = "raise"    # at a change point: "raise" (default), or "report" it and go on
+                             # along the branch whose tangent is continuous (a toggle always raises)
 
     [guess]                  # values at start_deg: picks the assembly branch;
     theta3_deg = 30          # all unknowns (angles as <name>_deg, lengths in `unit`);

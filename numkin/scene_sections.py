@@ -128,6 +128,9 @@ def read_input(r: SceneReader, scene: Scene, inp: dict) -> None:
     scene.start_deg = r.number(inp.get("start_deg", 0.0), "[input] start_deg")
     scene.stop_deg = r.number(inp.get("stop_deg", 360.0), "[input] stop_deg")
     scene.step_deg = r.number(inp.get("step_deg", 1.0), "[input] step_deg")
+    scene.on_singular = r.string(inp.get("on_singular", "raise"), "[input] on_singular")
+    if scene.on_singular not in ("raise", "report"):
+        r.fail("[input] on_singular", f"must be \"raise\" or \"report\", got {scene.on_singular!r}")
     if not scene.step_deg > 0:
         r.fail("[input] step_deg", f"must be positive, got {inp.get('step_deg')!r}")
     span = scene.stop_deg - scene.start_deg

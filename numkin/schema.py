@@ -69,7 +69,7 @@ _TOP = ("scene", "mechanism", "input", "guess", "output", "compare", "check", "r
 _SECTIONS = {
     "scene": ("description", "title"),
     "mechanism": ("linkage", "unit", "dimensions", "branch", "input", "loops", "points", "links", "ground", "name"),
-    "input": ("speed", "acceleration", "start_deg", "stop_deg", "step_deg"),
+    "input": ("speed", "acceleration", "start_deg", "stop_deg", "step_deg", "on_singular"),
     "output": ("quantities", "unknowns", "points", "tables", "table_formats", "figures"),
     "compare": ("schemes", "second_schemes"),
     "report": ("quantity", "check_deg", "schemes", "grids", "points_per_turn", "repeat"),
@@ -173,6 +173,8 @@ class Scene:
         Input angular speed [rad/s] and acceleration [rad/s^2].
     start_deg, stop_deg, step_deg : float
         The input sweep (degrees, inclusive).
+    on_singular : {"raise", "report"}
+        What the sweep does at a change point (:meth:`numkin.Mechanism.sweep`).
     quantities : tuple of str
         Subset of ("position", "velocity", "acceleration").
     unknowns, points : tuple of str or None
@@ -206,6 +208,7 @@ class Scene:
     start_deg: float = 0.0
     stop_deg: float = 360.0
     step_deg: float = 1.0
+    on_singular: str = "raise"
     guess: dict | None = None
     quantities: tuple = ("position",)
     unknowns: tuple | None = None

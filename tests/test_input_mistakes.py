@@ -21,13 +21,14 @@ from numkin.scene import SceneError, load_scene, run_scene
 from test_cli import one_line_error, run
 
 
-def four_bar_closed_form(t2, r1=4.0, r2=1.0, r3=3.0, r4=3.0):
-    """(theta3, theta4) of the open four-bar O2-A-B-O4, pivots O2 = (0, 0) and O4 = (r1, 0), rad."""
+def four_bar_closed_form(t2, r1=4.0, r2=1.0, r3=3.0, r4=3.0, sign=1.0):
+    """(theta3, theta4) of the four-bar O2-A-B-O4, pivots O2 = (0, 0) and O4 = (r1, 0), rad; sign 1 the
+    open branch (B to the left of A -> O4), -1 the crossed one."""
     ax, ay = r2 * math.cos(t2), r2 * math.sin(t2)
     dx, dy = r1 - ax, -ay
     d = math.hypot(dx, dy)
     a = (r3**2 - r4**2 + d**2) / (2 * d)
-    h = math.sqrt(r3**2 - a**2)
+    h = sign * math.sqrt(r3**2 - a**2)
     bx, by = ax + a * dx / d - h * dy / d, ay + a * dy / d + h * dx / d
     return math.atan2(by - ay, bx - ax), math.atan2(by, bx - r1)
 
@@ -271,3 +272,90 @@ def test_warnings_point_at_the_line_that_called_numkin():
     with pytest.warns(UserWarning, match="more than a turn from zero") as swept:  # from deep in the sweep
         m.sweep(np.radians([0.0, 10.0]), guess={"theta3": 60, "theta4": 120})
     assert solved[0].filename == __file__ and swept[0].filename == __file__
+
+
+# ------------------------------------------------------------ change points in a scene
+PARALLELOGRAM = """
+[scene]
+description = "the crossed parallelogram four-bar, through its change point at 180 deg"
+[mechanism]
+linkage = "four_bar"
+branch = "crossed"
+[mechanism.dimensions]
+ground = 5
+crank = 2
+coupler = 5
+rocker = 2
+[input]
+start_deg = 10
+stop_deg = 350
+step_deg = 5
+{extra}
+"""
+
+
+def test_a_scene_through_a_change_point_is_told_its_own_key(capsys, tmp_path):
+    path = tmp_path / "par.toml"
+    path.write_text(textwrap.dedent(PARALLELOGRAM.format(extra="")))
+    code, out, err = run(capsys, "run", str(path))
+    assert code == 2
+    line = one_line_error(err)
+    assert "change point" in line and 'set on_singular = "report" in [input]' in line
+    assert "pass on_singular" not in line
+
+
+def test_a_scene_with_on_singular_report_keeps_the_branch_through_the_change_point(tmp_path):
+    path = tmp_path / "par.toml"
+    path.write_text(textwrap.dedent(PARALLELOGRAM.format(extra='on_singular = "report"')))
+    with pytest.warns(Warning):
+        result = run_scene(load_scene(str(path)))
+    assert [e.kind for e in result.sweep.events][0] == "change point"
+    # Where the branches meet (180 deg) the sweep keeps the antiparallelogram (coupler crossing the
+    # ground, theta3 != 0), whose tangent is continuous, not the parallelogram (theta3 = 0, theta4 = theta2):
+    # the circle intersection on the crossed side before 180 deg, on the other side after it.
+    for deg, sign in ((90, -1.0), (270, 1.0)):
+        t3, t4 = four_bar_closed_form(math.radians(deg), 5.0, 2.0, 5.0, 2.0, sign)
+        got = result.sweep.values[:, int((deg - 10) / 5)]
+        assert abs(math.remainder(got[0] - t3, 2 * math.pi)) < 1e-9 and abs(t3) > 0.5
+        assert abs(math.remainder(got[1] - t4, 2 * math.pi)) < 1e-9
+
+
+def test_on_singular_takes_raise_or_report_only(capsys, tmp_path):
+    path = tmp_path / "par.toml"
+    path.write_text(textwrap.dedent(PARALLELOGRAM.format(extra='on_singular = "maybe"')))
+    code, out, err = run(capsys, "run", str(path))
+    assert code == 2
+    assert '[input] on_singular: must be "raise" or "report"' in one_line_error(err)
+
+
+# ------------------------------------------------------------ equations and symbols
+@pytest.mark.parametrize("equations, words", [
+    ('[1, 2]', 'equation 1: must be a string'),
+    ('["a = b = c", "r2*sin(theta2) + r3*sin(theta3) - r4*sin(theta4)"]', "has 2 '=' signs"),
+])
+def test_equations_that_are_not_one_equation_each_are_named(capsys, tmp_path, equations, words):
+    text = textwrap.dedent(LOOPS.format(r2=1, theta3=60, stop=360, step=10)).replace(
+        'vectors = [["r2", "theta2"], ["r3", "theta3"], ["-r4", "theta4"], ["-r1", "0"]]', f"equations = {equations}")
+    path = tmp_path / "eq.toml"
+    path.write_text(text)
+    code, out, err = run(capsys, "run", str(path))
+    assert code == 2
+    assert words in one_line_error(err)
+
+
+def test_an_input_that_appears_in_no_loop_is_named():
+    t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    r1, r2, r3, r4 = sp.symbols("r1 r2 r3 r4")
+    loop = Loop.from_vectors([(r2, t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4], name="O2-A-B-O4")
+    with pytest.raises(ValueError, match=r"the input theta22 appears in no loop: the loops use theta2, which has no value"):
+        Mechanism([loop], "theta22", {r1: 4, r2: 1, r3: 3, r4: 3})
+
+
+def test_a_loops_scene_missing_a_guess_is_not_told_of_a_default(capsys, tmp_path):
+    text = textwrap.dedent(LOOPS.format(r2=1, theta3=60, stop=360, step=10)).replace("theta4_deg = 120\n", "")
+    path = tmp_path / "half.toml"
+    path.write_text(text)
+    code, out, err = run(capsys, "run", str(path))
+    assert code == 2
+    line = one_line_error(err)
+    assert "lacks theta4_deg" in line and "has no default guess" in line and "leave out" not in line
