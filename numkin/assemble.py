@@ -19,6 +19,7 @@ Examples
 
 from __future__ import annotations
 
+import ast
 import math
 import numbers
 import re
@@ -110,11 +111,50 @@ def read_mechanism(r: SceneReader, scene: Scene, mech: dict) -> None:
     for p in [q for link in links for q in link] + list(ground):
         if p not in points:
             r.fail("[mechanism] links/ground", f"point '{p}' is not in [mechanism.points]{nearest(p, points)}")
+    angles = {key[:-4] for key in dims if key.endswith("_deg")}
+    for k, lp in enumerate(loops):
+        for j, (length, angle) in enumerate(lp["vectors"] or ()):
+            _check_kinds(r, f"[[mechanism.loops]] {k + 1} vector {j + 1}", length, angle, angles,
+                         set(params) - angles, scene.unit)
     scene.dimensions = params
     scene.custom = {
         "input": input_name, "loops": loops, "points": points, "links": links, "ground": ground,
         "name": r.string(mech["name"], "[mechanism] name") if "name" in mech else None,
     }
+
+
+def _bare_names(text) -> set:
+    """Names that are whole additive terms of an expression string (``r1`` and ``2*r1`` in
+    ``"theta2 + 2*r1"``; not inside a product of names or a function); none if it does not parse."""
+    try:
+        node = ast.parse(str(text).replace("^", "**"), mode="eval").body
+    except SyntaxError:
+        return set()  # the expression's own parse reports it
+    out, terms = set(), [node]
+    while terms:
+        t = terms.pop()
+        if isinstance(t, ast.BinOp) and isinstance(t.op, (ast.Add, ast.Sub)):
+            terms += [t.left, t.right]
+        elif isinstance(t, ast.UnaryOp) and isinstance(t.op, (ast.USub, ast.UAdd)):
+            terms.append(t.operand)
+        elif isinstance(t, ast.BinOp) and isinstance(t.op, (ast.Mult, ast.Div)) and isinstance(t.right, ast.Constant):
+            terms.append(t.left)
+        elif isinstance(t, ast.BinOp) and isinstance(t.op, ast.Mult) and isinstance(t.left, ast.Constant):
+            terms.append(t.right)
+        elif isinstance(t, ast.Name):
+            out.add(t.id)
+    return out
+
+
+def _check_kinds(r: SceneReader, where: str, length, angle, angles: set, lengths: set, unit: str) -> None:
+    """A vector's length holds no angle dimension as a whole term, and its angle no length dimension:
+    a length and an angle are never added (``r1_deg = 4`` used as a length is 0.07 of a length unit)."""
+    for name in sorted(_bare_names(length) & angles):
+        r.fail(f"{where} length", f"'{name}' is an angle (given as {name}_deg in [mechanism.dimensions]) but is "
+                                  f"used as a length; give it as {name} in {unit}")
+    for name in sorted(_bare_names(angle) & lengths):
+        r.fail(f"{where} angle", f"'{name}' is a length (in {unit}, [mechanism.dimensions]) but is added to "
+                                 f"an angle; an angle dimension is given as {name}_deg")
 
 
 def _read_linkage(r: SceneReader, scene: Scene, mech: dict, dims: dict) -> None:

@@ -244,7 +244,7 @@ def describe(loops, input_symbol, parameters, points) -> dict:
 
 
 def check_lengths(model: dict, value_of: dict, lengths=None) -> None:
-    """A parameter that is the length of a vector of a loop must not be negative.
+    """A parameter that is the length of a vector of a loop must be positive.
 
     A subtracted vector is written ``(-r4, theta4)``: the sign belongs in
     the loop, not in the value. A signed distance (an offset that may be
@@ -269,10 +269,12 @@ def check_lengths(model: dict, value_of: dict, lengths=None) -> None:
     for lp in model["loops"]:
         for sym in lp["lengths"]:
             value = value_of.get(sym)
-            if value is not None and value < 0 and sym in lengths:
+            if value is not None and value <= 0 and sym in lengths:
+                why = ("is zero (a link of no length: its angle is free, or its input moves nothing)" if value == 0
+                       else f"= {value:g} is negative (a negative length mirrors the linkage)")
                 error = ValueError(
-                    f"loop '{lp['name']}': length {sym} = {value:g} is negative (a negative length mirrors the "
-                    f"linkage): lengths must be positive; write the vector as (-{sym}, angle) in the loop"
+                    f"loop '{lp['name']}': length {sym} {why}: lengths must be positive"
+                    + ("" if value == 0 else f"; write the vector as (-{sym}, angle) in the loop")
                     + ("" if given else f", or declare {sym} real (sympy.Symbol('{sym}', real=True)) if it is "
                        "a signed offset")
                 )

@@ -359,3 +359,50 @@ def test_a_loops_scene_missing_a_guess_is_not_told_of_a_default(capsys, tmp_path
     assert code == 2
     line = one_line_error(err)
     assert "lacks theta4_deg" in line and "has no default guess" in line and "leave out" not in line
+
+
+# ------------------------------------------------------------ a zero length
+def test_zero_length_in_a_loops_scene_is_refused(capsys, tmp_path):
+    code, out, err = run(capsys, "run", loops_scene(tmp_path, r2=0))
+    assert code == 2
+    line = one_line_error(err)
+    assert "[mechanism.dimensions] r2:" in line and "length r2 is zero" in line and "lengths must be positive" in line
+
+
+@pytest.mark.parametrize("zero", ["r2", "r3"])
+def test_zero_length_is_refused_by_the_mechanism(zero):
+    t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    r1, r2, r3, r4 = sp.symbols("r1 r2 r3 r4")
+    loop = Loop.from_vectors([(r2, t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4], name="O2-A-B-O4")
+    values = {r1: 4, r2: 1, r3: 3, r4: 3}
+    values[sp.Symbol(zero)] = 0
+    with pytest.raises(ValueError, match=rf"length {zero} is zero .*lengths must be positive"):
+        Mechanism([loop], t2, values)
+
+
+# ------------------------------------------------------------ a dimension of the wrong kind
+@pytest.mark.parametrize("edit, words", [
+    (("r1 = 4", "r1_deg = 4"), "1 vector 4 length: 'r1' is an angle (given as r1_deg"),
+    (("r1 = 4", "r1 = 4\ngamma = 5"), "vector 1 angle: 'gamma' is a length (in mm"),
+])
+def test_a_dimension_used_as_the_other_kind_is_refused(capsys, tmp_path, edit, words):
+    text = textwrap.dedent(LOOPS.format(r2=1, theta3=60, stop=360, step=10)).replace(*edit)
+    text = text.replace('["r2", "theta2"]', '["r2", "theta2 + gamma"]') if "gamma" in edit[1] else text
+    path = tmp_path / "kind.toml"
+    path.write_text(text)
+    code, out, err = run(capsys, "run", str(path))
+    assert code == 2
+    assert words in one_line_error(err)
+
+
+def test_an_angle_from_lengths_and_a_projected_length_are_fine(tmp_path):
+    # atan2 of two lengths is an angle, and a length times the cosine of an angle a length: both legitimate;
+    # the loop O2-A-B-O4 with O4 given by its distance and direction, checked against the closed form
+    text = textwrap.dedent(LOOPS.format(r2=1, theta3=60, stop=360, step=10)).replace(
+        "r1 = 4", "r1 = 4\nh = 0\ntilt_deg = 0").replace(
+        '["-r1", "0"]', '["-r1*cos(tilt)", "atan2(h, r1)"]')
+    path = tmp_path / "ok.toml"
+    path.write_text(text)
+    result = run_scene(load_scene(str(path)), at=90)
+    t3, t4 = four_bar_closed_form(math.radians(90))
+    assert result.at.values["theta4_deg"] == pytest.approx(math.degrees(t4), abs=1e-9)
