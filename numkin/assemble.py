@@ -348,6 +348,14 @@ def _check_names(scene: Scene, mech) -> None:
     quantity = scene.report.get("quantity")
     if quantity is not None and quantity not in unknowns:
         scene.fail("[report] quantity", f"'{quantity}' is not an unknown{nearest(quantity, unknowns)}; unknowns: {', '.join(unknowns)}")
+    if scene.figures:
+        from .figures import parse_spec  # does not import matplotlib
+
+        for spec in scene.figures:
+            kind, arg = parse_spec(spec)
+            if arg is not None and kind != "mechanism" and arg not in unknowns:
+                scene.fail("[output] figures", f"{spec!r}: '{arg}' is not an unknown{nearest(arg, unknowns)}; "
+                                               f"unknowns: {', '.join(unknowns)}")
 
 
 def guess_values(scene: Scene, mech) -> dict | None:

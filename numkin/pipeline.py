@@ -299,6 +299,9 @@ def guess_as_written(scene: Scene, mech):
 
     def as_written(text: str, far=None) -> str:
         """``text`` with the hint about ``far`` (default: every far guess) said as the scene writes it."""
+        text = text.replace("guess nearer the position (angles in rad)", "[guess] nearer the position (angles as "
+                            "<unknown>_deg, in degrees)").replace(
+            "better guess (angles in rad)", "better [guess] (angles as <unknown>_deg, in degrees)")
         far = every if far is None else far
         hint = degrees_hint(far)
         if not hint or hint not in text:
@@ -356,9 +359,8 @@ def render_figures(result: SceneResult, out_dir, *, formats=("png", "svg"), prog
         from . import report
 
         options = scene.report_options(result.mechanism)
-        span = math.radians(scene.stop_deg - scene.start_deg)
         common = {k: options[k] for k in ("quantity", "guess")}
-        sweep_opts = {"start": options["start"], "span": span, **{k: options[k] for k in ("grids", "schemes") if k in options}}
+        sweep_opts = {k: options[k] for k in ("start", "span", "grids", "schemes") if k in options}
         # the convergence and work-precision tables sweep the same grids; a far guess is said once, as written
         with report.shared_results(), guess_as_written(scene, result.mechanism):
             for kind in wanted:

@@ -253,9 +253,11 @@ class Scene:
         check_deg = options.pop("check_deg", None)
         if check_deg is None:
             check_deg = self.checks[0]["at_deg"] if self.checks else self.start_deg
+        span = self.stop_deg - self.start_deg  # the report sweeps a turn at most, the scene's sweep if less
         return {
             "omega": self.speed, "quantity": quantity, "check_angle": math.radians(check_deg),
-            "start": math.radians(self.start_deg), "guess": self.guess_values(mech), **options,
+            "start": math.radians(self.start_deg), "guess": self.guess_values(mech),
+            **({} if span >= 360.0 else {"span": math.radians(span)}), **options,
         }
 
     def positions_only(self) -> "Scene":

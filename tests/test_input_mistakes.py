@@ -406,3 +406,52 @@ def test_an_angle_from_lengths_and_a_projected_length_are_fine(tmp_path):
     result = run_scene(load_scene(str(path)), at=90)
     t3, t4 = four_bar_closed_form(math.radians(90))
     assert result.at.values["theta4_deg"] == pytest.approx(math.degrees(t4), abs=1e-9)
+
+
+# ------------------------------------------------------------ a linkage that cannot turn fully
+PART_TURN = """
+[scene]
+description = "a non-Grashof four-bar (4, 2, 1.5, 3) over 80 deg of its input"
+[mechanism]
+input = "theta2"
+[mechanism.dimensions]
+r1 = 4
+r2 = 2
+r3 = 1.5
+r4 = 3
+[[mechanism.loops]]
+name = "O2-A-B-O4"
+unknowns = ["theta3", "theta4"]
+vectors = [["r2", "theta2"], ["r3", "theta3"], ["-r4", "theta4"], ["-r1", "0"]]
+[input]
+speed = "10 rad/s"
+start_deg = 0
+stop_deg = 80
+step_deg = 1
+[guess]
+theta3_deg = {theta3}
+theta4_deg = {theta4}
+[output]
+quantities = ["position", "velocity"]
+"""
+
+
+def test_report_of_a_scene_that_cannot_turn_fully_sweeps_the_scene_s_range(capsys, tmp_path):
+    # |A O4|^2 = 20 - 16 cos(theta2) reaches (r3 + r4)^2 = 20.25 at 90.895 deg, a toggle: a full turn
+    # cannot be swept; the report keeps to the scene's 0..80 deg
+    path = tmp_path / "part.toml"
+    path.write_text(textwrap.dedent(PART_TURN.format(theta3=117, theta4=154)))
+    code, out, err = run(capsys, "report", str(path))
+    assert code == 0, err
+    assert "toggle" not in err
+    assert "360 points per turn over 80 deg from 0 deg" in " ".join(out.split())
+
+
+def test_a_scene_s_failing_guess_is_told_in_degrees(capsys, tmp_path):
+    path = tmp_path / "part.toml"
+    path.write_text(textwrap.dedent(PART_TURN.format(theta3=60, theta4=100)))
+    code, out, err = run(capsys, "run", str(path))
+    assert code == 2
+    line = one_line_error(err)
+    assert "cannot assemble at input 0.000°" in line
+    assert "better [guess] (angles as <unknown>_deg, in degrees)" in line and "in rad" not in line

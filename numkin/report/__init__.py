@@ -97,7 +97,7 @@ from .convergence import convergence_table
 from .counting import COUNTED_FUNCTIONS, EvaluationCounter, count_evaluations
 from .newton_tables import jacobian_table, newton_table
 from .roundoff import ROUNDOFF_SCHEMES, ROUNDOFF_STEPS, fitted_optimum, roundoff_table, stencil
-from .study import DEFAULT_GRIDS, input_speed, shared_results
+from .study import DEFAULT_GRIDS, TURN, input_speed, shared_results
 from .tolerance import STUDENT_RULES, student_sweep, tolerance_table
 from .workprecision import cheapest_table, work_precision_table
 from .writers import format_cell, format_text, table_views, write_tables
@@ -143,6 +143,7 @@ def full_report(
     repeat: int | None = None,
     start: float = 0.0,
     guess=None,
+    span: float = TURN,
 ) -> dict:
     """Every table of this module for one mechanism, in a fixed order.
 
@@ -170,6 +171,9 @@ def full_report(
         First input angle, rad.
     guess : optional
         Starting guess at `start` (default: the mechanism's); picks the branch of every table.
+    span : float
+        Input range of the sweeps, rad: a full turn (default) or less, for a
+        linkage that cannot turn fully (open grids: no spectral schemes).
 
     Returns
     -------
@@ -188,30 +192,32 @@ def full_report(
     """
     with shared_results():  # the tables sweep the same grids: each sweep and its derivatives computed once
         return _full_report(mechanism, omega=omega, quantity=quantity, check_angle=check_angle, grids=grids,
-                            schemes=schemes, points_per_turn=points_per_turn, repeat=repeat, start=start, guess=guess)
+                            schemes=schemes, points_per_turn=points_per_turn, repeat=repeat, start=start, guess=guess,
+                            span=span)
 
 
 def _full_report(mechanism, *, omega, quantity, check_angle, grids, schemes, points_per_turn, repeat, start,
-                 guess) -> dict:
+                 guess, span) -> dict:
     wp = work_precision_table(
         mechanism, omega=omega, quantity=quantity, grids=grids, schemes=schemes, repeat=repeat, start=start,
-        guess=guess,
+        guess=guess, span=span,
     )
     return {
         "convergence": convergence_table(
             mechanism, omega=omega, quantity=quantity, check_angle=check_angle, grids=grids, schemes=schemes,
-            start=start, guess=guess,
+            start=start, guess=guess, span=span,
         ),
         "work_precision": wp,
         "cheapest": cheapest_table(wp, by="time" if repeat else "work"),
         "roundoff": roundoff_table(mechanism, quantity=quantity, check_angle=check_angle, guess=guess, start=start),
         "newton": newton_table(mechanism, check_angle=check_angle, guess=guess, start=start),
         "jacobian": jacobian_table(
-            mechanism, check_angle=check_angle, points_per_turn=points_per_turn, repeat=repeat, start=start, guess=guess
+            mechanism, check_angle=check_angle, points_per_turn=points_per_turn, repeat=repeat, start=start, guess=guess,
+            span=span,
         ),
         "tolerance": tolerance_table(
             mechanism, omega=omega, quantity=quantity, check_angle=check_angle, points_per_turn=points_per_turn, start=start,
-            guess=guess,
+            guess=guess, span=span,
         ),
     }
 

@@ -11,7 +11,7 @@ from ..derivatives import get_scheme
 from ..errors import NumkinError
 from ..sweep import Sweep
 from .study import (
-    TURN, check_index, deg_text, differenced, exact_derivatives, grid_inputs, input_speed, position_record,
+    TURN, check_index, deg_text, differenced, exact_derivatives, full_turn, grid_inputs, input_speed, position_record,
     quantity_labels, set_caption, set_views, solve_sweep, table_quantities, unknown_index,
 )
 
@@ -184,10 +184,11 @@ def tolerance_table(
     second_method: str = "second_difference",
     start: float = 0.0,
     guess=None,
+    span: float = TURN,
 ):
     """What a loose stopping rule does to differenced velocity and acceleration.
 
-    The sweep (`points_per_turn`, one full turn) is solved five ways: by
+    The sweep (`points_per_turn` to a turn, over `span`) is solved five ways: by
     :func:`student_sweep` at `loose_tol` with the absolute step rule (as in
     report 001), the relative step rule (as in homework 003) and the
     residual rule, and by numkin's own sweep at `loose_tol` and at its
@@ -207,13 +208,15 @@ def tolerance_table(
     check_angle : float
         Input angle (rad) of the point values; must be on the grid.
     points_per_turn : int
-        Points per turn (a full turn is swept).
+        Points per turn of the grid.
     loose_tol : float
         Tolerance of the loose rules.
     method, second_method : str
         Finite-difference schemes for omega and alpha.
     start, guess
         First input (rad) and starting guess.
+    span : float
+        Input range swept, rad: a full turn (default) or less.
 
     Returns
     -------
@@ -245,7 +248,7 @@ def tolerance_table(
     s1, s2 = get_scheme(method), get_scheme(second_method)
     if s1.derivative != 1 or s2.derivative != 2:
         raise ValueError("method must be a first-derivative scheme and second_method a second-derivative one")
-    inputs = grid_inputs(points_per_turn, start, TURN)
+    inputs = grid_inputs(points_per_turn, start, span)
     k = check_index(inputs, check_angle)
     if k is None:
         raise ValueError(
@@ -358,7 +361,9 @@ def tolerance_table(
     ], row_keys=["rule"])
     return set_caption(
         df,
-        f"Solver tolerance: {mechanism.name}, {quantity}, {int(points_per_turn)} points per turn, input speed {w:g} rad/s; "
+        f"Solver tolerance: {mechanism.name}, {quantity}, {int(points_per_turn)} points per turn"
+        + ("" if full_turn(span) else f" over {math.degrees(span):g} deg from {math.degrees(start):g} deg")
+        + f", input speed {w:g} rad/s; "
         f"omega by {s1.name}, alpha by {s2.name}, against the analytic values.",
         positions,
     )
