@@ -138,7 +138,9 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
             x, d, o, iters[b] = ctx.march(float(t[a]), x, d, o, float(t[b]), ctx.last_previous)
             X[:, b], D[:, b], O[:, b] = x, d, o
 
+        ctx.raise_pending()  # a change point passed in the last step of the march
         residual, cond, jac = fill(ctx, t, X, D, O, iters, nodes)
+        ctx.raise_pending()
         if ctx.crossings:
             ctx.describe_crossings(t, X, O, cond)
     report_near_singular(ctx, t, X, cond)

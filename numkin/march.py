@@ -108,6 +108,7 @@ class Continuation:
         self.last_previous = None
         self.started_on_default = False
         self.crossings: list = []  # change points passed: (input, loop)
+        self.pending = None  # a change point passed, raised once the march has gone on past it
         self.floor = 0.0  # round-off floor of the batch's residuals (set before the batch)
         #: Point evaluations of the residuals and of the Jacobian so far (a fused evaluation counts
         #: in both; a finite-difference Jacobian is one Jacobian and its n or 2n residuals).
@@ -351,19 +352,28 @@ class Continuation:
         return t + (t_new - t) * min(1.0, max(0.0, d0 / (d0 - d1)))
 
     def change_point(self, t, t_new, loop, tc=None):
-        """Raise at a change point, or note it (once) to be described when the sweep is done."""
+        """Note a change point passed: raised (``on_singular="raise"``) once the march has gone on past it
+        (:meth:`raise_pending`), so that a toggle, where no solution lies beyond, is said as one; or kept
+        (once) to be described when the sweep is done."""
         tc = 0.5 * (t + t_new) if tc is None else tc
-        where = f"{self.mech.name}: loop '{loop}' passes a singular position at input {deg_text(tc, 4)}"
         if self.on_singular == "raise":
-            self.record(
-                "change point", tc, loop,
-                f"{where} (its Jacobian changes sign): a change point, where the branches meet and the "
-                "continuation is ambiguous; pass on_singular='report' to go on along the branch whose "
-                "tangent is continuous",
-                raise_kind="change point",
-            )
+            self.pending = (tc, loop)
         if not any(abs(c - tc) <= 1e-6 * max(1.0, abs(tc)) and lp == loop for c, lp in self.crossings):
             self.crossings.append((tc, loop))
+
+    def raise_pending(self):
+        """Raise the change point the march has gone past (``on_singular="raise"``), if any."""
+        if self.pending is None:
+            return
+        tc, loop = self.pending
+        self.pending = None
+        self.record(
+            "change point", tc, loop,
+            f"{self.mech.name}: loop '{loop}' passes a singular position at input {deg_text(tc, 4)} (its Jacobian "
+            "changes sign): a change point, where the branches meet and the continuation is ambiguous; pass "
+            "on_singular='report' to go on along the branch whose tangent is continuous",
+            raise_kind="change point",
+        )
 
     def one_sided_tangent(self, t, X, O, cond, tc, side, h):
         """dq/d(input) at the change point ``tc`` from one side (``side`` -1 or +1), on the sweep's branch.
@@ -493,6 +503,8 @@ class Continuation:
                     # tangent shows the switch. A smooth branch passes once the step is small.
                     ok, reason = False, "kink"
             if ok:
+                if self.pending is not None and not min(t, t_new) <= self.pending[0] <= max(t, t_new):
+                    self.raise_pending()  # a step wholly past the change point: the linkage goes on there
                 t_prev, x_prev, d_prev = t, x, d
                 t, x, d, o = t_new, x_new, d_new, o_new
                 iters = it

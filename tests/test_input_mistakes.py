@@ -16,7 +16,7 @@ import pytest
 import sympy as sp
 
 from numkin import Loop, Mechanism, linkages
-from numkin.errors import AssemblyError, ConvergenceWarning, GuessWarning
+from numkin.errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning
 from numkin.scene import SceneError, load_scene, run_scene
 from test_cli import one_line_error, run
 
@@ -455,3 +455,21 @@ def test_a_scene_s_failing_guess_is_told_in_degrees(capsys, tmp_path):
     line = one_line_error(err)
     assert "cannot assemble at input 0.000°" in line
     assert "better [guess] (angles as <unknown>_deg, in degrees)" in line and "in rad" not in line
+
+
+# ------------------------------------------------------------ a toggle is not a change point
+def test_a_toggle_met_in_a_sweep_is_said_as_a_toggle_in_either_mode():
+    # |A O4| = sqrt(40^2 + 10^2 - 800 cos(theta2)) must reach r3 - r4 = 30.01: it cannot within
+    # 0.01 of theta2 = 0 (|A O4| = 30 there); the branch folds back (a toggle) at
+    # cos(theta2) = (1700 - 30.01^2) / 800, 357.78 deg
+    t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    r1, r2, r3, r4 = sp.symbols("r1 r2 r3 r4")
+    loop = Loop.from_vectors([(r2, t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4], name="O2-A-B-O4")
+    mech = Mechanism([loop], t2, {r1: 40, r2: 10, r3: 40.01, r4: 10}, guess={"theta3": 0.0, "theta4": 0.3})
+    toggle = 360 - math.degrees(math.acos((1700 - 30.01**2) / 800))
+    for mode in ("raise", "report"):
+        with pytest.raises(BranchError) as caught, warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            mech.sweep(np.radians(np.arange(5, 725, 1.0)), on_singular=mode)
+        assert caught.value.kind == "toggle" and "change point" not in str(caught.value)
+        assert math.degrees(caught.value.input_value) == pytest.approx(toggle, abs=1e-2)
