@@ -144,6 +144,15 @@ def _singular_mask(sweep, mech, inputs, what: str, skip=()) -> np.ndarray:
     return bad
 
 
+def _regular(cond, rtol) -> bool:
+    """Whether every condition number is below those that make a point singular (``COND_MAX``), a
+    change point (``CHANGE_COND``) or one losing digits beyond ``rtol``: one maximum decides all three."""
+    if not cond.size:
+        return False
+    top = cond.max()
+    return bool(top <= CHANGE_COND and top <= COND_MAX and lost_digits(top, 2) <= rtol)  # (a NaN fails)
+
+
 def _sweep_jacobian(sweep, q):
     """The Jacobian rows the sweep kept at its values, or None (then they are computed)."""
     rows = getattr(sweep, "jacobian_rows", None)
@@ -273,16 +282,16 @@ def derivatives(sweep, *, rtol: float = DIGITS_RTOL, at_change_point: str = "nan
     mech, t, q = check_sweep(sweep)
     p = mech.parameter_values
     cond = condition_numbers(sweep, t)
+    if _regular(cond, rtol):  # no singular, change or digit-losing point: nothing to mask, nothing to say
+        continue_branch(mech, t, cond, [], [], "", at_change_point)  # (checks at_change_point)
+        return _rates(sweep, mech, q, t, p)
     change = change_points(sweep, mech, q, t, cond)
     _change_point_checks(mech, t, cond)
     bad = _singular_mask(sweep, mech, t, "dq/dtheta and d2q/dtheta2 are", change)
-    dq, d2q = _rates(sweep, mech, q, t, p)
+    dq, d2q = _rates(sweep, mech, q, t, p)  # (d2q is NaN wherever dq is not finite)
     if bad.any():
         dq[:, bad] = np.nan
         d2q[:, bad] = np.nan
-    finite = np.isfinite(dq).all(axis=0)
-    if not finite.all():
-        d2q[:, ~finite] = np.nan
     continue_branch(mech, t, cond, change, [dq, d2q], "dq/dtheta and d2q/dtheta2", at_change_point)
     warn_lost_digits(mech, t, cond, change, rtol)
     return dq, d2q

@@ -46,15 +46,16 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["cache_dir", "cached_lambdify", "bundle_key", "load_bundle", "store_bundle", "ENV_VAR"]
+__all__ = ["cache_dir", "cached_lambdify", "cached_source", "kernel_from_source", "bundle_key", "load_bundle",
+           "store_bundle", "ENV_VAR"]
 
 #: Environment variable naming the cache folder (``off`` disables the cache).
 ENV_VAR = "NUMKIN_CACHE_DIR"
-_FORMAT = 2
+_FORMAT = 3
 #: Built-in names generated code may use.
 _BUILTINS = frozenset({"range", "len", "abs", "float", "complex", "int"})
 #: Modules of numkin whose code decides what a mechanism compiles to (their digest is part of a bundle's key).
-_DERIVING = ("compiled.py", "loops.py", "mechanism.py", "kernel_cache.py", "assemble.py")
+_DERIVING = ("compiled.py", "loops.py", "mechanism.py", "kernel_cache.py", "assemble.py", "rates_kernel.py")
 #: Bundles loaded in this process: path -> (model, functions).
 _BUNDLES: dict = {}
 
@@ -284,6 +285,77 @@ def cached_lambdify(exprs: tuple, args: tuple, modules: str, cse: bool):
             f.numkin_kernel = entry
             _write(path, {"key": key, **{k: entry[k] for k in ("name", "source", "names", "module")},
                           "sha256": hashlib.sha256(entry["source"].encode()).hexdigest(), "versions": _versions()})
+    return f
+
+
+def kernel_from_source(source: str, nargs: int, module: str = "numpy"):
+    r"""The one function generated code ``source`` defines, its global names taken from ``module``
+    (``"numpy"`` or ``"math"``), carrying what keeps it as ``f.numkin_kernel``; None if the code is not
+    of the shape the cache keeps (see the module's notes) or names something ``module`` lacks.
+
+    Examples
+    --------
+    >>> f = kernel_from_source("def f(x):\n    return cos(x) ** 2 + sin(x) ** 2\n", 1)
+    >>> round(float(f(0.3)), 12), sorted(f.numkin_kernel["names"])
+    (1.0, ['cos', 'sin'])
+    """
+    mod = {"numpy": np, "math": math}.get(module)
+    try:
+        tree = ast.parse(source)
+    except SyntaxError:
+        return None
+    if mod is None or len(tree.body) != 1 or not isinstance(tree.body[0], ast.FunctionDef):
+        return None
+    fn = tree.body[0]
+    local = {a.arg for a in fn.args.args}
+    local |= {n.id for n in ast.walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+    names = {}
+    for node in ast.walk(fn):
+        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and node.id not in local | _BUILTINS:
+            where = _resolve(node.id, getattr(mod, node.id, None), mod)
+            if where is None:
+                return None
+            names[node.id] = where
+    if not _safe(source, names, nargs):
+        return None
+    ns = _namespace(names)
+    if ns is None:
+        return None
+    exec(compile(tree, f"<numkin kernel {fn.name}>", "exec"), ns)  # noqa: S102 - checked above
+    f = ns[fn.name]
+    f.numkin_kernel = {"name": fn.name, "source": source, "names": names, "nargs": nargs, "module": module}
+    return f
+
+
+def cached_source(exprs: tuple, args: tuple, kind: str, nargs: int, build):
+    """A function generated from ``exprs`` in ``args`` by ``build() -> source or None``, through the disk cache.
+
+    ``kind`` names the generator and whatever else the code depends on (it is
+    part of the key with ``exprs`` and ``args``). Returns
+    :func:`kernel_from_source` of the source, or None if ``build`` gives none
+    or the code cannot be kept. An entry is checked as every kernel's is; one
+    that fails a check is rebuilt.
+    """
+    import sympy as sp
+
+    folder = cache_dir()
+    symbols = set(args).union(*(sp.sympify(e).free_symbols for e in exprs))
+    if folder is None or any(isinstance(s, sp.Dummy) for s in symbols):
+        source = build()
+        return None if source is None else kernel_from_source(source, nargs)
+    key = _key(exprs, args, f"source {kind}", False)
+    path = folder / f"{key}.json"
+    entry = _read(path, key) if path.exists() else None
+    if entry is not None and entry.get("source") is not None:
+        f = kernel_from_source(entry["source"], nargs)
+        if f is not None and entry.get("names") == f.numkin_kernel["names"]:
+            return f
+    source = build()
+    f = None if source is None else kernel_from_source(source, nargs)
+    if f is not None:
+        kernel = f.numkin_kernel
+        _write(path, {"key": key, **{k: kernel[k] for k in ("name", "source", "names", "module")},
+                      "sha256": hashlib.sha256(kernel["source"].encode()).hexdigest(), "versions": _versions()})
     return f
 
 

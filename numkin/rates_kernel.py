@@ -1,0 +1,182 @@
+"""One generated function for the exact rates: dq/dt and d2q/dt2 at many points in one call.
+
+The velocity and acceleration equations of a mechanism share their matrix,
+the Jacobian ``J``, and most of their trigonometry::
+
+    J q'  = -F_t                                     (velocity)
+    J q'' = -(G_q q' + G_t),   G = J q' + F_t        (acceleration)
+
+:func:`rates_source` writes both solves as one Python function of whole
+numpy arrays:
+
+* the right-hand sides are derived with sympy and their common
+  subexpressions eliminated together, so a term of the input alone
+  (``sin(theta)``) is computed once for both;
+* a term of the right-hand sides that equals an entry of the Jacobian (up
+  to sign) is read from the Jacobian rows the caller passes (a sweep keeps
+  them) instead of being computed again: for vector loops the second
+  derivatives of ``r cos(phi)`` and ``r sin(phi)`` are entries of ``J``, so
+  no sine or cosine of an unknown is evaluated;
+* the forward substitution through the loops (blocks of size 1 and 2, by
+  Cramer's rule, as :class:`numkin.blocks.BlockStructure` does it) is
+  written out once, and each block's inverse determinant serves both
+  right-hand sides.
+
+The function is ``rates(J, q, t, p, dq, d2q)``: ``J`` the n*n Jacobian rows
+(entry (i, j) is row ``i * n + j``; (N,) arrays or numbers), ``q`` (n, N),
+``t`` (N,), ``p`` the parameter values; it writes ``dq`` and ``d2q`` (both
+(n, N), float) and returns nothing. It does not test its results: a singular
+block gives inf or NaN, which the caller masks. Its code uses only numpy's
+functions, so the kernel cache (:mod:`numkin.kernel_cache`) keeps it.
+
+Examples
+--------
+>>> import sympy as sp
+>>> t, x = sp.symbols("t x")
+>>> source = rates_source([x - sp.cos(t)], [x], t, [], [(0, 1)])
+>>> namespace = {"sin": __import__("numpy").sin, "cos": __import__("numpy").cos}
+>>> exec(source, namespace)
+>>> import numpy as np
+>>> dq, d2q = np.empty((1, 1)), np.empty((1, 1))
+>>> namespace["rates"]([1.0], np.zeros((1, 1)), np.array([0.5]), [], dq, d2q)
+>>> bool(np.isclose(dq[0, 0], -np.sin(0.5))), bool(np.isclose(d2q[0, 0], -np.cos(0.5)))
+(True, True)
+"""
+
+from __future__ import annotations
+
+__all__ = ["rates_source", "RATES_NARGS"]
+
+#: Number of arguments of the generated function: ``(J, q, t, p, dq, d2q)``.
+RATES_NARGS = 6
+
+
+def _printer():
+    from sympy.printing.numpy import NumPyPrinter
+
+    return NumPyPrinter({"fully_qualified_modules": False, "inline": True, "allow_unknown_functions": True,
+                         "user_functions": {}})
+
+
+def _right_hand_sides(residuals, unknowns, input_symbol, dq):
+    """``J``, ``F_t`` and ``G_q q' + G_t`` (``G = J q' + F_t``) for the unknowns' derivatives ``dq``."""
+    import sympy as sp
+
+    F = sp.Matrix(list(residuals))
+    jac = F.jacobian(list(unknowns))
+    ft = F.diff(input_symbol)
+    g = jac * sp.Matrix(dq) + ft
+    h = g.jacobian(list(unknowns)) * sp.Matrix(dq) + g.diff(input_symbol)
+    return jac, list(ft), list(h)
+
+
+def rates_source(residuals, unknowns, input_symbol, parameters, blocks, name: str = "rates") -> str | None:
+    """Source of ``name(J, q, t, p, dq, d2q)``, the rates of the loop equations ``residuals = 0``.
+
+    Parameters
+    ----------
+    residuals : sequence of sympy expressions
+        The stacked loop equations, loops in solving order.
+    unknowns : sequence of sympy symbols
+    input_symbol : sympy symbol
+    parameters : sequence of sympy symbols
+        In the order of the values ``p`` the function is called with.
+    blocks : sequence of (start, stop)
+        The unknowns of each loop: the diagonal blocks of the block
+        lower-triangular Jacobian.
+
+    Returns
+    -------
+    str or None
+        The function's code, or None where a block is larger than 2 x 2 or
+        the blocks do not cover the unknowns in order (then the caller solves
+        with :class:`numkin.blocks.BlockStructure`).
+    """
+    import sympy as sp
+
+    n = len(unknowns)
+    blocks = [(int(a), int(b)) for a, b in blocks]
+    if [a for a, _ in blocks] != [0] + [b for _, b in blocks[:-1]] or not blocks or blocks[-1][1] != n:
+        return None
+    if any(not 1 <= b - a <= 2 for a, b in blocks):
+        return None
+    # plain names for the code: q<i>, t, p<k>, w<i> (= dq), J<k>, x<k> (common subexpressions)
+    qs = [sp.Symbol(f"q{i}", **u.assumptions0) for i, u in enumerate(unknowns)]
+    ts = sp.Symbol("t", **input_symbol.assumptions0)
+    ps = [sp.Symbol(f"p{k}", **s.assumptions0) for k, s in enumerate(parameters)]
+    ws = [sp.Symbol(f"w{i}", real=True) for i in range(n)]
+    rename = {**dict(zip(unknowns, qs)), input_symbol: ts, **dict(zip(parameters, ps))}
+    jac, ft, h = _right_hand_sides([sp.sympify(r).xreplace(rename) for r in residuals], qs, ts, ws)
+    varying = set(qs) | {ts}
+    entries = {}
+    for k, e in enumerate(jac):
+        if e.free_symbols & varying:
+            s = sp.Symbol(f"J{k}", real=True)
+            entries.setdefault(e, s)
+            entries.setdefault(-e, -s)
+    if entries:
+        ft = [e.subs(entries) for e in ft]
+        h = [e.subs(entries) for e in h]
+    replacements, reduced = sp.cse(ft + h, symbols=sp.numbered_symbols("x"))
+    after_first = set(ws)  # what depends on dq: computed after the first solve
+    before, after = [], []
+    for sym, e in replacements:
+        if e.free_symbols & after_first:
+            after_first.add(sym)
+            after.append((sym, e))
+        else:
+            before.append((sym, e))
+    zeros = {(i, j) for i in range(n) for j in range(n) if jac[i, j] == 0}
+    pr = _printer()
+    body = [*(f"{s} = {pr.doprint(e)}" for s, e in before)]
+    body += [f"f{i} = {pr.doprint(reduced[i])}" for i in range(n)]
+    body += _solve_lines(n, blocks, zeros, "f", "w", "dq", True, {i for i in range(n) if reduced[i] == 0})
+    body += [f"{s} = {pr.doprint(e)}" for s, e in after]
+    body += [f"h{i} = {pr.doprint(reduced[n + i])}" for i in range(n)]
+    body += _solve_lines(n, blocks, zeros, "h", "v", "d2q", False, {i for i in range(n) if reduced[n + i] == 0})
+    code = "\n".join(body)
+    used = set(_names(code))
+    head = [f"q{i} = q[{i}]" for i in range(n) if f"q{i}" in used]
+    head += [f"p{k} = p[{k}]" for k in range(len(parameters)) if f"p{k}" in used]
+    head += [f"J{k} = J[{k}]" for k in range(n * n) if f"J{k}" in used]
+    return "\n".join([f"def {name}(J, q, t, p, dq, d2q):", *("    " + line for line in head + body), "    return None", ""])
+
+
+def _names(code: str):
+    import ast
+
+    return (node.id for node in ast.walk(ast.parse(code)) if isinstance(node, ast.Name))
+
+
+def _solve_lines(n, blocks, zeros, rhs, sol, out, first, zero_rows):
+    """Forward substitution ``J sol = -rhs`` block by block, written to rows of ``out``.
+
+    The operations are those of :meth:`numkin.blocks.BlockStructure.solve_negated`
+    (same order, same rounding); the first solve computes each 2 x 2 block's
+    ``inv<k> = -1 / det`` and the second reuses it. Rows of ``rhs`` in
+    ``zero_rows`` are identically zero (left out of the sums).
+    """
+    lines = []
+    for k, (a, b) in enumerate(blocks):
+        for i in range(a, b):
+            terms = [f"J[{i * n + j}] * {sol}{j}" for j in range(a) if (i, j) not in zeros]
+            if i not in zero_rows or not terms:
+                terms.insert(0, f"{rhs}{i}")
+            lines.append(f"r{i} = {' + '.join(terms)}")
+        if b - a == 2:
+            i0 = a * n + a
+            if first:
+                lines += [
+                    f"a{k}, b{k}, c{k}, d{k} = J[{i0}], J[{i0 + 1}], J[{i0 + n}], J[{i0 + n + 1}]",
+                    f"inv{k} = -1.0 / (a{k} * d{k} - b{k} * c{k})",
+                ]
+            lines += [
+                f"{sol}{a} = (r{a} * d{k} - b{k} * r{a + 1}) * inv{k}",
+                f"{sol}{a + 1} = (a{k} * r{a + 1} - c{k} * r{a}) * inv{k}",
+            ]
+        else:
+            if first:
+                lines.append(f"a{k} = J[{a * n + a}]")
+            lines.append(f"{sol}{a} = -r{a} / a{k}")
+    lines += [f"{out}[{i}] = {sol}{i}" for i in range(n)]
+    return lines
