@@ -144,13 +144,13 @@ def _singular_mask(sweep, mech, inputs, what: str, skip=()) -> np.ndarray:
     return bad
 
 
-def _regular(cond, rtol) -> bool:
+def _regular(cond, rtol=None) -> bool:
     """Whether every condition number is below those that make a point singular (``COND_MAX``), a
-    change point (``CHANGE_COND``) or one losing digits beyond ``rtol``: one maximum decides all three."""
+    change point (``CHANGE_COND``) or, given ``rtol``, one losing digits beyond it: one maximum decides all."""
     if not cond.size:
         return False
-    top = cond.max()
-    return bool(top <= CHANGE_COND and top <= COND_MAX and lost_digits(top, 2) <= rtol)  # (a NaN fails)
+    top = float(cond.max())
+    return top <= CHANGE_COND and top <= COND_MAX and (rtol is None or lost_digits(top, 2) <= rtol)  # (a NaN fails)
 
 
 def _sweep_jacobian(sweep, q):
@@ -216,6 +216,9 @@ def tangent(sweep, *, at_change_point: str = "nan") -> np.ndarray:
     """
     mech, t, q = check_sweep(sweep)
     cond = condition_numbers(sweep, t)
+    if _regular(cond):  # no singular or change point: nothing to mask
+        continue_branch(mech, t, cond, [], [], "", at_change_point)  # (checks at_change_point)
+        return _velocity(sweep, mech, q, t, mech.parameter_values)
     change = change_points(sweep, mech, q, t, cond)
     _change_point_checks(mech, t, cond)
     bad = _singular_mask(sweep, mech, t, "dq/dtheta is", change)
