@@ -18,6 +18,7 @@ set of functions.
 
 from __future__ import annotations
 
+import math
 from functools import cached_property, lru_cache
 
 import numpy as np
@@ -513,16 +514,18 @@ def rates(compiled: CompiledMechanism, blocks: BlockStructure, q, t, p, jac=None
         if getattr(q, "dtype", None) == float and getattr(t, "dtype", None) == float:
             fused = compiled.rates_kernel(blocks.blocks)
         if fused is not None:
-            dq = np.empty((compiled.n, N))
-            d2q = np.empty((compiled.n, N))
+            both = np.empty((2, compiled.n, N))
+            dq, d2q = both
             try:
                 fused(jac, q, t, p, dq, d2q)
+                total = both.sum()
             except ZeroDivisionError:  # a block singular everywhere (constant entries): solved below
                 fused = None
         if fused is None:
             dq, _ = blocks.solve_negated(jac, compiled.F_t(q, t, p), N)
             d2q, _ = blocks.solve_negated(jac, compiled._second(*q, *dq, t, *p), N)
-        if not np.isfinite(dq.sum() + d2q.sum()):
+            total = dq.sum() + d2q.sum()
+        if not (np.isfinite(total) if isinstance(total, complex) else math.isfinite(total)):
             bad = ~np.isfinite(dq.sum(axis=0))  # a singular block or a value not finite
             dq[:, bad] = np.nan
             d2q[:, bad | ~np.isfinite(d2q.sum(axis=0))] = np.nan

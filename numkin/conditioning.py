@@ -151,6 +151,8 @@ def lost_digits(cond, order: int = 1) -> np.ndarray:
     >>> print(f"{lost_digits(5.03e6, 1):.1e} {lost_digits(5.03e6, 2):.1e}")
     5.6e-03 1.7e-02
     """
+    if isinstance(cond, float):  # (numpy's floats too) one number: plain arithmetic
+        return (2 * order - 1) * _EPS * cond * cond
     return (2 * order - 1) * _EPS * np.asarray(cond, dtype=float) ** 2
 
 

@@ -114,6 +114,12 @@ def bundle_key(kind: str, text: str) -> str:
     >>> bundle_key("a", "x") == bundle_key("a", "y")
     False
     """
+    text = "\n".join([f"bundle format {_FORMAT}", _versions(), _deriving_digest(), kind, text])
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def _deriving_digest() -> str:
+    """sha256 of the modules that derive the code (:data:`_DERIVING`)."""
     digest = hashlib.sha256()
     here = Path(__file__).parent
     for name in _DERIVING:
@@ -121,8 +127,7 @@ def bundle_key(kind: str, text: str) -> str:
             digest.update((here / name).read_bytes())
         except OSError:
             digest.update(name.encode())
-    text = "\n".join([f"bundle format {_FORMAT}", _versions(), digest.hexdigest(), kind, text])
-    return hashlib.sha256(text.encode()).hexdigest()
+    return digest.hexdigest()
 
 
 def _resolve(name, value, module):
@@ -331,7 +336,8 @@ def cached_source(exprs: tuple, args: tuple, kind: str, nargs: int, build):
     """A function generated from ``exprs`` in ``args`` by ``build() -> source or None``, through the disk cache.
 
     ``kind`` names the generator and whatever else the code depends on (it is
-    part of the key with ``exprs`` and ``args``). Returns
+    part of the key with ``exprs``, ``args`` and a digest of the modules that
+    generate code, so a changed generator misses the cache). Returns
     :func:`kernel_from_source` of the source, or None if ``build`` gives none
     or the code cannot be kept. An entry is checked as every kernel's is; one
     that fails a check is rebuilt.
@@ -343,7 +349,7 @@ def cached_source(exprs: tuple, args: tuple, kind: str, nargs: int, build):
     if folder is None or any(isinstance(s, sp.Dummy) for s in symbols):
         source = build()
         return None if source is None else kernel_from_source(source, nargs)
-    key = _key(exprs, args, f"source {kind}", False)
+    key = _key(exprs, args, f"source {kind} {_deriving_digest()}", False)  # a new generator: a new key
     path = folder / f"{key}.json"
     entry = _read(path, key) if path.exists() else None
     if entry is not None and entry.get("source") is not None:

@@ -20,7 +20,10 @@ numpy arrays:
 * the forward substitution through the loops (blocks of size 1 and 2, by
   Cramer's rule, as :class:`numkin.blocks.BlockStructure` does it) is
   written out once, and each block's inverse determinant serves both
-  right-hand sides.
+  right-hand sides;
+* sums of several terms and the solutions are computed in place (into one
+  new array, or into ``dq`` and ``d2q``), with the rounding of the plain
+  expressions: fewer temporaries, which counts for long sweeps.
 
 The function is ``rates(J, q, t, p, dq, d2q)``: ``J`` the n*n Jacobian rows
 (entry (i, j) is row ``i * n + j``; (N,) arrays or numbers), ``q`` (n, N),
@@ -31,14 +34,12 @@ functions, so the kernel cache (:mod:`numkin.kernel_cache`) keeps it.
 
 Examples
 --------
->>> import sympy as sp
+>>> import numpy as np, sympy as sp
+>>> from numkin.kernel_cache import kernel_from_source
 >>> t, x = sp.symbols("t x")
->>> source = rates_source([x - sp.cos(t)], [x], t, [], [(0, 1)])
->>> namespace = {"sin": __import__("numpy").sin, "cos": __import__("numpy").cos}
->>> exec(source, namespace)
->>> import numpy as np
+>>> rates = kernel_from_source(rates_source([x - sp.cos(t)], [x], t, [], [(0, 1)]), RATES_NARGS)
 >>> dq, d2q = np.empty((1, 1)), np.empty((1, 1))
->>> namespace["rates"]([1.0], np.zeros((1, 1)), np.array([0.5]), [], dq, d2q)
+>>> rates([1.0], np.zeros((1, 1)), np.array([0.5]), [], dq, d2q)
 >>> bool(np.isclose(dq[0, 0], -np.sin(0.5))), bool(np.isclose(d2q[0, 0], -np.cos(0.5)))
 (True, True)
 """
@@ -127,13 +128,21 @@ def rates_source(residuals, unknowns, input_symbol, parameters, blocks, name: st
         else:
             before.append((sym, e))
     zeros = {(i, j) for i in range(n) for j in range(n) if jac[i, j] == 0}
+    constant = {(i, j) for i in range(n) for j in range(n) if not jac[i, j].free_symbols & varying}
+    # symbols holding arrays (the others hold numbers): what varies, and the terms computed from it
+    arrays = varying | set(ws) | {v for v in entries.values() if v.is_Symbol}
     pr = _printer()
-    body = [*(f"{s} = {pr.doprint(e)}" for s, e in before)]
+    body = []
+    for sym, e in before:
+        body += _assign(pr, sym, e, arrays)
     body += [f"f{i} = {pr.doprint(reduced[i])}" for i in range(n)]
-    body += _solve_lines(n, blocks, zeros, "f", "w", "dq", True, {i for i in range(n) if reduced[i] == 0})
-    body += [f"{s} = {pr.doprint(e)}" for s, e in after]
-    body += [f"h{i} = {pr.doprint(reduced[n + i])}" for i in range(n)]
-    body += _solve_lines(n, blocks, zeros, "h", "v", "d2q", False, {i for i in range(n) if reduced[n + i] == 0})
+    body += _solve_lines(n, blocks, zeros, constant, "f", "w", "dq", True, {i for i in range(n) if reduced[i] == 0})
+    for sym, e in after:
+        body += _assign(pr, sym, e, arrays)
+    for i in range(n):
+        body += _assign(pr, sp.Symbol(f"h{i}"), reduced[n + i], arrays)
+    body += _solve_lines(n, blocks, zeros, constant, "h", "v", "d2q", False,
+                         {i for i in range(n) if reduced[n + i] == 0})
     code = "\n".join(body)
     used = set(_names(code))
     head = [f"q{i} = q[{i}]" for i in range(n) if f"q{i}" in used]
@@ -142,41 +151,85 @@ def rates_source(residuals, unknowns, input_symbol, parameters, blocks, name: st
     return "\n".join([f"def {name}(J, q, t, p, dq, d2q):", *("    " + line for line in head + body), "    return None", ""])
 
 
+def _assign(pr, sym, expr, arrays: set) -> list:
+    """Lines setting the variable ``sym`` to ``expr``; ``arrays``: the symbols holding arrays (``sym``
+    joins them if ``expr`` involves one).
+
+    A sum of three or more terms that involves an array is accumulated in
+    place in one new array (no temporary per term): the first two terms
+    make it, the others are added to it, in the printed order. Negation is
+    exact and rounding to nearest symmetric, so terms taken with the
+    opposite sign, and a sum negated at the end, round as the printed
+    expression does.
+    """
+    import sympy as sp
+
+    name = str(sym)
+    if not expr.free_symbols & arrays:
+        return [f"{name} = {pr.doprint(expr)}"]
+    arrays.add(sym)
+    if not isinstance(expr, sp.Add) or len(expr.args) < 3:
+        return [f"{name} = {pr.doprint(expr)}"]
+    terms = [(-1, -t) if t.could_extract_minus_sign() else (1, t) for t in expr.as_ordered_terms()]
+    (s0, m0), (s1, m1) = terms[:2]
+    if s0 == s1:
+        lines = [f"{name} = {pr.doprint(m0)} + {pr.doprint(m1)}"]
+    elif s0 > 0:
+        lines = [f"{name} = {pr.doprint(m0)} - {pr.doprint(m1)}"]
+    else:
+        lines = [f"{name} = {pr.doprint(m1)} - {pr.doprint(m0)}"]
+    negated = s0 < 0 and s1 < 0  # the variable holds minus the partial sum
+    for sign, m in terms[2:]:
+        lines.append(f"{name} {'+' if (sign > 0) != negated else '-'}= {pr.doprint(m)}")
+    if negated:
+        lines.append(f"negative({name}, out={name})")
+    return lines
+
+
 def _names(code: str):
     import ast
 
     return (node.id for node in ast.walk(ast.parse(code)) if isinstance(node, ast.Name))
 
 
-def _solve_lines(n, blocks, zeros, rhs, sol, out, first, zero_rows):
-    """Forward substitution ``J sol = -rhs`` block by block, written to rows of ``out``.
+def _solve_lines(n, blocks, zeros, constant, rhs, sol, out, first, zero_rows):
+    """Forward substitution ``J sol = -rhs`` block by block, each solution written into a row of ``out``.
 
     The operations are those of :meth:`numkin.blocks.BlockStructure.solve_negated`
-    (same order, same rounding); the first solve computes each 2 x 2 block's
-    ``inv<k> = -1 / det`` and the second reuses it. Rows of ``rhs`` in
-    ``zero_rows`` are identically zero (left out of the sums).
+    (the same rounding), done in place where the values are arrays; the first
+    solve computes each 2 x 2 block's ``inv<k> = -1 / det`` and the second
+    reuses it. Rows of ``rhs`` in ``zero_rows`` are identically zero (left
+    out); entries in ``zeros`` are zero and those in ``constant`` numbers.
     """
     lines = []
     for k, (a, b) in enumerate(blocks):
         for i in range(a, b):
             terms = [f"J[{i * n + j}] * {sol}{j}" for j in range(a) if (i, j) not in zeros]
-            if i not in zero_rows or not terms:
-                terms.insert(0, f"{rhs}{i}")
-            lines.append(f"r{i} = {' + '.join(terms)}")
+            if not terms:  # (sums are commutative: f + J w is J w + f to the last bit)
+                lines.append(f"r{i} = {rhs}{i}")
+                continue
+            lines.append(f"r{i} = {terms[0]}")
+            if i not in zero_rows:
+                lines.append(f"r{i} += {rhs}{i}")
+            lines += [f"r{i} += {term}" for term in terms[1:]]
         if b - a == 2:
             i0 = a * n + a
             if first:
-                lines += [
-                    f"a{k}, b{k}, c{k}, d{k} = J[{i0}], J[{i0 + 1}], J[{i0 + n}], J[{i0 + n + 1}]",
-                    f"inv{k} = -1.0 / (a{k} * d{k} - b{k} * c{k})",
-                ]
+                lines.append(f"a{k}, b{k}, c{k}, d{k} = J[{i0}], J[{i0 + 1}], J[{i0 + n}], J[{i0 + n + 1}]")
+                if {(a, a), (a + 1, a + 1)} <= constant and {(a, a + 1), (a + 1, a)} <= constant:
+                    lines.append(f"inv{k} = -1.0 / (a{k} * d{k} - b{k} * c{k})")
+                else:
+                    lines += [f"inv{k} = a{k} * d{k}", f"inv{k} -= b{k} * c{k}", f"divide(-1.0, inv{k}, out=inv{k})"]
             lines += [
-                f"{sol}{a} = (r{a} * d{k} - b{k} * r{a + 1}) * inv{k}",
-                f"{sol}{a + 1} = (a{k} * r{a + 1} - c{k} * r{a}) * inv{k}",
+                f"{sol}{a} = multiply(r{a}, d{k}, out={out}[{a}])",
+                f"{sol}{a} -= b{k} * r{a + 1}",
+                f"{sol}{a} *= inv{k}",
+                f"{sol}{a + 1} = multiply(a{k}, r{a + 1}, out={out}[{a + 1}])",
+                f"{sol}{a + 1} -= c{k} * r{a}",
+                f"{sol}{a + 1} *= inv{k}",
             ]
         else:
             if first:
                 lines.append(f"a{k} = J[{a * n + a}]")
-            lines.append(f"{sol}{a} = -r{a} / a{k}")
-    lines += [f"{out}[{i}] = {sol}{i}" for i in range(n)]
+            lines += [f"{sol}{a} = divide(r{a}, a{k}, out={out}[{a}])", f"negative({sol}{a}, out={sol}{a})"]
     return lines
