@@ -159,3 +159,20 @@ def test_the_fused_function_joins_the_bundle(tmp_path, monkeypatch):
     assert "_rates" in vars(again.compiled) and "residuals" not in vars(again.compiled)  # no sympy model needed
     np.testing.assert_array_equal(dq2, dq)
     np.testing.assert_array_equal(d2q2, d2q)
+
+
+def test_a_changed_generator_misses_the_cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("NUMKIN_CACHE_DIR", str(tmp_path))
+    x = sp.Symbol("x")
+    built = []
+
+    def build():
+        built.append(1)
+        return "def f(J, q, t, p, dq, d2q):\n    return None\n"
+
+    kernel_cache.cached_source((x,), (x,), "test", RATES_NARGS, build)
+    kernel_cache.cached_source((x,), (x,), "test", RATES_NARGS, build)
+    assert len(built) == 1
+    monkeypatch.setattr(kernel_cache, "_deriving_digest", lambda: "another generator")
+    kernel_cache.cached_source((x,), (x,), "test", RATES_NARGS, build)
+    assert len(built) == 2 and len(list(tmp_path.glob("*.json"))) == 2
