@@ -222,18 +222,23 @@ def _load(path: Path, key: str, nargs: int):
     if entry is None:
         return None
     try:
-        source, names = entry["source"], entry["names"]
-        if not _safe(source, names, nargs):
-            return None
-        ns = _namespace(names)
-        if ns is None:
-            return None
-        exec(compile(source, f"<numkin kernel {key[:12]}>", "exec"), ns)  # noqa: S102 - checked above
-        f = ns[entry["name"]]
+        return _checked_function(entry["source"], entry["names"], nargs, entry["name"], entry.get("module", "numpy"),
+                                 f"<numkin kernel {key[:12]}>")
     except (ValueError, KeyError, TypeError, SyntaxError, NameError):
         return None
-    f.numkin_kernel = {"name": entry["name"], "source": source, "names": names, "nargs": nargs,
-                       "module": entry.get("module", "numpy")}
+
+
+def _checked_function(source: str, names: dict, nargs: int, name: str, module: str, label: str):
+    """The function ``name`` that ``source`` defines, its globals ``names``, carrying what keeps it as
+    ``f.numkin_kernel``; None if the code's shape fails a check (see :func:`_safe`)."""
+    if not _safe(source, names, nargs):
+        return None
+    ns = _namespace(names)
+    if ns is None:
+        return None
+    exec(compile(source, label, "exec"), ns)  # noqa: S102 - checked above
+    f = ns[name]
+    f.numkin_kernel = {"name": name, "source": source, "names": names, "nargs": nargs, "module": module}
     return f
 
 
@@ -321,15 +326,7 @@ def kernel_from_source(source: str, nargs: int, module: str = "numpy"):
             if where is None:
                 return None
             names[node.id] = where
-    if not _safe(source, names, nargs):
-        return None
-    ns = _namespace(names)
-    if ns is None:
-        return None
-    exec(compile(tree, f"<numkin kernel {fn.name}>", "exec"), ns)  # noqa: S102 - checked above
-    f = ns[fn.name]
-    f.numkin_kernel = {"name": fn.name, "source": source, "names": names, "nargs": nargs, "module": module}
-    return f
+    return _checked_function(source, names, nargs, fn.name, module, f"<numkin kernel {fn.name}>")
 
 
 def cached_source(exprs: tuple, args: tuple, kind: str, nargs: int, build):

@@ -109,14 +109,21 @@ def test_blocks_larger_than_two_are_left_to_the_general_solve():
 
 
 # ----------------------------------------------------------------- kept between runs
-def test_a_corrupt_or_tampered_entry_is_rebuilt(tmp_path, monkeypatch):
-    monkeypatch.setenv("NUMKIN_CACHE_DIR", str(tmp_path))
-    x = sp.Symbol("x")
+def _counted(source: str):
+    """A generator of ``source`` for :func:`kernel_cache.cached_source`, and the list of its calls."""
     built = []
 
     def build():
         built.append(1)
-        return "def f(J, q, t, p, dq, d2q):\n    dq[0] = cos(t)\n    return None\n"
+        return source
+
+    return build, built
+
+
+def test_a_corrupt_or_tampered_entry_is_rebuilt(tmp_path, monkeypatch):
+    monkeypatch.setenv("NUMKIN_CACHE_DIR", str(tmp_path))
+    x = sp.Symbol("x")
+    build, built = _counted("def f(J, q, t, p, dq, d2q):\n    dq[0] = cos(t)\n    return None\n")
 
     def value(f):
         out = np.empty((1, 1))
@@ -164,11 +171,7 @@ def test_the_fused_function_joins_the_bundle(tmp_path, monkeypatch):
 def test_a_changed_generator_misses_the_cache(tmp_path, monkeypatch):
     monkeypatch.setenv("NUMKIN_CACHE_DIR", str(tmp_path))
     x = sp.Symbol("x")
-    built = []
-
-    def build():
-        built.append(1)
-        return "def f(J, q, t, p, dq, d2q):\n    return None\n"
+    build, built = _counted("def f(J, q, t, p, dq, d2q):\n    return None\n")
 
     kernel_cache.cached_source((x,), (x,), "test", RATES_NARGS, build)
     kernel_cache.cached_source((x,), (x,), "test", RATES_NARGS, build)
