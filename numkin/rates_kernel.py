@@ -46,6 +46,8 @@ Examples
 
 from __future__ import annotations
 
+from collections import Counter
+
 __all__ = ["rates_source", "RATES_NARGS"]
 
 #: Number of arguments of the generated function: ``(J, q, t, p, dq, d2q)``.
@@ -107,17 +109,23 @@ def rates_source(residuals, unknowns, input_symbol, parameters, blocks, name: st
     ps = [sp.Symbol(f"p{k}", **s.assumptions0) for k, s in enumerate(parameters)]
     ws = [sp.Symbol(f"w{i}", real=True) for i in range(n)]
     rename = {**dict(zip(unknowns, qs)), input_symbol: ts, **dict(zip(parameters, ps))}
-    jac, ft, h = _right_hand_sides([sp.sympify(r).xreplace(rename) for r in residuals], qs, ts, ws)
+    # derived in the mechanism's own symbols (sympy's cache holds their first derivatives), then renamed
+    jac, ft, h = _right_hand_sides([sp.sympify(r) for r in residuals], unknowns, input_symbol, ws)
+    jac, ft, h = jac.xreplace(rename), [e.xreplace(rename) for e in ft], [e.xreplace(rename) for e in h]
     varying = set(qs) | {ts}
-    entries = {}
+    entries = ([], [])  # varying Jacobian entries: (terms, symbol) of sums; (factors, coefficient, symbol) of products
     for k, e in enumerate(jac):
-        if e.free_symbols & varying:
-            s = sp.Symbol(f"J{k}", real=True)
-            entries.setdefault(e, s)
-            entries.setdefault(-e, -s)
-    if entries:
-        ft = [e.subs(entries) for e in ft]
-        h = [e.subs(entries) for e in h]
+        if e.free_symbols & varying and not e.is_Symbol:
+            symbol = sp.Symbol(f"J{k}", real=True)
+            if e.is_Add:
+                entries[0].append((e.args, symbol))
+            else:
+                coeff, factors = e.as_coeff_mul()
+                entries[1].append((Counter(factors), coeff, symbol))
+    entries[0].sort(key=lambda entry: -len(entry[0]))  # the largest first
+    entries[1].sort(key=lambda entry: -sum(entry[0].values()))
+    ft = [_read_entries(e, *entries) for e in ft]
+    h = [_read_entries(e, *entries) for e in h]
     replacements, reduced = sp.cse(ft + h, symbols=sp.numbered_symbols("x"))
     after_first = set(ws)  # what depends on dq: computed after the first solve
     before, after = [], []
@@ -130,7 +138,7 @@ def rates_source(residuals, unknowns, input_symbol, parameters, blocks, name: st
     zeros = {(i, j) for i in range(n) for j in range(n) if jac[i, j] == 0}
     constant = {(i, j) for i in range(n) for j in range(n) if not jac[i, j].free_symbols & varying}
     # symbols holding arrays (the others hold numbers): what varies, and the terms computed from it
-    arrays = varying | set(ws) | {v for v in entries.values() if v.is_Symbol}
+    arrays = varying | set(ws) | {entry[-1] for entry in entries[0] + entries[1]}
     pr = _printer()
     body = []
     for sym, e in before:
@@ -149,6 +157,38 @@ def rates_source(residuals, unknowns, input_symbol, parameters, blocks, name: st
     head += [f"p{k} = p[{k}]" for k in range(len(parameters)) if f"p{k}" in used]
     head += [f"J{k} = J[{k}]" for k in range(n * n) if f"J{k}" in used]
     return "\n".join([f"def {name}(J, q, t, p, dq, d2q):", *("    " + line for line in head + body), "    return None", ""])
+
+
+def _read_entries(expr, sums, products):
+    """``expr`` with each product that contains the factors of a Jacobian entry, and each sum that
+    contains the terms of one (or their negatives), written with the entry's symbol instead
+    (``r3 w0**2 cos(q0)`` is ``J2 w0**2`` where ``J2 = r3 cos(q0)``): exact, and those terms are
+    then read from the Jacobian rows rather than computed. ``sums`` and ``products`` as
+    :func:`rates_source` lists them."""
+    import sympy as sp
+
+    if expr.is_Add:
+        terms = list(expr.args)
+        found = []
+        for core, symbol in sums:
+            for sign in (1, -1):
+                signed = [sign * term for term in core]
+                while all(term in terms for term in signed):
+                    for term in signed:
+                        terms.remove(term)
+                    found.append(sign * symbol)
+        return sp.Add(*found, *[_read_entries(term, sums, products) for term in terms])
+    coeff, factors = expr.as_coeff_mul()
+    have = Counter(_read_entries(f, sums, products) if f.is_Add else f for f in factors)
+    found = []
+    for core, c, symbol in products:
+        while all(have[f] >= m for f, m in core.items()):
+            have -= core
+            coeff = coeff / c
+            found.append(symbol)
+    if not found and have == Counter(factors):
+        return expr
+    return sp.Mul(coeff, *found, *have.elements())
 
 
 def _assign(pr, sym, expr, arrays: set) -> list:

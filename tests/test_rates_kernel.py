@@ -179,3 +179,14 @@ def test_a_changed_generator_misses_the_cache(tmp_path, monkeypatch):
     monkeypatch.setattr(kernel_cache, "_deriving_digest", lambda: "another generator")
     kernel_cache.cached_source((x,), (x,), "test", RATES_NARGS, build)
     assert len(built) == 2 and len(list(tmp_path.glob("*.json"))) == 2
+
+
+@pytest.mark.parametrize("make", [lambda: linkages.four_bar(4, 1, 3, 3), linkages.chained_four_bars, linkages.six_bar,
+                                  lambda: linkages.slider_crank(80, 200, 25), linkages.quick_return])
+def test_vector_loops_read_their_second_derivative_terms_from_the_jacobian(make):
+    """Of the sines and cosines in the rates only those of the input are evaluated: the second
+    derivatives of r cos(phi), r sin(phi) (also of sums, as the six-bar's coupler has) are entries of J."""
+    m = make()
+    source = m.compiled.rates_kernel(m.block_structure.blocks).numkin_kernel["source"]
+    assert source.count("sin(") == source.count("sin(t)") == 1
+    assert source.count("cos(") == source.count("cos(t)") == 1
