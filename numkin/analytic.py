@@ -69,6 +69,7 @@ from .conditioning import (
     DIGITS_RTOL,
     LostDigitsWarning,
     change_points,
+    check_at_change_point,
     condition_numbers,
     continue_branch,
     lost_digits,
@@ -217,7 +218,7 @@ def tangent(sweep, *, at_change_point: str = "nan") -> np.ndarray:
     mech, t, q = check_sweep(sweep)
     cond = condition_numbers(sweep, t)
     if _regular(cond):  # no singular or change point: nothing to mask
-        continue_branch(mech, t, cond, [], [], "", at_change_point)  # (checks at_change_point)
+        check_at_change_point(at_change_point)
         return _velocity(sweep, mech, q, t, mech.parameter_values)
     change = change_points(sweep, mech, q, t, cond)
     _change_point_checks(mech, t, cond)
@@ -286,7 +287,7 @@ def derivatives(sweep, *, rtol: float = DIGITS_RTOL, at_change_point: str = "nan
     p = mech.parameter_values
     cond = condition_numbers(sweep, t)
     if _regular(cond, rtol):  # no singular, change or digit-losing point: nothing to mask, nothing to say
-        continue_branch(mech, t, cond, [], [], "", at_change_point)  # (checks at_change_point)
+        check_at_change_point(at_change_point)
         return _rates(sweep, mech, q, t, p)
     change = change_points(sweep, mech, q, t, cond)
     _change_point_checks(mech, t, cond)

@@ -190,3 +190,10 @@ def test_vector_loops_read_their_second_derivative_terms_from_the_jacobian(make)
     source = m.compiled.rates_kernel(m.block_structure.blocks).numkin_kernel["source"]
     assert source.count("sin(") == source.count("sin(t)") == 1
     assert source.count("cos(") == source.count("cos(t)") == 1
+
+
+def test_regular_sweeps_still_refuse_an_unknown_at_change_point():
+    sweep = linkages.four_bar(4, 1, 3, 3).sweep(np.radians([0.0, 10.0]))
+    for f in (analytic.derivatives, analytic.tangent):
+        with pytest.raises(ValueError, match="at_change_point must be one of"):
+            f(sweep, at_change_point="skip")
