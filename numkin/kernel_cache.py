@@ -1,10 +1,14 @@
 """A disk cache of generated kernels: the code ``sympy.lambdify`` writes, kept between runs.
 
-Two kinds of entry share one folder, each a small JSON file:
+Three kinds of entry share one folder, each a small JSON file:
 
 * a **kernel**: one generated function, keyed by the expressions' structure
   (``sympy.srepr``), its arguments, the target module (``numpy`` or
   ``math``) and whether common subexpressions were eliminated;
+* a **generated source**: a function numkin writes itself from expressions
+  (the fused rates of :mod:`numkin.rates_kernel`, :func:`cached_source`),
+  keyed by the expressions, their arguments, what it is, and a digest of the
+  modules that write code;
 * a **bundle**: everything a mechanism compiles to, keyed without sympy by
   what it is built from (a ready-made linkage's name and the source of its
   module, or a scene's loop and point expressions as written), together with
