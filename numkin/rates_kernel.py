@@ -121,7 +121,8 @@ def rates_source(residuals, unknowns, input_symbol, parameters, blocks, name: st
                 entries[0].append((e.args, symbol))
             else:
                 coeff, factors = e.as_coeff_mul()
-                entries[1].append((Counter(factors), coeff, symbol))
+                if len(factors) > 1 or not factors[0].is_Symbol:  # (reading -x from J saves nothing)
+                    entries[1].append((Counter(factors), coeff, symbol))
     entries[0].sort(key=lambda entry: -len(entry[0]))  # the largest first
     entries[1].sort(key=lambda entry: -sum(entry[0].values()))
     ft = [_read_entries(e, *entries) for e in ft]
