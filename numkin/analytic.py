@@ -13,7 +13,11 @@ when the mechanism is built (the acceleration one only on first use, so a
 position-only run never differentiates) and are solved here at every point
 of a sweep at once. Loops are stacked in solving order, so ``J`` is block
 lower-triangular: the chain rule through earlier loops (chained four-bars,
-six-bar) is part of the one solve.
+six-bar) is part of the one solve. For loops of one or two unknowns both
+systems are solved by one generated function (:mod:`numkin.rates_kernel`)
+that reuses the sweep's Jacobian for the terms they share with it; the
+checks for singular, change and digit-losing points cost one maximum of the
+sweep's condition numbers when none is near.
 
 Time derivatives follow from the input's angular speed ``omega_in`` and
 acceleration ``alpha_in``::
@@ -69,6 +73,7 @@ from .conditioning import (
     DIGITS_RTOL,
     LostDigitsWarning,
     change_points,
+    check_at_change_point,
     condition_numbers,
     continue_branch,
     lost_digits,
@@ -144,6 +149,15 @@ def _singular_mask(sweep, mech, inputs, what: str, skip=()) -> np.ndarray:
     return bad
 
 
+def _regular(cond, rtol=None) -> bool:
+    """Whether every condition number is below those that make a point singular (``COND_MAX``), a
+    change point (``CHANGE_COND``) or, given ``rtol``, one losing digits beyond it: one maximum decides all."""
+    if not cond.size:
+        return False
+    top = float(cond.max())
+    return top <= CHANGE_COND and top <= COND_MAX and (rtol is None or lost_digits(top, 2) <= rtol)  # (a NaN fails)
+
+
 def _sweep_jacobian(sweep, q):
     """The Jacobian rows the sweep kept at its values, or None (then they are computed)."""
     rows = getattr(sweep, "jacobian_rows", None)
@@ -207,6 +221,9 @@ def tangent(sweep, *, at_change_point: str = "nan") -> np.ndarray:
     """
     mech, t, q = check_sweep(sweep)
     cond = condition_numbers(sweep, t)
+    if _regular(cond):  # no singular or change point: nothing to mask
+        check_at_change_point(at_change_point)
+        return _velocity(sweep, mech, q, t, mech.parameter_values)
     change = change_points(sweep, mech, q, t, cond)
     _change_point_checks(mech, t, cond)
     bad = _singular_mask(sweep, mech, t, "dq/dtheta is", change)
@@ -273,16 +290,16 @@ def derivatives(sweep, *, rtol: float = DIGITS_RTOL, at_change_point: str = "nan
     mech, t, q = check_sweep(sweep)
     p = mech.parameter_values
     cond = condition_numbers(sweep, t)
+    if _regular(cond, rtol):  # no singular, change or digit-losing point: nothing to mask, nothing to say
+        check_at_change_point(at_change_point)
+        return _rates(sweep, mech, q, t, p)
     change = change_points(sweep, mech, q, t, cond)
     _change_point_checks(mech, t, cond)
     bad = _singular_mask(sweep, mech, t, "dq/dtheta and d2q/dtheta2 are", change)
-    dq, d2q = _rates(sweep, mech, q, t, p)
+    dq, d2q = _rates(sweep, mech, q, t, p)  # (d2q is NaN wherever dq is not finite)
     if bad.any():
         dq[:, bad] = np.nan
         d2q[:, bad] = np.nan
-    finite = np.isfinite(dq).all(axis=0)
-    if not finite.all():
-        d2q[:, ~finite] = np.nan
     continue_branch(mech, t, cond, change, [dq, d2q], "dq/dtheta and d2q/dtheta2", at_change_point)
     warn_lost_digits(mech, t, cond, change, rtol)
     return dq, d2q

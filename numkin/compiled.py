@@ -18,6 +18,7 @@ set of functions.
 
 from __future__ import annotations
 
+import math
 from functools import cached_property, lru_cache
 
 import numpy as np
@@ -31,9 +32,10 @@ __all__ = [
 ]
 
 #: The numeric functions of a mechanism a bundle of the kernel cache keeps: role -> attribute of
-#: :class:`CompiledMechanism`. The first three are compiled with the mechanism, the others on first use.
+#: :class:`CompiledMechanism`. The first three are compiled with the mechanism, the others on first use
+#: (``"rates"``, the fused velocity and acceleration solve, is kept with the loops' blocks it was written for).
 KERNEL_ROLES = {"F": "_F", "J": "_J", "F_t": "_Ft", "fast": "_fast", "scalar_F": "scalar_F", "scalar_FJT": "scalar_FJT",
-                "second": "_second"}
+                "second": "_second", "rates": "_rates"}
 
 #: Errors the ``math`` module raises where numpy returns NaN or inf.
 MATH_ERRORS = (ValueError, ZeroDivisionError, OverflowError)
@@ -294,6 +296,8 @@ class CompiledMechanism:
         for role, spec in roles.items():
             if role == "fast":
                 value = (import_function(spec["rows"], functions), import_function(spec["terms"], functions))
+            elif role == "rates":
+                value = (tuple((int(a), int(b)) for a, b in spec["blocks"]), import_function(spec["f"], functions))
             else:
                 value = import_function(spec, functions)
             if role in ("F", "J", "F_t"):
@@ -324,6 +328,8 @@ class CompiledMechanism:
             value = known[attr]
             if role == "fast":
                 out[role] = {"rows": export_function(value[0], kernels), "terms": export_function(value[1], kernels)}
+            elif role == "rates":
+                out[role] = {"blocks": [list(b) for b in value[0]], "f": export_function(value[1], kernels)}
             else:
                 out[role] = export_function(value, kernels)
         return out
@@ -404,6 +410,28 @@ class CompiledMechanism:
         h = g.jacobian(self.unknowns) * sp.Matrix(dq) + g.diff(t)
         return _lambdify(tuple(h), (*self.unknowns, *dq, t, *self.parameters), "numpy", True)
 
+    def rates_kernel(self, blocks):
+        """The generated function of :func:`rates` for the loops' ``blocks`` ((start, stop) of each
+        loop's unknowns): ``f(J, q, t, p, dq, d2q)`` (see :mod:`numkin.rates_kernel`), or None where
+        it cannot be written out (a block larger than 2 x 2). Derived on first use, once per shape of
+        loop equations; kept like every kernel (in memory, on disk, in the mechanism's bundle)."""
+        blocks = tuple((int(a), int(b)) for a, b in blocks)
+        known = self.__dict__
+        kept = known.get("_rates")
+        if kept is None:
+            kept = known.get("_loaded", {}).pop("_rates", None)
+            if kept is not None:
+                known["_rates"] = kept
+        if kept is not None and kept[0] == blocks:
+            return kept[1]
+        f = _rates_kernel(tuple(self.residuals), tuple(self.unknowns), self.input_symbol, tuple(self.parameters),
+                          blocks)
+        known["_rates"] = (blocks, f)
+        hook = known.get("_on_compile")
+        if hook is not None:
+            hook()
+        return f
+
     def second_derivative(self, q, dq, t, p):
         """d2q/dt2 along the solution, shape (n, N): solves ``J q'' = -(G_q q' + G_t)`` (dense LU)."""
         N = np.shape(t)[0] if np.ndim(t) else 1
@@ -436,6 +464,19 @@ def acceleration_rhs(compiled: CompiledMechanism, q, dq, t, p) -> list:
     return list(compiled._second(*q, *dq, t, *p))
 
 
+@lru_cache(maxsize=128)
+def _rates_kernel(residuals: tuple, unknowns: tuple, input_symbol, parameters: tuple, blocks: tuple):
+    """The fused rates function for one shape of loop equations and blocks (see :meth:`CompiledMechanism.rates_kernel`)."""
+    from .kernel_cache import cached_source
+    from .rates_kernel import RATES_NARGS, rates_source
+
+    def build():
+        return rates_source(residuals, unknowns, input_symbol, parameters, blocks)
+
+    return cached_source(residuals, (*unknowns, input_symbol, *parameters), f"rates {list(blocks)}", RATES_NARGS,
+                         build)
+
+
 def jacobian_rows(compiled: CompiledMechanism, q, t, p):
     """The Jacobian ``dF/dq`` at every point as n*n rows (entry (i, j) is row ``i * n + j``)."""
     n = compiled.n
@@ -446,10 +487,14 @@ def rates(compiled: CompiledMechanism, blocks: BlockStructure, q, t, p, jac=None
     """dq/dt and d2q/dt2 at every point by block-triangular solves: two (n, N) arrays.
 
     ``J q' = -dF/dt``, then ``J q'' = -(G_q q' + G_t)``, both solved loop by
-    loop (:meth:`BlockStructure.solve_negated`): the cost is linear in the
-    number of loops and every operation runs on whole arrays. ``jac``: the
-    Jacobian rows at ``q`` if known (a sweep keeps its last), else computed.
-    Columns where a diagonal block is singular or a value not finite are NaN.
+    loop: the cost is linear in the number of loops and every operation runs
+    on whole arrays. For real values and loops of one or two unknowns both
+    solves are one generated function (:meth:`CompiledMechanism.rates_kernel`,
+    :mod:`numkin.rates_kernel`) that shares the right-hand sides' terms and
+    the blocks' determinants; otherwise :meth:`BlockStructure.solve_negated`
+    solves each. ``jac``: the Jacobian rows at ``q`` if known (a sweep keeps
+    its last), else computed. Columns where a diagonal block is singular or a
+    value not finite are NaN (both arrays where ``dq`` is not finite).
 
     Examples
     --------
@@ -465,6 +510,23 @@ def rates(compiled: CompiledMechanism, blocks: BlockStructure, q, t, p, jac=None
     with np.errstate(all="ignore"):
         if jac is None:
             jac = jacobian_rows(compiled, q, t, p)
-        dq, _ = blocks.solve_negated(jac, compiled.F_t(q, t, p), N)
-        d2q, _ = blocks.solve_negated(jac, compiled._second(*q, *dq, t, *p), N)
+        fused = None
+        if getattr(q, "dtype", None) == float and getattr(t, "dtype", None) == float:
+            fused = compiled.rates_kernel(blocks.blocks)
+        if fused is not None:
+            both = np.empty((2, compiled.n, N))
+            dq, d2q = both
+            try:
+                fused(jac, q, t, p, dq, d2q)
+                total = both.sum()
+            except ZeroDivisionError:  # a block singular everywhere (constant entries): solved below
+                fused = None
+        if fused is None:
+            dq, _ = blocks.solve_negated(jac, compiled.F_t(q, t, p), N)
+            d2q, _ = blocks.solve_negated(jac, compiled._second(*q, *dq, t, *p), N)
+            total = dq.sum() + d2q.sum()
+        if not (np.isfinite(total) if isinstance(total, complex) else math.isfinite(total)):
+            bad = ~np.isfinite(dq.sum(axis=0))  # a singular block or a value not finite
+            dq[:, bad] = np.nan
+            d2q[:, bad | ~np.isfinite(d2q.sum(axis=0))] = np.nan
     return dq, d2q

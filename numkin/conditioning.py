@@ -34,6 +34,7 @@ __all__ = [
     "rounding_error",
     "change_points",
     "continue_branch",
+    "check_at_change_point",
     "warn_lost_digits",
     "warn_rounding",
 ]
@@ -97,12 +98,26 @@ def _lagrange_at(x: np.ndarray, x0: float) -> np.ndarray:
 AT_CHANGE_POINT = ("nan", "continue")
 
 
+def check_at_change_point(at_change_point: str) -> None:
+    """A ValueError unless `at_change_point` is one of :data:`AT_CHANGE_POINT`.
+
+    Examples
+    --------
+    >>> check_at_change_point("continue")
+    >>> check_at_change_point("skip")
+    Traceback (most recent call last):
+    ...
+    ValueError: at_change_point must be one of ('nan', 'continue'), got 'skip'
+    """
+    if at_change_point not in AT_CHANGE_POINT:
+        raise ValueError(f"at_change_point must be one of {AT_CHANGE_POINT}, got {at_change_point!r}")
+
+
 def continue_branch(mech, t, cond, change, arrays, what: str, at_change_point: str = "nan") -> None:
     """At each change-point sample, set the columns of `arrays` to NaN (``at_change_point="nan"``)
     or to the kept branch's smooth continuation (``"continue"``): the polynomial through the
     neighbouring regular samples, evaluated there. Warns, giving the continued values."""
-    if at_change_point not in AT_CHANGE_POINT:
-        raise ValueError(f"at_change_point must be one of {AT_CHANGE_POINT}, got {at_change_point!r}")
+    check_at_change_point(at_change_point)
     if not change:
         return
     good = np.isfinite(cond) & (cond <= CHANGE_COND) & np.all(np.isfinite(arrays[0]), axis=0)
@@ -151,6 +166,8 @@ def lost_digits(cond, order: int = 1) -> np.ndarray:
     >>> print(f"{lost_digits(5.03e6, 1):.1e} {lost_digits(5.03e6, 2):.1e}")
     5.6e-03 1.7e-02
     """
+    if isinstance(cond, float):  # (numpy's floats too) one number: plain arithmetic
+        return (2 * order - 1) * _EPS * cond * cond
     return (2 * order - 1) * _EPS * np.asarray(cond, dtype=float) ** 2
 
 

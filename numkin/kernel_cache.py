@@ -1,10 +1,14 @@
 """A disk cache of generated kernels: the code ``sympy.lambdify`` writes, kept between runs.
 
-Two kinds of entry share one folder, each a small JSON file:
+Three kinds of entry share one folder, each a small JSON file:
 
 * a **kernel**: one generated function, keyed by the expressions' structure
   (``sympy.srepr``), its arguments, the target module (``numpy`` or
   ``math``) and whether common subexpressions were eliminated;
+* a **generated source**: a function numkin writes itself from expressions
+  (the fused rates of :mod:`numkin.rates_kernel`, :func:`cached_source`),
+  keyed by the expressions, their arguments, what it is, and a digest of the
+  modules that write code;
 * a **bundle**: everything a mechanism compiles to, keyed without sympy by
   what it is built from (a ready-made linkage's name and the source of its
   module, or a scene's loop and point expressions as written), together with
@@ -46,15 +50,16 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["cache_dir", "cached_lambdify", "bundle_key", "load_bundle", "store_bundle", "ENV_VAR"]
+__all__ = ["cache_dir", "cached_lambdify", "cached_source", "kernel_from_source", "bundle_key", "load_bundle",
+           "store_bundle", "ENV_VAR"]
 
 #: Environment variable naming the cache folder (``off`` disables the cache).
 ENV_VAR = "NUMKIN_CACHE_DIR"
-_FORMAT = 2
+_FORMAT = 3
 #: Built-in names generated code may use.
 _BUILTINS = frozenset({"range", "len", "abs", "float", "complex", "int"})
 #: Modules of numkin whose code decides what a mechanism compiles to (their digest is part of a bundle's key).
-_DERIVING = ("compiled.py", "loops.py", "mechanism.py", "kernel_cache.py", "assemble.py")
+_DERIVING = ("compiled.py", "loops.py", "mechanism.py", "kernel_cache.py", "assemble.py", "rates_kernel.py")
 #: Bundles loaded in this process: path -> (model, functions).
 _BUNDLES: dict = {}
 
@@ -113,6 +118,12 @@ def bundle_key(kind: str, text: str) -> str:
     >>> bundle_key("a", "x") == bundle_key("a", "y")
     False
     """
+    text = "\n".join([f"bundle format {_FORMAT}", _versions(), _deriving_digest(), kind, text])
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def _deriving_digest() -> str:
+    """sha256 of the modules that derive the code (:data:`_DERIVING`)."""
     digest = hashlib.sha256()
     here = Path(__file__).parent
     for name in _DERIVING:
@@ -120,8 +131,7 @@ def bundle_key(kind: str, text: str) -> str:
             digest.update((here / name).read_bytes())
         except OSError:
             digest.update(name.encode())
-    text = "\n".join([f"bundle format {_FORMAT}", _versions(), digest.hexdigest(), kind, text])
-    return hashlib.sha256(text.encode()).hexdigest()
+    return digest.hexdigest()
 
 
 def _resolve(name, value, module):
@@ -216,18 +226,23 @@ def _load(path: Path, key: str, nargs: int):
     if entry is None:
         return None
     try:
-        source, names = entry["source"], entry["names"]
-        if not _safe(source, names, nargs):
-            return None
-        ns = _namespace(names)
-        if ns is None:
-            return None
-        exec(compile(source, f"<numkin kernel {key[:12]}>", "exec"), ns)  # noqa: S102 - checked above
-        f = ns[entry["name"]]
+        return _checked_function(entry["source"], entry["names"], nargs, entry["name"], entry.get("module", "numpy"),
+                                 f"<numkin kernel {key[:12]}>")
     except (ValueError, KeyError, TypeError, SyntaxError, NameError):
         return None
-    f.numkin_kernel = {"name": entry["name"], "source": source, "names": names, "nargs": nargs,
-                       "module": entry.get("module", "numpy")}
+
+
+def _checked_function(source: str, names: dict, nargs: int, name: str, module: str, label: str):
+    """The function ``name`` that ``source`` defines, its globals ``names``, carrying what keeps it as
+    ``f.numkin_kernel``; None if the code's shape fails a check (see :func:`_safe`)."""
+    if not _safe(source, names, nargs):
+        return None
+    ns = _namespace(names)
+    if ns is None:
+        return None
+    exec(compile(source, label, "exec"), ns)  # noqa: S102 - checked above
+    f = ns[name]
+    f.numkin_kernel = {"name": name, "source": source, "names": names, "nargs": nargs, "module": module}
     return f
 
 
@@ -284,6 +299,70 @@ def cached_lambdify(exprs: tuple, args: tuple, modules: str, cse: bool):
             f.numkin_kernel = entry
             _write(path, {"key": key, **{k: entry[k] for k in ("name", "source", "names", "module")},
                           "sha256": hashlib.sha256(entry["source"].encode()).hexdigest(), "versions": _versions()})
+    return f
+
+
+def kernel_from_source(source: str, nargs: int, module: str = "numpy"):
+    r"""The one function generated code ``source`` defines, its global names taken from ``module``
+    (``"numpy"`` or ``"math"``), carrying what keeps it as ``f.numkin_kernel``; None if the code is not
+    of the shape the cache keeps (see the module's notes) or names something ``module`` lacks.
+
+    Examples
+    --------
+    >>> f = kernel_from_source("def f(x):\n    return cos(x) ** 2 + sin(x) ** 2\n", 1)
+    >>> round(float(f(0.3)), 12), sorted(f.numkin_kernel["names"])
+    (1.0, ['cos', 'sin'])
+    """
+    mod = {"numpy": np, "math": math}.get(module)
+    try:
+        tree = ast.parse(source)
+    except SyntaxError:
+        return None
+    if mod is None or len(tree.body) != 1 or not isinstance(tree.body[0], ast.FunctionDef):
+        return None
+    fn = tree.body[0]
+    local = {a.arg for a in fn.args.args}
+    local |= {n.id for n in ast.walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+    names = {}
+    for node in ast.walk(fn):
+        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and node.id not in local | _BUILTINS:
+            where = _resolve(node.id, getattr(mod, node.id, None), mod)
+            if where is None:
+                return None
+            names[node.id] = where
+    return _checked_function(source, names, nargs, fn.name, module, f"<numkin kernel {fn.name}>")
+
+
+def cached_source(exprs: tuple, args: tuple, kind: str, nargs: int, build):
+    """A function generated from ``exprs`` in ``args`` by ``build() -> source or None``, through the disk cache.
+
+    ``kind`` names the generator and whatever else the code depends on (it is
+    part of the key with ``exprs``, ``args`` and a digest of the modules that
+    generate code, so a changed generator misses the cache). Returns
+    :func:`kernel_from_source` of the source, or None if ``build`` gives none
+    or the code cannot be kept. An entry is checked as every kernel's is; one
+    that fails a check is rebuilt.
+    """
+    import sympy as sp
+
+    folder = cache_dir()
+    symbols = set(args).union(*(sp.sympify(e).free_symbols for e in exprs))
+    if folder is None or any(isinstance(s, sp.Dummy) for s in symbols):
+        source = build()
+        return None if source is None else kernel_from_source(source, nargs)
+    key = _key(exprs, args, f"source {kind} {_deriving_digest()}", False)  # a new generator: a new key
+    path = folder / f"{key}.json"
+    entry = _read(path, key) if path.exists() else None
+    if entry is not None and entry.get("source") is not None:
+        f = kernel_from_source(entry["source"], nargs)
+        if f is not None and entry.get("names") == f.numkin_kernel["names"]:
+            return f
+    source = build()
+    f = None if source is None else kernel_from_source(source, nargs)
+    if f is not None:
+        kernel = f.numkin_kernel
+        _write(path, {"key": key, **{k: kernel[k] for k in ("name", "source", "names", "module")},
+                      "sha256": hashlib.sha256(kernel["source"].encode()).hexdigest(), "versions": _versions()})
     return f
 
 
