@@ -55,7 +55,7 @@ __all__ = ["cache_dir", "cached_lambdify", "cached_source", "kernel_from_source"
 
 #: Environment variable naming the cache folder (``off`` disables the cache).
 ENV_VAR = "NUMKIN_CACHE_DIR"
-_FORMAT = 3
+_FORMAT = 4
 #: Built-in names generated code may use.
 _BUILTINS = frozenset({"range", "len", "abs", "float", "complex", "int"})
 #: Modules of numkin whose code decides what a mechanism compiles to (their digest is part of a bundle's key).

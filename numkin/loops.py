@@ -96,6 +96,7 @@ class Loop:
             if stray:
                 raise ValueError(f"loop '{self.name}': angles {sorted(map(str, stray))} are not unknowns of it")
         self.length_symbols: set = set()
+        self.vector_symbols: list = []  # (length symbols, angle symbols) of every vector, where given as vectors
 
     @classmethod
     def from_vectors(cls, vectors: Iterable, unknowns: Sequence, *, name: str | None = None) -> "Loop":
@@ -122,6 +123,8 @@ class Loop:
         angle_syms = set().union(*(a.free_symbols for _, a in pairs)) & set(unknown_syms)
         loop = cls([re, im], unknown_syms, name=name, angles=angle_syms)
         loop.length_symbols = set().union(*(length.free_symbols for length, _ in pairs)) - set(unknown_syms)
+        # per vector: the symbols of its length and of its angle (describe tells the turning ones)
+        loop.vector_symbols = [(length.free_symbols, angle.free_symbols) for length, angle in pairs]
         return loop
 
     @classmethod
@@ -220,8 +223,10 @@ def describe(loops, input_symbol, parameters, points) -> dict:
     """What numkin needs to know about loops besides their compiled kernels, by names only (JSON data).
 
     ``{"input", "input_assumptions", "parameters": [[name, non-negative, sign undeclared], ...], "loops": [{"name",
-    "unknowns", "angles", "lengths"}, ...], "points": [names]}``: the kernel cache keeps it so a
-    mechanism can be checked and solved without sympy.
+    "unknowns", "angles", "lengths", "links"}, ...], "points": [names]}``: the kernel cache keeps it so a
+    mechanism can be checked and solved without sympy. ``lengths`` are the parameters in the loop's
+    vector lengths, ``links`` those in the lengths of vectors that turn (whose angle holds the input or
+    an unknown): a vector of fixed direction is an offset, which may have either sign.
 
     Examples
     --------
@@ -232,44 +237,49 @@ def describe(loops, input_symbol, parameters, points) -> dict:
     >>> describe([loop], t, {r: 1.0}, {"P": (x, 0)})["parameters"]
     [['r', True, False]]
     """
+    moving = {input_symbol, *(u for lp in loops for u in lp.unknowns)}
     return {
         "input": str(input_symbol),
         "input_assumptions": {k: bool(v) for k, v in input_symbol.assumptions0.items()},
         "parameters": [[str(s), bool(s.is_positive or s.is_nonnegative), s.is_real is None] for s in parameters],
         "loops": [{"name": lp.name, "unknowns": [str(u) for u in lp.unknowns],
                    "angles": [str(u) for u in lp.unknowns if u in lp.angles],
-                   "lengths": sorted(str(s) for s in lp.length_symbols)} for lp in loops],
+                   "lengths": sorted(str(s) for s in lp.length_symbols),
+                   "links": sorted({str(s) for length, angle in lp.vector_symbols if angle & moving
+                                    for s in length - set(lp.unknowns)})} for lp in loops],
         "points": [str(k) for k in (points or {})],
     }
 
 
-def check_lengths(model: dict, value_of: dict, lengths=None) -> None:
-    """A parameter that is the length of a vector of a loop must be positive.
+def check_lengths(model: dict, value_of: dict, every_link: bool = False) -> None:
+    """A parameter that is the length of a link (a vector that turns) must be positive.
 
     A subtracted vector is written ``(-r4, theta4)``: the sign belongs in
-    the loop, not in the value. A signed distance (an offset that may be
-    negative) is declared so: ``sympy.Symbol("e", real=True)``. ``model`` is
-    :func:`describe`'s, ``value_of`` maps parameter names to values;
-    ``lengths``, if given, names the parameters that are lengths whatever
-    their sympy declaration (the dimensions of a scene written as loops).
-    The ``ValueError`` names the parameter, also as its attribute ``parameter``.
+    the loop, not in the value. The length of a vector of fixed direction
+    (``(-e, pi/2)``) is an offset and may have either sign; so may a
+    parameter declared real (``sympy.Symbol("e", real=True)``), unless
+    ``every_link`` (the dimensions of a scene written as loops, all declared
+    real). ``model`` is :func:`describe`'s, ``value_of`` maps parameter
+    names to values. The ``ValueError`` names the parameter, also as its
+    attribute ``parameter``.
 
     Examples
     --------
-    >>> model = {"parameters": [["r2", False, False]], "loops": [{"name": "O2-A", "lengths": ["r2"]}]}
+    >>> model = {"parameters": [["r2", False, False]], "loops": [{"name": "O2-A", "lengths": ["r2"], "links": ["r2"]}]}
     >>> check_lengths(model, {"r2": -1.0})                  # declared real: a signed offset
-    >>> check_lengths(model, {"r2": -1.0}, lengths={"r2"})
+    >>> check_lengths(model, {"r2": -1.0}, every_link=True)
     Traceback (most recent call last):
     ...
     ValueError: loop 'O2-A': length r2 = -1 is negative (a negative length mirrors the linkage): lengths must be positive; write the vector as (-r2, angle) in the loop
     """
-    given = lengths is not None
-    if lengths is None:
-        lengths = {p for p, _, real_unknown in model["parameters"] if real_unknown}
+    given = every_link
+    undeclared = {p for p, _, real_unknown in model["parameters"] if real_unknown}
     for lp in model["loops"]:
-        for sym in lp["lengths"]:
+        for sym in lp.get("links", lp["lengths"]):
+            if not (every_link or sym in undeclared):
+                continue
             value = value_of.get(sym)
-            if value is not None and value <= 0 and sym in lengths:
+            if value is not None and value <= 0:
                 why = ("is zero (a link of no length: its angle is free, or its input moves nothing)" if value == 0
                        else f"= {value:g} is negative (a negative length mirrors the linkage)")
                 error = ValueError(

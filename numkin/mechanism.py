@@ -426,10 +426,11 @@ class Mechanism:
 
         return guess_vector(self, guess, at)
 
-    def check_lengths(self, lengths=None) -> None:
-        """:func:`numkin.loops.check_lengths` here; ``lengths``: parameters that are lengths whatever their declaration."""
+    def check_lengths(self, every_link: bool = False) -> None:
+        """:func:`numkin.loops.check_lengths` here; ``every_link``: every link's length, whatever its declaration."""
         params = self._description["parameters"]
-        check_lengths(self._description, {p: v for (p, _, _), v in zip(params, self.parameter_values.tolist())}, lengths)
+        check_lengths(self._description, {p: v for (p, _, _), v in zip(params, self.parameter_values.tolist())},
+                      every_link)
 
     @property
     def default_guess(self):

@@ -276,20 +276,10 @@ class Scene:
         mech = build_mechanism(self)
         if self.custom is not None:
             try:
-                mech.check_lengths(self._link_lengths(mech))
+                mech.check_lengths(every_link=True)
             except ValueError as error:
                 self.fail(f"[mechanism.dimensions] {error.parameter}", str(error))
         return mech
-
-    def _link_lengths(self, mech) -> set:
-        """The dimensions of a scene written as loops that are links: the length of a vector whose angle
-        holds the input or an unknown (it turns). They must be positive; the length of a vector of fixed
-        direction (``["-e", "pi/2"]``) is an offset and may have either sign."""
-        word = re.compile(r"[A-Za-z_]\w*")
-        turning = {mech.input_name, *mech.unknowns}
-        dims = set(self.dimensions or ())
-        return {name for lp in self.custom["loops"] for length, angle in (lp["vectors"] or ())
-                if turning & set(word.findall(str(angle))) for name in dims & set(word.findall(str(length)))}
 
     def guess_values(self, mech) -> dict | None:
         """The ``[guess]`` table as ``{unknown: value}`` (rad, working unit), or None."""

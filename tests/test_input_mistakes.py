@@ -473,3 +473,18 @@ def test_a_toggle_met_in_a_sweep_is_said_as_a_toggle_in_either_mode():
             mech.sweep(np.radians(np.arange(5, 725, 1.0)), on_singular=mode)
         assert caught.value.kind == "toggle" and "change point" not in str(caught.value)
         assert math.degrees(caught.value.input_value) == pytest.approx(toggle, abs=1e-2)
+
+
+def test_a_python_offset_of_fixed_direction_may_be_negative_like_in_a_scene():
+    # the offset slider-crank: r e^{i theta2} + l e^{i theta3} - x - e i = 0, e = -30 (the piston line
+    # 30 below the crank pivot): r sin(theta2) + l sin(theta3) = e, x = r cos(theta2) + l cos(theta3)
+    t2, t3, x = sp.symbols("theta2 theta3 x")
+    r, rod, e = sp.symbols("r l e")  # plain symbols: lengths unless their vector has a fixed direction
+    loop = Loop.from_vectors([(r, t2), (rod, t3), (-x, 0), (-e, sp.pi / 2)], [t3, x], name="slider")
+    mech = Mechanism([loop], t2, {r: 80, rod: 200, e: -30}, guess={"theta3": 0.1, "x": 280})
+    s = mech.sweep(np.radians([0.0, 90.0]))
+    t3_90 = math.asin((-30 - 80) / 200)
+    assert s.values[0, 1] == pytest.approx(t3_90, abs=1e-12)
+    assert s.values[1, 1] == pytest.approx(200 * math.cos(t3_90), abs=1e-9)
+    with pytest.raises(ValueError, match=r"length r = -80 is negative"):
+        Mechanism([loop], t2, {r: -80, rod: 200, e: -30})
