@@ -25,7 +25,8 @@ import importlib
 import sys
 import types
 
-from .errors import AssemblyError, BranchError, ConvergenceError, ConvergenceWarning, GuessWarning, NumkinError
+from .errors import (AssemblyError, BranchError, ConvergenceError, ConvergenceWarning, DegreesWarning, GuessWarning,
+                     NumkinError)
 
 __version__ = "0.1.0"
 
@@ -52,6 +53,7 @@ __all__ = [
     "BranchError",
     "ConvergenceError",
     "ConvergenceWarning",
+    "DegreesWarning",
     "GuessWarning",
     "Loop",
     "LostDigitsWarning",

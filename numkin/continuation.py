@@ -62,6 +62,7 @@ import math
 import numpy as np
 
 from .batch_fill import fill, nodes_of, report_near_singular
+from .errors import DegreesWarning, warn
 from .first_point import solve_start
 from .march import (CROSSING_STEP, DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_TANGENT_TURN, TREND_REACH,
                     Continuation)
@@ -89,6 +90,22 @@ def _validate_inputs(inputs) -> np.ndarray:
     return t
 
 
+def _warn_if_degrees(mech, t) -> None:
+    """A :class:`~numkin.errors.DegreesWarning` where the inputs look like degrees: whole numbers, steps of
+    at least 1, a range of 90 or more (in rad: more than 14 turns)."""
+    if t.size < 3 or abs(t[-1] - t[0]) < 90.0:
+        return
+    steps = np.abs(np.diff(t))
+    if steps.min() < 1.0 or not np.array_equal(t, np.round(t)):
+        return
+    step = float(steps.min())
+    warn(DegreesWarning(
+        f"{mech.name}: the inputs run from {t[0]:g} to {t[-1]:g} in steps of {step:g}; if the input is an angle, "
+        f"that is {abs(t[-1] - t[0]) / (2 * math.pi):.3g} turns in steps of {math.degrees(step):.4g}°: input angles "
+        "are in rad (np.radians converts degrees)"
+    ))
+
+
 def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxiter=50,
               max_step=DEFAULT_MAX_STEP, on_singular="raise", progress=False):
     """Solve ``mech`` over ``inputs`` by continuation; see :meth:`Mechanism.sweep`.
@@ -113,6 +130,7 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
     if jacobian not in JACOBIANS:
         raise ValueError(f"jacobian must be one of {JACOBIANS}, got {jacobian!r}")
     t = _validate_inputs(inputs)
+    _warn_if_degrees(mech, t)
     mech.check_assembly(t)
     ctx = Continuation(mech, jacobian, tol, float(max_step), on_singular)
     n, N = ctx.n, t.size

@@ -13,8 +13,8 @@ import os
 import sys
 import warnings
 
-__all__ = ["NumkinError", "AssemblyError", "ConvergenceError", "BranchError", "ConvergenceWarning", "GuessWarning",
-           "warn"]
+__all__ = ["NumkinError", "AssemblyError", "ConvergenceError", "BranchError", "ConvergenceWarning", "DegreesWarning",
+           "GuessWarning", "warn"]
 
 _PACKAGE = os.path.dirname(os.path.abspath(__file__)) + os.sep
 
@@ -151,7 +151,17 @@ class ConvergenceWarning(UserWarning):
     """
 
 
-class GuessWarning(UserWarning):
+class DegreesWarning(UserWarning):
+    """Angles given to numkin look like degrees where rad are expected.
+
+    A sweep whose inputs step by whole numbers of at least 1 over 90 or more
+    (``np.arange(0, 361)``) is, in rad, dozens of turns in steps of 57°;
+    ``np.radians`` converts. (The input may be a length, a slider's
+    position: then the warning does not apply.)
+    """
+
+
+class GuessWarning(DegreesWarning):
     """A sweep's guess of an angle is more than a turn from zero and more than 1 rad from the solution.
 
     Angles are in rad: such a guess was most likely given in degrees. The

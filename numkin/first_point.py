@@ -21,7 +21,7 @@ from .errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning
 from .march import FAR, TWO_PI, Continuation, deg_text
 from .newton import COND_MAX, is_singular
 
-__all__ = ["solve_start", "guess_vector", "far_guesses", "degrees_hint", "unsolved"]
+__all__ = ["solve_start", "guess_vector", "far_guesses", "degrees_hint", "unsolved", "never_closes"]
 
 
 def far_guesses(mech, guess) -> list:
@@ -153,6 +153,38 @@ def _dependent(ctx, x, t0) -> bool:
     return True
 
 
+def never_closes(mech):
+    """``(loop, message)`` for a loop of vectors of constant lengths whose longest vector is longer than
+    all the others together: no angles close it, at any input. None if there is no such loop.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from numkin import Loop, Mechanism
+    >>> t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    >>> r1, r2, r3, r4 = sp.symbols("r1 r2 r3 r4")
+    >>> loop = Loop.from_vectors([(r2, t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4], name="O2-A-B-O4")
+    >>> never_closes(Mechanism([loop], t2, {r1: 100, r2: 10, r3: 30, r4: 30}))[1]
+    "loop 'O2-A-B-O4' cannot close at any input: its vector of length r1 = 100 is longer than all the others together (70)"
+    """
+    values = {str(s): v for s, v in mech.parameters.items()}
+    for lp in mech.loops:
+        sizes = []
+        for length, _ in lp.vectors:
+            if not {str(s) for s in length.free_symbols} <= set(values):
+                break  # a length that moves (a slider): the polygon has no fixed sides
+            sizes.append((abs(float(length.subs({s: values[str(s)] for s in length.free_symbols}))), length))
+        else:
+            if len(sizes) < 2:
+                continue
+            (longest, expr), rest = max(sizes, key=lambda p: p[0]), sum(a for a, _ in sizes) - max(a for a, _ in sizes)
+            if longest > rest * (1.0 + 1e-12):
+                name = str(expr).lstrip("-")
+                return lp.name, (f"loop '{lp.name}' cannot close at any input: its vector of length {name} = "
+                                 f"{longest:g} is longer than all the others together ({rest:g})")
+    return None
+
+
 def _solve_first(ctx, t0, x_guess, maxiter, note=""):
     """Newton from the guess at t0, the angles reduced to the guess's turn, then polished."""
     mech = ctx.mech
@@ -160,6 +192,11 @@ def _solve_first(ctx, t0, x_guess, maxiter, note=""):
     x, status, it, res, v = ctx.newton1(guess, t0, maxiter, cond_max=COND_MAX)
     where = f"input {deg_text(t0, 3)}{note}"
     far = far_guesses(mech, guess)
+    if status != "converged" and (status != "singular" or not res <= FAR):
+        impossible = never_closes(mech)
+        if impossible is not None:
+            raise AssemblyError(f"{mech.name}: {impossible[1]}", input_value=float(t0), loop=impossible[0],
+                                cause="cannot close", residual=res, iterations=it)
     if status == "singular":
         loop, cond = ctx.worst1(x, t0, which="cond")
         _, res = ctx.worst1(x, t0)

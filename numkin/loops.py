@@ -56,6 +56,13 @@ class Loop:
         Which unknowns are angles (rad). Default: those that appear inside a
         trigonometric function; the others are lengths.
 
+    Notes
+    -----
+    Written with :meth:`from_vectors`, a loop knows its vectors: the
+    mechanism checks that the lengths of those that turn are positive and
+    that a loop of constant lengths can close at all. Written as residuals,
+    it has no vectors, and those checks cannot be made.
+
     Examples
     --------
     A four-bar written as vectors, crank angle ``theta2`` as input:
@@ -97,6 +104,7 @@ class Loop:
                 raise ValueError(f"loop '{self.name}': angles {sorted(map(str, stray))} are not unknowns of it")
         self.length_symbols: set = set()
         self.vector_symbols: list = []  # (length symbols, angle symbols) of every vector, where given as vectors
+        self.vectors: list = []  # the (length, angle) pairs, where given as vectors
 
     @classmethod
     def from_vectors(cls, vectors: Iterable, unknowns: Sequence, *, name: str | None = None) -> "Loop":
@@ -125,6 +133,7 @@ class Loop:
         loop.length_symbols = set().union(*(length.free_symbols for length, _ in pairs)) - set(unknown_syms)
         # per vector: the symbols of its length and of its angle (describe tells the turning ones)
         loop.vector_symbols = [(length.free_symbols, angle.free_symbols) for length, angle in pairs]
+        loop.vectors = pairs
         return loop
 
     @classmethod

@@ -132,7 +132,14 @@ loops needs its ``[guess]``::
 Expressions are sympy-parsable strings in the input, the dimensions, the
 unknowns of this and earlier loops, ``pi`` and ``sin cos tan asin acos atan
 atan2 sqrt exp abs``. A loop of vectors sums (length, angle) pairs to zero
-(angles in rad from +x, counter-clockwise).
+(angles in rad from +x, counter-clockwise). Inside an expression every angle
+is in rad: a dimension given as ``<name>_deg`` is converted, and a bare number
+in an angle (``"theta2 + 0.5"``) is rad. A dimension is a length or an angle,
+never both: an angle dimension as a whole term of a vector's length, or a
+length dimension added to an angle, is refused (a product or a function of
+them, ``"r*cos(tilt)"``, ``"atan2(h, d)"``, is fine). The lengths of vectors
+that turn must be positive; a loop written as ``equations`` has no vector
+lengths, so nothing checks their signs there.
 
 Quantity names (for ``[[check]]``, ``--at``, JSON): an angle unknown's position
 ``<u>_deg``, a length unknown ``<u>`` [unit]; ``omega_<u>`` [rad/s] and

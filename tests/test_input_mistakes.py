@@ -16,7 +16,7 @@ import pytest
 import sympy as sp
 
 from numkin import Loop, Mechanism, linkages
-from numkin.errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning
+from numkin.errors import AssemblyError, BranchError, ConvergenceWarning, DegreesWarning, GuessWarning
 from numkin.scene import SceneError, load_scene, run_scene
 from test_cli import one_line_error, run
 
@@ -488,3 +488,31 @@ def test_a_python_offset_of_fixed_direction_may_be_negative_like_in_a_scene():
     assert s.values[1, 1] == pytest.approx(200 * math.cos(t3_90), abs=1e-9)
     with pytest.raises(ValueError, match=r"length r = -80 is negative"):
         Mechanism([loop], t2, {r: -80, rod: 200, e: -30})
+
+
+def test_a_loop_that_can_never_close_is_said_so_not_blamed_on_the_guess():
+    t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    r1, r2, r3, r4 = sp.symbols("r1 r2 r3 r4")
+    loop = Loop.from_vectors([(r2, t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4], name="O2-A-B-O4")
+    mech = Mechanism([loop], t2, {r1: 100, r2: 10, r3: 30, r4: 30}, guess={"theta3": 0.5, "theta4": 2.0})
+    with pytest.raises(AssemblyError, match=r"loop 'O2-A-B-O4' cannot close at any input: its vector of length "
+                                            r"r1 = 100 is longer than all the others together \(70\)") as caught:
+        mech.sweep(np.radians([0.0, 10.0]))
+    assert caught.value.cause == "cannot close" and "guess" not in str(caught.value)
+    # a loop that closes, from a guess where its Jacobian is singular (both links along x): the guess's fault
+    poor = Mechanism([loop], t2, {r1: 4, r2: 1, r3: 3, r4: 3}, guess={"theta3": 0.0, "theta4": 0.0})
+    with pytest.raises(AssemblyError) as caught:
+        poor.sweep(np.radians([0.0, 10.0]))
+    assert caught.value.cause == "bad guess"
+
+
+def test_a_sweep_in_degrees_is_warned_of_and_one_in_rad_is_not():
+    mech = linkages.four_bar(4, 1, 3, 3)
+    with pytest.warns(DegreesWarning, match=r"run from 0 to 360 in steps of 1; if the input is an angle, that is "
+                                            r"57.3 turns in steps of 57.3°"):
+        mech.sweep(np.arange(0.0, 361.0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", DegreesWarning)
+        mech.sweep(np.radians(np.arange(0.0, 361.0)))
+        mech.sweep(np.arange(0.0, 20.0))  # 20 rad in steps of 1: a few turns, not degrees
+    assert issubclass(GuessWarning, DegreesWarning)
