@@ -12,7 +12,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Callable, Iterable, Sequence
 
-__all__ = ["Loop", "as_symbol", "SymbolName", "LazyPoints", "describe", "check_lengths", "default_length_scale"]
+__all__ = ["Loop", "as_symbol", "SymbolName", "LazyPoints", "describe", "check_lengths", "check_symbols",
+           "default_length_scale"]
 
 
 def as_symbol(name):
@@ -308,3 +309,44 @@ def default_length_scale(model: dict, value_of: dict) -> float:
     if not values:
         values = [abs(v) for v in value_of.values()]
     return max(values) if values and max(values) > 0 else 1.0
+
+
+def check_symbols(loops, input_symbol, parameters) -> None:
+    """Every symbol of every loop is the input, a parameter with a value, or an unknown of it or of an
+    earlier loop; the input appears in some loop; no loop solves for a symbol already known.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    >>> loop = Loop.from_vectors([(1, t2), (3, t3), (-3, t4), (-4, 0)], [t3, t4], name="O2ABO4")
+    >>> check_symbols([loop], sp.Symbol("theta22"), {})
+    Traceback (most recent call last):
+    ...
+    ValueError: the input theta22 appears in no loop: the loops use theta2, which has no value; is it the input?
+    """
+    known = {input_symbol} | set(parameters)
+    used = set().union(*(r.free_symbols for lp in loops for r in lp.residuals))
+    if input_symbol not in used:
+        unknowns = set().union(*(set(lp.unknowns) for lp in loops))
+        others = sorted(map(str, used - known - unknowns))
+        raise ValueError(
+            f"the input {input_symbol} appears in no loop"
+            + (f": the loops use {', '.join(others)}, " + ("which has no value; is it the input?" if len(others) == 1
+               else "which have no values; is one of them the input?") if others else "")
+        )
+    for lp in loops:
+        clash = set(lp.unknowns) & known
+        if clash:
+            raise ValueError(
+                f"loop '{lp.name}': {sorted(map(str, clash))} already known "
+                "(the input, a parameter or an unknown of an earlier loop)"
+            )
+        free = set().union(*(r.free_symbols for r in lp.residuals))
+        stray = free - known - set(lp.unknowns)
+        if stray:
+            raise ValueError(
+                f"loop '{lp.name}' uses symbol(s) {', '.join(sorted(map(str, stray)))} that are neither "
+                "its unknowns, earlier unknowns, the input nor a parameter with a value"
+            )
+        known |= set(lp.unknowns)

@@ -17,7 +17,8 @@ import numpy as np
 
 from .compiled import BlockStructure, CompiledMechanism, KernelNotKept, compiled_once, export_function, import_function
 from .errors import AssemblyError, ConvergenceError
-from .loops import LazyPoints, Loop, SymbolName, as_symbol, check_lengths, default_length_scale, describe
+from .loops import (LazyPoints, Loop, SymbolName, as_symbol, check_lengths, check_symbols, default_length_scale,
+                    describe)
 from .newton import JACOBIANS, TOL_MIN, NewtonResult, check_tol, iterate, residual_floor, scaled_cond
 from .units import finite
 
@@ -119,7 +120,7 @@ class Mechanism:
             if value < 0 and (sym.is_positive or sym.is_nonnegative):
                 raise ValueError(f"parameter {sym} = {value:g} is negative, but {sym} is declared non-negative")
             self.parameters[sym] = value
-        self._check_symbols()
+        check_symbols(self.loops, self.input_symbol, self.parameters)
         self.unknown_symbols = [u for lp in self.loops for u in lp.unknowns]
         self._setup(describe(self.loops, self.input_symbol, self.parameters, points), list(self.parameters.values()), name=name, guess=guess,
                     guess_input=guess_input, links=links, ground=ground, length_unit=length_unit,
@@ -324,34 +325,6 @@ class Mechanism:
 
         self.input_symbol = sp.Symbol(self.input_name, **self._input_assumptions)
         return self.input_symbol
-
-    # ------------------------------------------------------------------ checks
-    def _check_symbols(self):
-        known = {self.input_symbol} | set(self.parameters)
-        used = set().union(*(r.free_symbols for lp in self.loops for r in lp.residuals))
-        if self.input_symbol not in used:
-            unknowns = set().union(*(set(lp.unknowns) for lp in self.loops))
-            others = sorted(map(str, used - known - unknowns))
-            raise ValueError(
-                f"the input {self.input_symbol} appears in no loop"
-                + (f": the loops use {', '.join(others)}, " + ("which has no value; is it the input?" if len(others) == 1
-                   else "which have no values; is one of them the input?") if others else "")
-            )
-        for lp in self.loops:
-            clash = set(lp.unknowns) & known
-            if clash:
-                raise ValueError(
-                    f"loop '{lp.name}': {sorted(map(str, clash))} already known "
-                    "(the input, a parameter or an unknown of an earlier loop)"
-                )
-            free = set().union(*(r.free_symbols for r in lp.residuals))
-            stray = free - known - set(lp.unknowns)
-            if stray:
-                raise ValueError(
-                    f"loop '{lp.name}' uses symbol(s) {', '.join(sorted(map(str, stray)))} that are neither "
-                    "its unknowns, earlier unknowns, the input nor a parameter with a value"
-                )
-            known |= set(lp.unknowns)
 
     # --------------------------------------------------------------- numerics
     def residual_function(self, inputs):
