@@ -162,13 +162,18 @@ def _scheme_columns(table, inp: str, unit) -> list:
 
 
 def _frames_from_comparisons(comparisons, sweep) -> dict:
-    """scheme -> frame (``<input>`` in rad and the compared quantities) from numkin.compare results."""
+    """scheme -> frame (``<input>`` in rad and the compared quantities) from numkin.compare results.
+
+    Each frame's ``attrs["periodic"]`` is its comparison's grid, so that the
+    figures can name the values of the one-sided end stencils of an open grid.
+    """
     if not comparisons or sweep is None:
         return {}
     import pandas as pd
 
     inp = input_name(sweep)
     cols: dict = {}
+    periodic: dict = {}
     for quantity, comp in comparisons.items():
         table = getattr(comp, "table", None)
         if table is None:
@@ -180,7 +185,13 @@ def _frames_from_comparisons(comparisons, sweep) -> dict:
         for c, scheme in _scheme_columns(table, inp, unit):
             frame = cols.setdefault(scheme, {inp: np.radians(np.asarray(table[xcol], dtype=float))})
             frame[getattr(comp, "quantity", quantity)] = np.asarray(table[c], dtype=float)
-    return {k: pd.DataFrame(v) for k, v in cols.items()}
+            if getattr(comp, "periodic", None) is not None:
+                periodic[scheme] = bool(comp.periodic)
+    frames = {k: pd.DataFrame(v) for k, v in cols.items()}
+    for k, frame in frames.items():  # open or periodic grid: where the one-sided end stencils are (figures.ends)
+        if k in periodic:
+            frame.attrs["periodic"] = periodic[k]
+    return frames
 
 
 def _build(kind: str, arg, d: _Data):
