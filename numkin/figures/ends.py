@@ -71,7 +71,7 @@ def frame_ends(key: str, frame, derivative: int) -> tuple[int, int]:
     >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0, 181)))
     >>> frame_ends("fd", finite_difference(sweep, "6000 rpm"), 2)
     (1, 1)
-    >>> turn = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0, 360)))
+    >>> turn = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0, 361)))  # one turn: periodic
     >>> frame_ends("fd", finite_difference(turn, "6000 rpm"), 2)
     (0, 0)
     """
