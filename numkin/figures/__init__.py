@@ -44,7 +44,7 @@ name                       figure                                               
 =========================  ======================================================  ====================
 
 A scene names a figure as ``"name"`` or ``"name:unknown"`` (``"kinematics:beta"``),
-see :func:`parse_spec`.
+see :func:`parse_spec`; :func:`caption` says what the file of one draws.
 
 Examples
 --------
@@ -59,16 +59,18 @@ Examples
 from __future__ import annotations
 
 from .curves import acceleration_comparison, derivative, difference, kinematics, position, slider
-from .dispatch import FIGURES, FigureSkipped, parse_spec, render
+from .dispatch import CAPTIONS, FIGURES, FigureSkipped, caption, parse_spec, render
 from .drawing import mechanism
 from .error_plots import convergence, newton_residuals, roundoff, work_precision
 from .style import STYLE, save, style
 
 __all__ = [
+    "CAPTIONS",
     "FIGURES",
     "FigureSkipped",
     "STYLE",
     "acceleration_comparison",
+    "caption",
     "convergence",
     "derivative",
     "difference",

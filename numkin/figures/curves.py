@@ -185,7 +185,7 @@ def difference(sweep, name: str):
         ax2.grid(False)
         ax2.spines["right"].set_visible(True)
         c1, c2 = "#8E44AD", "#0072B2"
-        l1 = ax.plot(x, delta, color=c1, label=rf"$\Delta = |(d{t}/d{ti})_C - (d{t}/d{ti})_{{FW}}|$")
+        l1 = ax.plot(x, delta, color=c1, label=rf"$\Delta$ = |centred − forward| $d{t}/d{ti}$")
         l2 = ax2.plot(x, second, color=c2, linestyle="--", label=f"$d^2{t}/d{ti}^2$ (second difference)")
         ax2.axhline(0.0, color=c2, linewidth=0.5)
         lines = l1 + l2
