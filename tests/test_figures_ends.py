@@ -5,7 +5,6 @@ sqrt(l² − r² sin² t), and its differences evaluated by mpmath at 40 digits.
 
 from __future__ import annotations
 
-import math
 import re
 
 import mpmath
@@ -136,7 +135,7 @@ def test_a_periodic_turn_has_no_end_stencils():
                          finite={"centred": finite_difference(sweep, "6000 rpm")}, check_angles=[0.0])
     assert not any("end stencil" in line for line in box_lines(fig))
     for ax in fig.axes[1:]:
-        (deg, y) = lines_by_label(ax)["centred"].get_data()
+        y = lines_by_label(ax)["centred"].get_ydata()
         assert np.isfinite(np.asarray(y, dtype=float)).all()
 
 

@@ -101,7 +101,6 @@ def broken_claims(stem: str, text: str, fig) -> list[str]:
     if "twin axes" in low:
         claim(len(fig.axes) == 2 and fig.axes[0].bbox.bounds == fig.axes[1].bbox.bounds, "no twin axes")
     # which unknown, which angle
-    kind, _, arg = stem.partition("-")
     kind = next(k for k in sorted(FIGURES, key=len, reverse=True) if stem == k or stem.startswith(k + "-"))
     arg = stem[len(kind) + 1:]
     if arg and kind != "mechanism":

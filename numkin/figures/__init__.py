@@ -24,8 +24,10 @@ formats), :mod:`~numkin.figures.curves` (curves against the input),
 :mod:`~numkin.figures.error_plots` (error-analysis tables),
 :mod:`~numkin.figures.drawing` (the linkage itself, shared with
 :mod:`numkin.animate`), :mod:`~numkin.figures.dispatch` (figures by name),
-:mod:`~numkin.figures.ticks` (log axes labelled ``10⁻¹²`` in the tick font)
-and :mod:`~numkin.figures.registries` (scheme families and dimension lines).
+:mod:`~numkin.figures.ticks` (log axes labelled ``10⁻¹²`` in the tick font),
+:mod:`~numkin.figures.ends` (which values of an open grid come from one-sided
+end stencils, drawn and labelled apart) and :mod:`~numkin.figures.registries`
+(scheme families and dimension lines).
 
 =========================  ======================================================  ====================
 name                       figure                                                  needs
