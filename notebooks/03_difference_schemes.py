@@ -211,7 +211,7 @@ pred = pd.DataFrame({
 print(pred.to_string(float_format="{:.3e}".format))
 ratio_100 = abs(pred.iloc[0, 0] / pred.iloc[1, 0])
 ratio_max = pred.iloc[0, 2] / pred.iloc[1, 2]
-print(f"\ncentred is {ratio_100:.0f}x more accurate at 100 deg, {ratio_max:.0f}x on the worst point of the turn")
+print(f"\ncentred is {ratio_100:.0f}x more accurate at 100 deg, {ratio_max:.0f}x in the worst-case error over the turn")
 assert ratio_100 > 100 and ratio_max > 30
 for k in range(2):
     assert abs(pred.iloc[k, 0] / pred.iloc[k, 1] - 1) < 0.05  # the leading term explains the error

@@ -36,6 +36,7 @@
 import math
 
 import matplotlib.pyplot as plt
+import mpmath
 import numpy as np
 
 # %% [markdown]
@@ -91,27 +92,53 @@ assert abs(EXACT - 2.62205755429212) < 5e-15  # the exam's exact value (sympy)
 # $\rho = 1 + \sqrt 2$. The error falls like $n^{-1/2}\rho^{-2n}$ (the $n^{-1/2}$ comes from the
 # square-root type of the branch points): the ratio of successive errors tends, from below, to
 # $(1 + \sqrt 2)^{-2} \approx 0.1716$ per extra node.
+#
+# The table goes on until the error stops falling. Its errors are measured against $I$ to 40
+# digits (mpmath): the double `EXACT` is itself off by about $7\times10^{-16}$, which would hide the
+# last steps. The last column is the rule's own error, its sum also taken to 40 digits.
 
 # %%
+mpmath.mp.dps = 40
+EXACT_40 = mpmath.gamma(mpmath.mpf(1) / 4) ** 2 / (2 * mpmath.sqrt(2 * mpmath.pi))
+
+
+def gauss_chebyshev_40(n):
+    # the same rule, nodes and sum to 40 digits: its error is the truncation error alone
+    nodes = (mpmath.cos((2 * i + 1) * mpmath.pi / (2 * n + 2)) for i in range(n + 1))
+    return mpmath.pi / (n + 1) * mpmath.fsum(1 / mpmath.sqrt(1 + t**2) for t in nodes)
+
+
 rho2 = (1 + math.sqrt(2)) ** -2
-ns = np.arange(1, 13)
+ns = np.arange(1, 23)
 values = np.array([gauss_chebyshev(f, n) for n in ns])
-errors = np.abs(values - EXACT)
-print(" n   Gauss-Chebyshev       error       ratio to previous")
-for k, (n, v, e) in enumerate(zip(ns, values, errors)):
+errors = np.array([float(abs(mpmath.mpf(v) - EXACT_40)) for v in values])
+truncation = np.array([float(abs(gauss_chebyshev_40(n) - EXACT_40)) for n in ns])
+print(f"EXACT - I = {float(mpmath.mpf(EXACT) - EXACT_40):.2e}")
+print(" n   Gauss-Chebyshev       error       ratio to previous   error of the rule at 40 digits")
+for k, (n, v, e, e40) in enumerate(zip(ns, values, errors, truncation)):
     ratio = "" if k == 0 else f"{e / errors[k - 1]:.4f}"
-    print(f"{n:2d}   {v:.15f}   {e:.3e}   {ratio}")
+    print(f"{n:2d}   {v:.15f}   {e:.3e}   {ratio:17s}   {e40:.3e}")
 print(f"predicted ratio (1 + √2)^-2 = {rho2:.4f}")
 
 # %%
-ratios = errors[1:] / errors[:-1]
+assert abs(EXACT_40 - mpmath.mpf("2.6220575542921198104648395898911194")) < 1e-30  # Γ(1/4)²/(2√(2π))
+assert 1e-16 < abs(mpmath.mpf(EXACT) - EXACT_40) < 2e-15  # a few units in the last place of the double
+first12 = slice(0, 12)
+ratios = errors[first12][1:] / errors[first12][:-1]
 assert np.all(np.diff(ratios) > 0) and np.all(ratios < rho2), ratios  # rises towards rho^-2
-corrected = ratios * np.sqrt(ns[1:] / ns[:-1])  # the n^(-1/2) factor taken out
+corrected = ratios * np.sqrt(ns[first12][1:] / ns[first12][:-1])  # the n^(-1/2) factor taken out
 assert np.all(np.abs(corrected[4:] / rho2 - 1) < 0.03), corrected
+# in double precision the error follows the rule's own down to n = 17, reaches 1e-15 at n = 19,
+# and stays there: the double nearest to I is 1.9e-16 from it
+assert np.allclose(errors[:17], truncation[:17], rtol=0.1)
+assert ns[np.argmax(errors < 1e-15)] == 19 and ns[np.argmax(truncation < 1e-15)] == 19
+assert np.all(errors[18:] < 3e-16)
 
 fig, ax = plt.subplots()
-ax.semilogy(ns, errors, "o-", label="|Gauss–Chebyshev − exact|")
-ax.semilogy(ns, errors[-1] * np.sqrt(ns[-1] / ns) * rho2 ** (ns - ns[-1]), "--", label=r"$n^{-1/2}(1+\sqrt{2})^{-2n}$")
+ax.semilogy(ns, errors, "o-", label="|Gauss–Chebyshev − exact| (double)")
+ax.semilogy(ns, truncation, ".:", color="0.4", label="the rule at 40 digits (mpmath)")
+ref = errors[11] * np.sqrt(12 / ns) * rho2 ** (ns - 12)  # drawn through the error at n = 12
+ax.semilogy(ns, ref, "--", label=r"$\propto n^{-1/2}(1+\sqrt{2})^{-2n}$ (through $n = 12$)")
 ax.set_xlabel("n (n + 1 nodes)")
 ax.set_ylabel("absolute error (dimensionless)")
 ax.legend()
@@ -218,12 +245,15 @@ assert t0 <= t_cross <= t1
 
 fig, ax = plt.subplots()
 ax2 = ax.twinx()
-ax.plot(t, sol[:, 0], label="r")
-ax2.plot(t, np.degrees(sol[:, 1]), color="black", label="θ")
-ax.plot([t_cross], [r_cross], "o", color="C3")
+line_r = ax.plot(t, sol[:, 0], color="C0", label="cord length r (left axis)")
+line_theta = ax2.plot(t, np.degrees(sol[:, 1]), color="black", linestyle="--", label="angle θ (right axis)")
+mark = ax.plot([t_cross], [r_cross], "o", color="C3", label=f"first crossing of the vertical, r = {r_cross:.3f} m")
 ax.set_xlabel("time t (s)")
-ax.set_ylabel("cord length r (m)")
-ax2.set_ylabel("θ (deg)")
+ax.set_ylabel("cord length r (m)", color="C0")
+ax.tick_params(axis="y", colors="C0")
+ax2.set_ylabel("θ (deg)", color="black")
+handles = line_r + line_theta + mark
+ax.legend(handles, [h.get_label() for h in handles], loc="upper right", fontsize=8)
 plt.show()
 
 # %% [markdown]
@@ -232,8 +262,9 @@ plt.show()
 # 1. Apply the same rule to $\int_0^{\pi/2} dx/\sqrt{\sin x}$ without the substitution (map
 #    $[0, \pi/2]$ to $[-1, 1]$ and divide by the weight). How does the error fall with $n$
 #    now, and why?
-# 2. The error ratio per node is $(1 + \sqrt 2)^{-2}$. Predict the $n$ at which the error
-#    reaches $10^{-15}$, and check it in the table. What stops it from falling further?
+# 2. The error ratio per node is $(1 + \sqrt 2)^{-2}$. From the error at $n = 12$, predict the
+#    $n$ at which the error reaches $10^{-15}$, and check it in the table. What stops the
+#    double-precision error from falling further, when the 40-digit column goes on?
 # 3. Replace the Hermite interpolation by linear interpolation between $t_k$ and $t_{k+1}$.
 #    How much does $r$ at the crossing change, and how does that compare with the RK4 error?
 # 4. The exam's grid has 500 points on $[0, 1]$ s. From the error table, how many would you

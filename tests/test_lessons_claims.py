@@ -13,6 +13,7 @@ import math
 
 import mpmath
 import numpy as np
+import pytest
 
 import numkin
 from numkin import linkages
@@ -84,3 +85,39 @@ def test_lesson5_difference_errors_peak_at_the_nearly_extended_position():
     assert worst["forward"] == deg[:-1][np.argmax(forward)]
     assert abs(worst["centred"] - deg[1:-1][np.argmax(centred)]) <= 2  # 179 and 181 tie by symmetry
     assert worst["five_point"] in (1.0, 359.0)
+
+
+def test_homework3_solution_keeps_the_centred_formula_at_the_dead_centres():
+    """Homework 3 says the centred second difference works at 0° and 180° because x is known
+    at any angle: its solution evaluates x at −1° and 181°, so a_0 is omega² (x(h) − 2x(0) +
+    x(−h))/h² of the closed form (−44213.897 m/s²; mpmath), not the one-sided end stencil of
+    an open grid (−44237.056 m/s²)."""
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import jupytext
+
+    master = Path(__file__).resolve().parent.parent / "assignments" / "hw3_slider_crank" / "hw3_slider_crank.py"
+    text = master.read_text()
+    assert "use the same centred\n# formula at the ends" in text
+    namespace: dict = {}
+    for cell in jupytext.reads(text, fmt="py:percent").cells:
+        if cell.cell_type == "code":
+            exec(compile(cell.source, str(master), "exec"), namespace)
+    mpmath.mp.dps = 40
+    r, l, w, h = mpmath.mpf("0.08"), mpmath.mpf("0.2"), 200 * mpmath.pi, mpmath.pi / 180
+
+    def x(t):
+        return r * mpmath.cos(t) + mpmath.sqrt(l**2 - r**2 * mpmath.sin(t) ** 2)
+
+    def centred(t):
+        return w**2 * (x(t + h) - 2 * x(t) + x(t - h)) / h**2
+
+    one_sided = w**2 * (2 * x(0) - 5 * x(h) + 4 * x(2 * h) - x(3 * h)) / h**2
+    a = np.asarray(namespace["a_piston"], dtype=float)
+    assert a.shape == (181,)
+    assert float(namespace["a_0"]) == pytest.approx(float(centred(0)), rel=1e-9)
+    assert float(centred(0)) == pytest.approx(-44213.897, abs=1e-3) and float(one_sided) == pytest.approx(-44237.056, abs=1e-3)
+    assert a[-1] == pytest.approx(float(centred(mpmath.pi)), rel=1e-9)

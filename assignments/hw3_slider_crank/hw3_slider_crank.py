@@ -157,8 +157,10 @@ def test_omega(omega):
 #
 # $$ \frac{d^2x}{d\theta^2} \approx \frac{x(\theta + h) - 2x(\theta) + x(\theta - h)}{h^2}, \qquad h = 1° $$
 #
-# at every θ of `theta` (x is known at any angle, so the formula works at 0° and 180°
-# too). Store the acceleration in `a_piston`, in **m/s²** (181 values), and set `a_0` and
+# at every θ of `theta`. At 0° and 180° the formula needs x at −1° and 181°, outside
+# `theta`: x is known at any angle, so compute it there too and use the same centred
+# formula at the ends (a table of x alone would force a one-sided formula there, with a
+# larger error). Store the acceleration in `a_piston`, in **m/s²** (181 values), and set `a_0` and
 # `a_90` to the acceleration at θ = 0° and 90° (numbers, or your array: the check picks
 # the angle). Check: at θ = 0 the exact acceleration is −Rω²(1 + R/L).
 

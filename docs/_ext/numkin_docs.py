@@ -64,28 +64,14 @@ def sync_lessons(notebooks: Path, target: Path) -> list[Path]:
 
 
 # ------------------------------------------------------------------------ gallery
-#: What each kind of figure shows (the kind is the file name up to the first "-"
-#: or the whole name); a kind not listed here is shown under its file name.
-FIGURE_KINDS = {
-    "position": "Position of each unknown over the sweep of the input",
-    "derivative": "First derivative by finite differences beside the exact one",
-    "difference": "Differences between schemes, step by step",
-    "kinematics": "Angle, angular velocity and angular acceleration, finite differences against exact",
-    "mechanism": "The mechanism drawn at one input angle, with its dimensions",
-    "convergence": "Error against grid step for every scheme, with the observed orders",
-    "work-precision": "Error reached against work for every scheme",
-    "roundoff": "Truncation and rounding: error against step at one angle",
-    "newton": "Newton's residual and step per iteration, three Jacobians",
-    "slider": "Slider position, velocity and acceleration over the sweep",
-    "acceleration": "Acceleration by finite differences against the exact one",
-}
-
-
 def _figure_caption(stem: str) -> str:
-    for kind in sorted(FIGURE_KINDS, key=len, reverse=True):
-        if stem == kind or stem.startswith(kind + "-"):
-            return f"{FIGURE_KINDS[kind]} (``{stem}``)"
-    return f"``{stem}``"
+    """The caption of a gallery figure: :func:`numkin.figures.caption` (what the figure draws) and its file."""
+    from numkin.figures import caption
+
+    try:
+        return f"{caption(stem)} (``{stem}``)"
+    except ValueError:
+        return f"``{stem}``"
 
 
 def _run(*args: str, cwd: Path | None = None) -> str:

@@ -24,8 +24,10 @@ formats), :mod:`~numkin.figures.curves` (curves against the input),
 :mod:`~numkin.figures.error_plots` (error-analysis tables),
 :mod:`~numkin.figures.drawing` (the linkage itself, shared with
 :mod:`numkin.animate`), :mod:`~numkin.figures.dispatch` (figures by name),
-:mod:`~numkin.figures.ticks` (log axes labelled ``10⁻¹²`` in the tick font)
-and :mod:`~numkin.figures.registries` (scheme families and dimension lines).
+:mod:`~numkin.figures.ticks` (log axes labelled ``10⁻¹²`` in the tick font),
+:mod:`~numkin.figures.ends` (which values of an open grid come from one-sided
+end stencils, drawn and labelled apart) and :mod:`~numkin.figures.registries`
+(scheme families and dimension lines).
 
 =========================  ======================================================  ====================
 name                       figure                                                  needs
@@ -44,7 +46,7 @@ name                       figure                                               
 =========================  ======================================================  ====================
 
 A scene names a figure as ``"name"`` or ``"name:unknown"`` (``"kinematics:beta"``),
-see :func:`parse_spec`.
+see :func:`parse_spec`; :func:`caption` says what the file of one draws.
 
 Examples
 --------
@@ -59,16 +61,18 @@ Examples
 from __future__ import annotations
 
 from .curves import acceleration_comparison, derivative, difference, kinematics, position, slider
-from .dispatch import FIGURES, FigureSkipped, parse_spec, render
+from .dispatch import CAPTIONS, FIGURES, FigureSkipped, caption, parse_spec, render
 from .drawing import mechanism
 from .error_plots import convergence, newton_residuals, roundoff, work_precision
 from .style import STYLE, save, style
 
 __all__ = [
+    "CAPTIONS",
     "FIGURES",
     "FigureSkipped",
     "STYLE",
     "acceleration_comparison",
+    "caption",
     "convergence",
     "derivative",
     "difference",

@@ -11,9 +11,23 @@ from .labels import (
     check_points, check_unknown, deg_text, degree_ticks, frame_column, frame_input, input_label, input_name,
     is_angle, length_unit, mechanism_title, quantity_labels, rate_columns, sig5, sym, tex, uniform_step, unit_of,
 )
+from .ends import END_LABEL, end_mask, frame_ends, scheme_reach
 from .style import CYCLE, SOURCE_STYLE, new_figure, shared_doc, source_label, source_style, style
 
 __all__ = ["acceleration_comparison", "derivative", "difference", "kinematics", "position", "slider"]
+
+
+def _plot_estimate(ax, x, y, ends, label: str, style_: dict) -> None:
+    """A finite-difference estimate: its interior as a line labelled `label`, its end-stencil values as markers.
+
+    `ends` is the mask of :func:`numkin.figures.ends.end_mask`; the line
+    holds NaN there, so every drawn value is named by the stencil that made it.
+    """
+    y = np.asarray(y, dtype=float)
+    ax.plot(x, np.where(ends, np.nan, y), label=label, **style_)
+    if ends.any():
+        ax.plot(np.asarray(x)[ends], y[ends], linestyle="none", marker="s", markersize=5.0, markerfacecolor="none",
+                markeredgecolor=style_["color"], markeredgewidth=1.2, label=f"{label}: {END_LABEL}")
 
 
 @shared_doc
@@ -74,8 +88,10 @@ def derivative(sweep, name: str, schemes: Sequence[str] = ("forward", "centred")
     """dq/dθ of one unknown by finite differences of the sweep, all schemes on one graph.
 
     Derivatives are per radian of input (``h`` = the sweep's step in rad),
-    with the open-grid stencils of :mod:`numkin.derivatives` (one-sided,
-    same order, at the two ends); the input axis is in degrees.
+    with the open-grid stencils of :mod:`numkin.derivatives`: each scheme's
+    curve holds the points its own stencil reaches, and the values of the
+    one-sided end stencils are separate markers with their own legend entry.
+    The input axis is in degrees.
 
     Parameters
     ----------
@@ -88,7 +104,7 @@ def derivative(sweep, name: str, schemes: Sequence[str] = ("forward", "centred")
     {{example_homework}}
     >>> fig = figures.derivative(sweep, "phi")
     >>> [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
-    ['forward', 'centred']
+    ['forward', 'forward: one-sided end stencil', 'centred', 'centred: one-sided end stencil']
     >>> figures.save(fig, "/tmp/numkin-doc-dphi", ["png"])[0].suffix
     '.png'
     """
@@ -111,7 +127,8 @@ def derivative(sweep, name: str, schemes: Sequence[str] = ("forward", "centred")
         fig, axes = new_figure()
         ax = axes[0, 0]
         for k, s in enumerate(resolved):
-            ax.plot(x, fd.differentiate(sweep[name], h, method=s), label=source_label(s), **source_style(s, k))
+            _plot_estimate(ax, x, fd.differentiate(sweep[name], h, method=s), end_mask(x.size, scheme_reach([s])),
+                           source_label(s), source_style(s, k))
         ax.axhline(0.0, color="black", linewidth=0.5)
         ax.set_xlabel(input_label(sweep))
         ax.set_ylabel(f"$d{t}/d{ti}$ [{unit}]")
@@ -127,7 +144,9 @@ def difference(sweep, name: str):
 
     The leading error of the forward difference is ``(h/2) q''``, that of
     the centred one is of order h²; so Δ ≈ ``(h/2) |q''|`` and Δ → 0 where
-    q'' = 0. The zeros of q'' are marked by dotted lines.
+    q'' = 0. The zeros of q'' are marked by dotted lines. Both curves are
+    drawn at the interior points of the sweep, where each is the stencil
+    its label names (the open grid's one-sided end stencils are left out).
 
     Parameters
     ----------
@@ -147,8 +166,11 @@ def difference(sweep, name: str):
     check_unknown(sweep, name)
     h = uniform_step(sweep)
     y = sweep[name]
+    # interior points only: there every curve is the stencil its label names (no one-sided end stencils)
     delta = np.abs(fd.centred(y, h) - fd.forward(y, h))
+    delta[end_mask(delta.size, scheme_reach(["centred", "forward"]))] = np.nan
     second = fd.second_difference(y, h)
+    second[end_mask(second.size, scheme_reach(["second_difference"]))] = np.nan
     x = np.degrees(sweep.inputs)
     t, ti = tex(name), tex(input_name(sweep))
     unit1, unit2 = _derivative_units(sweep, name)
@@ -163,7 +185,7 @@ def difference(sweep, name: str):
         ax2.grid(False)
         ax2.spines["right"].set_visible(True)
         c1, c2 = "#8E44AD", "#0072B2"
-        l1 = ax.plot(x, delta, color=c1, label=rf"$\Delta = |(d{t}/d{ti})_C - (d{t}/d{ti})_{{FW}}|$")
+        l1 = ax.plot(x, delta, color=c1, label=rf"$\Delta$ = |centred − forward| $d{t}/d{ti}$")
         l2 = ax2.plot(x, second, color=c2, linestyle="--", label=f"$d^2{t}/d{ti}^2$ (second difference)")
         ax2.axhline(0.0, color=c2, linewidth=0.5)
         lines = l1 + l2
@@ -199,7 +221,10 @@ def kinematics(
 
     Three panels: the unknown from the sweep; its velocity and acceleration
     from each finite-difference scheme and from the analytic solution,
-    whichever are given; each check angle marked, with its values.
+    whichever are given; each check angle marked, with its values. On an
+    open grid the values of the one-sided end stencils are markers of their
+    own (see :mod:`numkin.figures.ends`), and a check value taken from one
+    says so.
 
     Parameters
     ----------
@@ -260,8 +285,9 @@ def kinematics(
                            color="0.4")
                 continue
             for k, (key, frame) in enumerate(src):
-                panel.plot(np.degrees(frame_input(frame, sweep)), np.asarray(frame[col], dtype=float),
-                           label=source_label(key), **source_style(key, k))
+                _plot_estimate(panel, np.degrees(frame_input(frame, sweep)), frame[col],
+                               end_mask(len(frame), frame_ends(key, frame, j)), source_label(key),
+                               source_style(key, k))
         # check points: a marker on each curve, the values in one box per panel
         texts = {0: [], 1: [], 2: []}
         for a in checks:
@@ -280,7 +306,8 @@ def kinematics(
                     v = float(frame[col].iloc[i])
                     st = source_style(key, n_key)
                     panel.plot(math.degrees(xin[i]), v, "o", color=st["color"], markersize=5, zorder=5)
-                    lines.insert(0, f"  {source_label(key)}: {sig5(v)} {units[j]}")
+                    how = f" ({END_LABEL})" if end_mask(len(frame), frame_ends(key, frame, j))[i] else ""
+                    lines.insert(0, f"  {source_label(key)}{how}: {sig5(v)} {units[j]}")
                 qsym = labels[j].split(" [")[0]
                 texts[j] += [f"{qsym} at {sym(input_name(sweep))} = {deg_text(a)}", *lines]
         # legends and check values beside the panels: nothing hides the curves
@@ -330,6 +357,8 @@ def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
 
     Top: the acceleration by each finite-difference scheme and the
     analytic one; bottom: the absolute error of each scheme (log scale).
+    On an open grid the values of the one-sided end stencils, and their
+    errors, are markers of their own (see :mod:`numkin.figures.ends`).
 
     Parameters
     ----------
@@ -372,16 +401,20 @@ def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
             xin = frame_input(frame, sweep)
             y = frame_column(frame, acol, f"{key} kinematics")
             st = source_style(key, k)
-            ax.plot(np.degrees(xin), y, label=source_label(key), **st)
+            ends = end_mask(y.size, frame_ends(key, frame, 2))
+            _plot_estimate(ax, np.degrees(xin), y, ends, source_label(key), st)
             if xin.shape == xa_in.shape and np.allclose(xin, xa_in, rtol=0, atol=1e-12):
                 err = np.abs(y - ya)
                 shown = np.where(err > 0, err, np.nan)
-                axe.plot(x, shown, label=source_label(key), color=st["color"], linestyle="-", linewidth=1.2)
+                _plot_estimate(axe, x, shown, ends, source_label(key),
+                               {"color": st["color"], "linestyle": "-", "linewidth": 1.2})
         ax.plot(x, ya, label="analytic", **SOURCE_STYLE["analytic"])
         ax.axhline(0.0, color="black", linewidth=0.4)
         ax.set_ylabel(alabel)
         ax.legend(loc="best")
         log_scale(axe, "y")
+        if len(axe.get_lines()) > 1:
+            axe.legend(loc="best")
         axe.set_ylabel(f"|numerical − analytic| [{unit}]")
         axe.set_xlabel(input_label(sweep))
         degree_ticks(axe, x)

@@ -16,7 +16,7 @@ from .labels import check_unknown, input_name, is_angle, rate_columns, table_col
 from .style import METADATA, gc_paused, save
 from ..errors import warn
 
-__all__ = ["FIGURES", "FigureSkipped", "parse_spec", "render"]
+__all__ = ["CAPTIONS", "FIGURES", "FigureSkipped", "caption", "parse_spec", "render"]
 
 #: Figure names a scene may ask for -> one-line description.
 FIGURES: dict[str, str] = {
@@ -31,6 +31,37 @@ FIGURES: dict[str, str] = {
     "work-precision": "error against work (evaluations; or against run time)",
     "roundoff": "error against h down to rounding: the V-curve",
     "newton": "Newton's residual per iteration for each Jacobian",
+}
+
+#: Gallery caption of each figure: what it draws, exactly (``{q}``: the unknown's symbol; ``{at}``: the angle).
+#: Keys are those of :data:`FIGURES`; the second form, where given, is for a figure drawn without its argument.
+CAPTIONS: dict[str, tuple[str, ...]] = {
+    "position": ("{q} against the input angle",
+                 "The unknowns against the input angle, angles and lengths on separate panels"),
+    "derivative": ("First derivative of {q} with respect to the input angle by the forward and the centred "
+                   "difference; the values of their one-sided end stencils are markers of their own",),
+    "difference": ("The gap between the centred and the forward first derivatives of {q}, beside its second "
+                   "derivative by the second difference (twin axes, interior points); dotted lines where the "
+                   "second derivative is zero",),
+    "kinematics": ("{q}, its velocity and its acceleration against the input angle: finite differences and the "
+                   "analytic solution, with their values at the check angles; on an open grid the values of the "
+                   "one-sided end stencils are markers of their own",),
+    "slider": ("Slider position {q}, its velocity and its acceleration against the input angle: finite "
+               "differences and the analytic solution, with their values at the check angles; on an open grid "
+               "the values of the one-sided end stencils are markers of their own",),
+    "acceleration": ("Acceleration of {q} by finite differences against the analytic one, and |numerical − "
+                     "analytic| of each on a log scale; on an open grid the values of the one-sided end stencils "
+                     "are markers of their own",),
+    "mechanism": ("The linkage drawn at {at}, with its dimensions",
+                  "The linkage drawn at the first check angle, with its dimensions"),
+    "convergence": ("Largest error against grid step (log-log) of every scheme, each labelled with its formal "
+                    "order, beside reference slopes 1, 2 and 4",),
+    "work-precision": ("Largest error against work (evaluations of the loop equations and of the stencils) for "
+                       "every method, the analytic solution and the complex step included, from coarse to fine "
+                       "grid; the Pareto front ringed",),
+    "roundoff": ("Relative error against step at one angle, down to the rounding floor: the V-curves, the "
+                 "textbook optimal steps and the measured optimum",),
+    "newton": ("Newton's scaled residual per iteration, one curve per Jacobian",),
 }
 
 #: Figures that take an unknown (``"name:unknown"``).
@@ -88,6 +119,40 @@ def parse_spec(spec: str) -> tuple[str, str | None]:
         except ValueError:
             raise ValueError(f"figure {spec!r}: 'mechanism:<angle in degrees>', got {arg!r}") from None
     return kind, arg
+
+
+def caption(stem: str) -> str:
+    """What the figure of a file stem draws (``"derivative-phi"``, ``"mechanism-30deg"``), from :data:`CAPTIONS`.
+
+    The stem is a figure name of :data:`FIGURES`, then ``-<unknown>`` or
+    ``-<angle>deg`` as :func:`render` names its files. Symbols are written
+    as TeX between dollars. Does not import matplotlib.
+
+    Raises
+    ------
+    ValueError
+        For a stem that starts with no figure name.
+
+    Examples
+    --------
+    >>> print(caption("position-phi"))
+    $\\phi$ against the input angle
+    >>> caption("mechanism-30deg")
+    'The linkage drawn at 30°, with its dimensions'
+    >>> caption("newton")
+    "Newton's scaled residual per iteration, one curve per Jacobian"
+    """
+    from .labels import sym
+
+    for kind in sorted(CAPTIONS, key=len, reverse=True):
+        if stem == kind or stem.startswith(kind + "-"):
+            arg = stem[len(kind) + 1:]
+            forms = CAPTIONS[kind]
+            if not arg:
+                return forms[-1]
+            at = f"{arg.removesuffix('deg')}°" if kind == "mechanism" else ""
+            return forms[0].format(q=sym(arg), at=at)
+    raise ValueError(f"figure file {stem!r}: no figure of that name; figures are: {', '.join(FIGURES)}")
 
 
 class _Data:
@@ -162,13 +227,18 @@ def _scheme_columns(table, inp: str, unit) -> list:
 
 
 def _frames_from_comparisons(comparisons, sweep) -> dict:
-    """scheme -> frame (``<input>`` in rad and the compared quantities) from numkin.compare results."""
+    """scheme -> frame (``<input>`` in rad and the compared quantities) from numkin.compare results.
+
+    Each frame's ``attrs["periodic"]`` is its comparison's grid, so that the
+    figures can name the values of the one-sided end stencils of an open grid.
+    """
     if not comparisons or sweep is None:
         return {}
     import pandas as pd
 
     inp = input_name(sweep)
     cols: dict = {}
+    periodic: dict = {}
     for quantity, comp in comparisons.items():
         table = getattr(comp, "table", None)
         if table is None:
@@ -180,7 +250,13 @@ def _frames_from_comparisons(comparisons, sweep) -> dict:
         for c, scheme in _scheme_columns(table, inp, unit):
             frame = cols.setdefault(scheme, {inp: np.radians(np.asarray(table[xcol], dtype=float))})
             frame[getattr(comp, "quantity", quantity)] = np.asarray(table[c], dtype=float)
-    return {k: pd.DataFrame(v) for k, v in cols.items()}
+            if getattr(comp, "periodic", None) is not None:
+                periodic[scheme] = bool(comp.periodic)
+    frames = {k: pd.DataFrame(v) for k, v in cols.items()}
+    for k, frame in frames.items():  # open or periodic grid: where the one-sided end stencils are (figures.ends)
+        if k in periodic:
+            frame.attrs["periodic"] = periodic[k]
+    return frames
 
 
 def _build(kind: str, arg, d: _Data):
