@@ -79,7 +79,8 @@ def _check_lines(check, input_name: str, title: str) -> list[str]:
         if expected is not None:
             mark = "ok" if check.ok[key] else f"MISMATCH (tolerance {check.tolerance[key]:.1g})"
             line += f"   expected {_fmt(expected, expected)} {mark}"
-        schemes = [f"{s} {_fmt(vals[key])}" for s, vals in check.schemes.items() if key in vals]
+        schemes = [f"{s}{' (one-sided end stencil)' if key in check.end_stencil.get(s, ()) else ''} {_fmt(vals[key])}"
+                   for s, vals in check.schemes.items() if key in vals]
         if schemes:
             line += "   " + "   ".join(schemes)
         lines.append(line.rstrip())
@@ -117,20 +118,27 @@ def format_result(result) -> str:
         if result.comparisons:
             lines += ["", "largest error over the sweep, against the exact (analytic) solution"]
             rows = []
+            open_grid = any(not c.periodic for c in result.comparisons.values())
             for quantity, comparison in result.comparisons.items():
                 unit = comparison.unit
                 for scheme, row in comparison.summary.iterrows():
+                    ends = row.get(f"ends abs error [{unit}]", math.nan)
                     rows.append((
                         f"{quantity} [{unit}]", str(scheme), f"{row[f'max abs error [{unit}]']:.3g}",
                         f"{100 * row['max rel error']:.3g}%", f"{row[f'max at {name} [deg]']:g}",
+                        *([f"{ends:.3g}" if ends == ends else ""] if open_grid else []),
                     ))
-            head = ("quantity", "scheme", "max abs error", "max rel error", f"at {name} [deg]")
+            head = ("quantity", "scheme", "max abs error", "max rel error", f"at {name} [deg]",
+                    *(["ends, one-sided"] if open_grid else []))
             widths = [max(len(r[k]) for r in [head, *rows]) for k in range(len(head))]
             for r in [head, *rows]:
                 lines.append("  " + "  ".join(
                     (f"{c:<{w}}" if k < 2 else f"{c:>{w}}") for k, (c, w) in enumerate(zip(r, widths))
                 ).rstrip())
             lines.append("  (max rel error: the largest error over the largest |exact value| of the sweep)")
+            if open_grid:
+                lines.append("  (an open grid: the first and last points take one-sided end stencils, whose largest "
+                             "error is given apart)")
     if result.written:
         lines += ["", "written:"] + [f"  {p}" for p in result.written]
     return "\n".join(lines)

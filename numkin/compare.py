@@ -79,7 +79,11 @@ class Comparison:
         One row per scheme (index ``scheme``): ``order`` (of the truncation
         error; "spectral" for the FFT schemes), ``max abs error [unit]``,
         ``rms abs error [unit]``, ``max rel error``, ``rms rel error`` and
-        ``max at <input> [deg]`` (where the largest error occurs).
+        ``max at <input> [deg]`` (where the largest error occurs), over the
+        points where the scheme's own stencil applies; on an open grid also
+        ``ends abs error [unit]``, the largest error of the one-sided end
+        stencils at the first and last points (``table.attrs["ends"]``:
+        scheme -> how many points at the start and at the end take them).
     scale : float
         ``max|analytic|`` over the sweep, the denominator of ``rel error``.
     h : float
@@ -233,12 +237,26 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
     columns = {analytic_q.source_label(): analytic_q}
     scale = float(np.nanmax(np.abs(exact))) if np.any(np.isfinite(exact)) else float("nan")
     summary = []
-    keep = slice(None, -1) if rows.periodic else slice(None)  # the last row repeats the first
+    ends_of = {}  # scheme -> rows at the start and at the end taken by one-sided end stencils
     for s in chosen:
         if order == 1:
             value = w * rows.apply(s)[0]
         else:
             value = w**2 * rows.apply(s)[0] + a * rows.apply(_d.get_scheme(PARTNER[s.name]))[0]
+        # the rows where the scheme's own stencil applies: on an open grid its ends take one-sided stencils
+        keep = np.ones(t.size, dtype=bool)
+        if rows.periodic:
+            keep[-1] = False  # the last row repeats the first
+        else:
+            before, after = s.reach
+            if order == 2 and np.any(a != 0):  # alpha also differences the first derivative
+                b2, a2 = _d.get_scheme(PARTNER[s.name]).reach
+                before, after = max(before, b2), max(after, a2)
+            keep[:before] = False
+            keep[t.size - after:] = False
+            ends_of[s.name] = (int(before), int(after))
+        if not keep.any():
+            keep[:] = True
         err = np.abs(value - exact)
         rel = err / scale if scale > 0 else np.full_like(err, np.nan)
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -249,20 +267,26 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
         table[sq.source_label("abs error")] = err
         table[f"{s.name} rel error"] = rel
         table[f"{s.name} pointwise rel error"] = pointwise
-        worst = int(np.nanargmax(err)) if np.any(np.isfinite(err)) else 0
-        summary.append({
+        inner = np.where(keep, err, np.nan)
+        worst = int(np.nanargmax(inner)) if np.any(np.isfinite(inner)) else 0
+        row = {
             "scheme": s.name,
             "order": "spectral" if s.order == 0 else str(s.order),
-            target.with_source("max").source_label("abs error"): float(np.nanmax(err)),
+            target.with_source("max").source_label("abs error"): float(np.nanmax(inner)),
             target.with_source("rms").source_label("abs error"): float(np.sqrt(np.nanmean(err[keep] ** 2))),
-            "max rel error": float(np.nanmax(rel)),
+            "max rel error": float(np.nanmax(np.where(keep, rel, np.nan))),
             "rms rel error": float(np.sqrt(np.nanmean(rel[keep] ** 2))),
             f"max at {in_col}": round(float(np.degrees(t[worst])), 9),  # no 6.000000000000001 from rad and back
-        })
+        }
+        if not rows.periodic:  # the one-sided end stencils, apart
+            ends = ~keep
+            row[target.with_source("ends").source_label("abs error")] = float(np.nanmax(err[ends])) if ends.any() else np.nan
+        summary.append(row)
     table_df = pd.DataFrame(table)
     summary_df = pd.DataFrame(summary).set_index("scheme")
     for df in (table_df, summary_df):
         df.attrs.update({"quantity": quantity, "unit": unit, "h": rows.h, "periodic": rows.periodic,
                          "target": target})
     table_df.attrs["quantities"] = columns
+    table_df.attrs["ends"] = ends_of
     return Comparison(quantity, unit, table_df, summary_df, scale, rows.h, rows.periodic, target)

@@ -134,6 +134,9 @@ def tables(result) -> dict:
                 row = {input_col: c.at_deg, "quantity": key, "unit": c.units[key], "value": value}
                 for scheme, vals in c.schemes.items():
                     row[scheme] = vals.get(key, np.nan)
+                ends = sorted(s for s, keys in c.end_stencil.items() if key in keys)
+                if ends:
+                    row["one-sided end stencil"] = ", ".join(ends)
                 row["expected"] = c.expected.get(key, np.nan)
                 row["ok"] = c.ok.get(key, "")
                 rows.append(row)

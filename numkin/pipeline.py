@@ -52,6 +52,9 @@ class CheckResult:
     schemes : dict
         Scheme name -> {quantity name -> value} for the compared schemes (only
         at grid points).
+    end_stencil : dict
+        Scheme name -> the quantities whose value there comes from the
+        scheme's one-sided end stencil (the first or last points of an open grid).
     expected : dict
         Expected values from the scene file.
     ok : dict
@@ -64,6 +67,7 @@ class CheckResult:
     values: dict
     units: dict
     schemes: dict = field(default_factory=dict)
+    end_stencil: dict = field(default_factory=dict)
     expected: dict = field(default_factory=dict)
     tolerance: dict = field(default_factory=dict)
     ok: dict = field(default_factory=dict)
@@ -456,8 +460,12 @@ def _evaluate(result: SceneResult, at_deg: float, check: dict | None = None, *, 
         for name, comparison in result.comparisons.items():
             if name not in values:
                 continue
+            n = len(comparison.table)
             for scheme, value in _scheme_values(comparison, i).items():
                 res.schemes.setdefault(scheme, {})[name] = value
+                before, after = comparison.table.attrs.get("ends", {}).get(scheme, (0, 0))
+                if i < before or i >= n - after:
+                    res.end_stencil.setdefault(scheme, set()).add(name)
     if check is not None:
         for key, expected in check["expected"].items():
             tol = check["tolerance"] if check["tolerance"] is not None else written_tolerance(expected)

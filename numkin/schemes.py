@@ -128,6 +128,21 @@ class Scheme:
     ends: str = ""
     rule: Rule | None = field(default=None, compare=False, repr=False)
 
+    @property
+    def reach(self) -> tuple[int, int]:
+        """Points at the start and at the end of an open grid where the interior stencil does not apply
+        (they take the end stencils, :attr:`ends`): ``(-min(offsets), max(offsets))``, (0, 0) for none.
+
+        Examples
+        --------
+        >>> from numkin.derivatives import SCHEMES
+        >>> SCHEMES["forward"].reach, SCHEMES["second_difference"].reach, SCHEMES["spectral"].reach
+        ((0, 1), (1, 1), (0, 0))
+        """
+        if not self.offsets:
+            return 0, 0
+        return max(0, -min(self.offsets)), max(0, max(self.offsets))
+
 
 #: Declarations of the built-in schemes: name -> keyword arguments of :func:`register`
 #: (``offsets``/``derivative`` for stencils, ``kind`` and the rest for the others).

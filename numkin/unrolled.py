@@ -46,7 +46,7 @@ def cond2(p, q, r, s):
 
 
 def step_lines(n, blocks, zeros, singular, indent="    "):
-    """Lines computing the Newton step ``d0 .. d{n-1} = -J^-1 F`` from ``v = [F..., J rows...]``
+    """Lines computing the Newton step, d = -J^-1 F in ``d0``, ``d1``, ..., from ``v = [F..., J rows...]``
     by forward substitution through the blocks (sizes 1 and 2); ``singular`` is the statement
     run where a block's determinant is zero or not finite. ``singular=None``: whole arrays, no
     test (the caller tests the result), each 2 x 2 block multiplied by ``1 / det``."""
@@ -179,7 +179,7 @@ def unrolled_newton_batch(n, blocks, zeros, inv_xscale):
     """Generate ``newton_batch(K, x, t, kargs, active, maxiter, fscale, tol, floor, converged)``:
     Newton-Raphson on whole arrays with every update written out.
 
-    The iteration of :func:`numkin.newton.solve_batch` without compaction
+    The iteration of ``numkin.newton.solve_batch`` without compaction
     (every column is computed at every iteration, the inactive ones are not
     moved) and without histories: ``K(*x, t, *kargs)`` is the fused kernel
     (residual rows, then Jacobian rows), ``x`` (n, N) is iterated in place,

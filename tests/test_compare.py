@@ -78,13 +78,22 @@ def test_summary_statistics(homework):
     assert "centred" in repr(c) and "omega_phi" in repr(c)
 
 
-def test_open_grid_keeps_all_rows():
+def test_open_grid_keeps_all_rows_and_tells_the_end_stencils_apart():
     part = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0.0, 181.0)))
     c = compare(part, "6000 rpm", "a_x")
     assert not c.periodic
     assert "spectral_second" not in c.summary.index
     err = c.table["second_difference abs error [mm/s^2]"].to_numpy()
-    assert c.summary.loc["second_difference", "rms abs error [mm/s^2]"] == pytest.approx(np.sqrt(np.mean(err**2)))
+    assert err.size == 181
+    # the second difference's own stencil applies at 1..179 deg; 0 and 180 deg take one-sided stencils
+    row = c.summary.loc["second_difference"]
+    assert row["rms abs error [mm/s^2]"] == pytest.approx(np.sqrt(np.mean(err[1:-1] ** 2)))
+    assert row["max abs error [mm/s^2]"] == pytest.approx(err[1:-1].max())
+    assert row["ends abs error [mm/s^2]"] == pytest.approx(max(err[0], err[-1]))
+    assert c.table.attrs["ends"]["second_difference"] == (1, 1)
+    # leading error terms: h^2/12 times the 4th derivative inside, 11 h^2/12 times it for
+    # (2 y0 - 5 y1 + 4 y2 - y3) / h^2 at the ends, where it is largest: about 11 times the interior error
+    assert 10.0 < row["ends abs error [mm/s^2]"] / row["max abs error [mm/s^2]"] < 12.0
     with pytest.raises(ValueError, match="one turn"):
         compare(part, 1.0, "v_x", schemes=("spectral",))
 
@@ -145,3 +154,15 @@ def test_value_columns_carry_their_quantities(homework):
     assert q["second_difference [rad/s^2]"].source == "second_difference"
     assert (c.target.name, c.target.order, c.target.unit) == ("alpha_beta", 2, "rad/s^2")
     assert all(v.name == "alpha_beta" for v in q.values())
+
+
+def test_numkin_run_names_the_end_stencils_of_an_open_grid():
+    from numkin.cli import format_result
+    from numkin.scene import run_scene
+
+    text = format_result(run_scene("slider-crank"))  # 0..180 deg: an open grid
+    at_zero = text.split("check at theta = 0°")[1].split("check at")[0]
+    assert "second_difference (one-sided end stencil)" in at_zero and "centred (one-sided end stencil)" in at_zero
+    at_ninety = text.split("check at theta = 90°")[1].split("largest error")[0]
+    assert "one-sided" not in at_ninety
+    assert "ends, one-sided" in text

@@ -36,9 +36,8 @@ def scheme_reach(names: Iterable[str]) -> tuple[int, int]:
 
     before = after = 0
     for name in names:
-        offsets = get_scheme(name).offsets
-        if offsets:
-            before, after = max(before, -min(offsets)), max(after, max(offsets))
+        b, a = get_scheme(name).reach
+        before, after = max(before, b), max(after, a)
     return before, after
 
 
