@@ -26,7 +26,7 @@ The reference values are computed by numkin from its ready-made linkages
 (``numkin.linkages``), its finite-difference schemes (``numkin.derivatives``)
 and its analytic velocity and acceleration (``numkin.analytic``).  They are
 written to ``expected.json`` and into the master source, on every line that
-ends with ``# numkin: <key>``.
+ends with ``# reference: <key>``.
 """
 
 from __future__ import annotations
@@ -57,7 +57,7 @@ HOMEWORK = (
     "hw5_quadrature_pendulum",
 )
 
-MARKER = re.compile(r"^(?P<head>\s*\w+ = )(?P<value>.*?)(?P<tail>\s+# numkin: (?P<key>[\w.]+)\s*)$")
+MARKER = re.compile(r"^(?P<head>\s*\w+ = )(?P<value>.*?)(?P<tail>\s+# reference: (?P<key>[\w.]+)\s*)$")
 SIGNIFICANT = 12  # digits kept in the committed reference values
 
 
@@ -372,7 +372,7 @@ def stale(hw: str, fresh: dict | None = None) -> list[str]:
     for key, written in master_markers(hw).items():
         for value in written:
             if key not in committed or _differs(value, committed[key], 0.0):
-                problems.append(f"{hw}: master line '# numkin: {key}' disagrees with expected.json")
+                problems.append(f"{hw}: master line '# reference: {key}' disagrees with expected.json")
     return problems
 
 

@@ -36,7 +36,7 @@ MISTAKES = [(hw, m["name"]) for hw in HOMEWORK for m in build.mistakes(hw)]
 
 @pytest.mark.parametrize("hw", HOMEWORK)
 def test_committed_reference_values_are_numkins(hw):
-    """expected.json and the master's '# numkin:' lines agree with a fresh numkin computation.
+    """expected.json and the master's '# reference:' lines agree with a fresh numkin computation.
 
     Regenerate with: python assignments/build.py expected
     """

@@ -80,11 +80,16 @@ def test_lesson5_difference_errors_peak_at_the_nearly_extended_position():
     centred = np.abs((q[2:] - q[:-2]) / (2 * h) - omega[1:-1])
     assert 178 <= deg[:-1][np.argmax(forward)] <= 182
     assert 178 <= deg[1:-1][np.argmax(centred)] <= 182
-    worst = compare(sweep, 1.0, "omega_theta4", schemes=("forward", "centred", "five_point")).summary[
-        "max at theta2 [deg]"]
+    five = np.abs((q[:-4] - 8 * q[1:-3] + 8 * q[3:-1] - q[4:]) / (12 * h) - omega[2:-2])
+    assert 178 <= deg[2:-2][np.argmax(five)] <= 182
+    summary = compare(sweep, 1.0, "omega_theta4", schemes=("forward", "centred", "five_point")).summary
+    worst = summary["max at theta2 [deg]"]
     assert worst["forward"] == deg[:-1][np.argmax(forward)]
     assert abs(worst["centred"] - deg[1:-1][np.argmax(centred)]) <= 2  # 179 and 181 tie by symmetry
-    assert worst["five_point"] in (1.0, 359.0)
+    assert abs(worst["five_point"] - deg[2:-2][np.argmax(five)]) <= 2
+    assert summary.loc["five_point", "max abs error [rad/s]"] == pytest.approx(five.max(), rel=1e-6)
+    # the five-point formula's one-sided end stencils err more than twice its own stencil's worst
+    assert summary.loc["five_point", "ends abs error [rad/s]"] > 2 * five.max()
 
 
 def test_homework3_solution_keeps_the_centred_formula_at_the_dead_centres():

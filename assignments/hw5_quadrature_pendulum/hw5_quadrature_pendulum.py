@@ -109,9 +109,8 @@ hidden: true
 def test_I7(I7):
     import kincheck as kc
 
-    # reference computed by mpmath (assignments/exam004.py), not by numkin; the marker
-    # '# numkin: I7' is where `python assignments/build.py expected` writes it
-    REF = 2.62205677582  # numkin: I7
+    # computed by mpmath (assignments/exam004.py)
+    REF = 2.62205677582  # reference: I7
     kc.value("I7", I7, REF, rtol=1e-10, suspects=())
 
 # %% [raw]
@@ -158,9 +157,8 @@ hidden: true
 def test_errors_values(errors_gc):
     import kincheck as kc
 
-    # reference computed by mpmath (assignments/exam004.py), not by numkin; the marker
-    # '# numkin: errors_gc' is where `python assignments/build.py expected` writes it
-    ERRORS = [0.0569578939684, 0.00835387920278, 0.0012492495842, 0.000193092688489, 3.0370332993e-05, 4.8392849742e-06, 7.78475558716e-07, 1.26155646378e-07, 2.05640508865e-08, 3.36805176224e-09]  # numkin: errors_gc
+    # computed by mpmath (assignments/exam004.py)
+    ERRORS = [0.0569578939684, 0.00835387920278, 0.0012492495842, 0.000193092688489, 3.0370332993e-05, 4.8392849742e-06, 7.78475558716e-07, 1.26155646378e-07, 2.05640508865e-08, 3.36805176224e-09]  # reference: errors_gc
     kc.listed("errors_gc", errors_gc, ERRORS, rtol=1e-5)
 
 # %% [raw]
@@ -244,9 +242,8 @@ hidden: true
 def test_state_at_half_second(sol):
     import odecheck as oc
 
-    # reference computed by mpmath (assignments/exam004.py), not by numkin; the marker
-    # '# numkin: state_half' is where `python assignments/build.py expected` writes it
-    REF = [0.471409428657, -0.33923121466, -0.221242816746, -3.25718061843]  # numkin: state_half
+    # computed by mpmath (assignments/exam004.py)
+    REF = [0.471409428657, -0.33923121466, -0.221242816746, -3.25718061843]  # reference: state_half
     oc.state("sol", sol, 250, REF, time="t = 0.5 s", rtol=1e-6)
 
 # %%
@@ -256,9 +253,8 @@ hidden: true
 def test_state_at_one_second(sol):
     import odecheck as oc
 
-    # reference computed by mpmath (assignments/exam004.py), not by numkin; the marker
-    # '# numkin: state_end' is where `python assignments/build.py expected` writes it
-    REF = [0.460550966662, -0.396508462161, 0.5881987357, 2.98402279412]  # numkin: state_end
+    # computed by mpmath (assignments/exam004.py)
+    REF = [0.460550966662, -0.396508462161, 0.5881987357, 2.98402279412]  # reference: state_end
     oc.state("sol", sol, 500, REF, time="t = 1 s", rtol=1e-5)
 
 # %% [raw]
@@ -368,9 +364,8 @@ hidden: true
 def test_t_cross(t_cross):
     import kincheck as kc
 
-    # reference computed by mpmath (assignments/exam004.py), not by numkin; the marker
-    # '# numkin: t_cross' is where `python assignments/build.py expected` writes it
-    REF = 0.396181280849  # numkin: t_cross
+    # computed by mpmath (assignments/exam004.py)
+    REF = 0.396181280849  # reference: t_cross
     kc.value("t_cross", t_cross, REF, rtol=1e-5, unit="s", suspects=())
 
 # %%
@@ -380,9 +375,8 @@ hidden: true
 def test_r_cross(r_cross):
     import kincheck as kc
 
-    # reference computed by mpmath (assignments/exam004.py), not by numkin; the marker
-    # '# numkin: r_cross' is where `python assignments/build.py expected` writes it
-    REF = 0.507745207652  # numkin: r_cross
+    # computed by mpmath (assignments/exam004.py)
+    REF = 0.507745207652  # reference: r_cross
     kc.value("r_cross", r_cross, REF, rtol=1e-4, unit="m", suspects=("mm",))
 
 # %% [raw]
