@@ -212,6 +212,9 @@ def _about(scene):
     :class:`~numkin.NumkinError`, ``ValueError`` or ``ArithmeticError`` gets the
     attribute ``scene_source``, which :func:`main` prints before the message.
     """
+    lines = warnings.showwarning
+    if isinstance(lines, _WarningLines):
+        lines.shown.clear()  # each scene's warnings said once for it, though another scene said the same
     try:
         yield
     except (NumkinError, ValueError, ArithmeticError) as error:
@@ -595,7 +598,7 @@ def main(argv=None) -> int:
 
 class _WarningLines:
     """``warnings.showwarning`` of a command: each warning (near-singular positions, skipped figures, a
-    far guess) as one line on stderr, and each distinct line once, however many stages meet it."""
+    far guess) as one line on stderr, and each distinct line once per scene, however many stages meet it."""
 
     def __init__(self):
         self.shown: set = set()

@@ -267,7 +267,7 @@ def check_lengths(model: dict, value_of: dict, every_link: bool = False) -> None
     A subtracted vector is written ``(-r4, theta4)``: the sign belongs in
     the loop, not in the value. The length of a vector of fixed direction
     (``(-e, pi/2)``) is an offset and may have either sign; so may a
-    parameter declared real (``sympy.Symbol("e", real=True)``), unless
+    parameter declared real and no more (``sympy.Symbol("e", real=True)``), unless
     ``every_link`` (the dimensions of a scene written as loops, all declared
     real). ``model`` is :func:`describe`'s, ``value_of`` maps parameter
     names to values. The ``ValueError`` names the parameter, also as its
@@ -283,10 +283,11 @@ def check_lengths(model: dict, value_of: dict, every_link: bool = False) -> None
     ValueError: loop 'O2-A': length r2 = -1 is negative (a negative length mirrors the linkage): lengths must be positive; write the vector as (-r2, angle) in the loop
     """
     given = every_link
-    undeclared = {p for p, _, real_unknown in model["parameters"] if real_unknown}
+    # a signed offset is declared real (and not non-negative); undeclared and non-negative ones are lengths
+    lengths = {p for p, non_negative, real_unknown in model["parameters"] if real_unknown or non_negative}
     for lp in model["loops"]:
         for sym in lp.get("links", lp["lengths"]):
-            if not (every_link or sym in undeclared):
+            if not (every_link or sym in lengths):
                 continue
             value = value_of.get(sym)
             if value is not None and value <= 0:

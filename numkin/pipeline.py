@@ -32,7 +32,7 @@ from .assemble import scene_quantities, scene_unit
 from .schema import Scene, SceneReader, in_range, load_scene, nearest
 from .errors import warn
 
-__all__ = ["CheckResult", "SceneResult", "run_scene", "render_figures", "written_tolerance", "guess_as_written"]
+__all__ = ["CheckResult", "SceneResult", "run_scene", "render_figures", "written_tolerance", "in_scene_terms"]
 
 
 # --------------------------------------------------------------------- results
@@ -221,7 +221,7 @@ def run_scene(
 
 
 def _run(scene: Scene, result: SceneResult, scope: ExitStack, out, at, figures: bool, step) -> None:
-    """The stages of :func:`run_scene`; from the mechanism on, inside :func:`guess_as_written`."""
+    """The stages of :func:`run_scene`; from the mechanism on, inside :func:`in_scene_terms`."""
     if scene.kind == "stability":
         if at is not None:
             scene.fail("--at", "applies to a scene with a mechanism, not to the stability suite")
@@ -242,7 +242,7 @@ def _run(scene: Scene, result: SceneResult, scope: ExitStack, out, at, figures: 
         step("mechanism")
         mech = scene.build_mechanism()
         result.mechanism = mech
-        scope.enter_context(guess_as_written(scene, mech))
+        scope.enter_context(in_scene_terms(scene, mech))
         step("positions")
         result.sweep = _sweep(scene, mech)
         if scene.differentiates:
@@ -277,10 +277,14 @@ def _sweep(scene: Scene, mech):
 
 
 @contextmanager
-def guess_as_written(scene: Scene, mech):
-    """Inside: errors and warnings that blame a ``[guess]`` angle more than a turn from zero name it as
-    the scene writes it (``theta3_deg = 1950``, in degrees) instead of in rad; each warning is issued
-    once, however many solves inside give it (a report sweeps many grids from the same guess).
+def in_scene_terms(scene: Scene, mech):
+    """Inside: errors and warnings said as a scene takes them, and each warning issued once, however
+    many solves inside give it (a report sweeps many grids from the same guess).
+
+    A ``[guess]`` angle more than a turn from zero is named as the scene writes it (``theta3_deg =
+    1950``, in degrees) instead of in rad; advice on a guess speaks of ``[guess]`` in degrees; a change
+    point met by the error-analysis tables (which sweep the scene's range) says that they need it free
+    of change points. The warnings are issued again when the block ends, also when it fails.
 
     Examples
     --------
@@ -288,14 +292,14 @@ def guess_as_written(scene: Scene, mech):
     >>> from numkin.scene import load_scene
     >>> scene = load_scene("homework")
     >>> mech = scene.build_mechanism()
-    >>> with warnings.catch_warnings(record=True) as caught, guess_as_written(scene, mech):
+    >>> with warnings.catch_warnings(record=True) as caught, in_scene_terms(scene, mech):
     ...     warnings.simplefilter("always")
     ...     for _ in range(3):
     ...         warnings.warn("the same thing", UserWarning)
     >>> len(caught)
     1
     """
-    from .errors import GuessWarning, NumkinError
+    from .errors import NumkinError
     from .first_point import degrees_hint, far_guesses
 
     guess = scene.guess_values(mech)
@@ -305,7 +309,10 @@ def guess_as_written(scene: Scene, mech):
         """``text`` with the hint about ``far`` (default: every far guess) said as the scene writes it."""
         text = text.replace("guess nearer the position (angles in rad)", "[guess] nearer the position (angles as "
                             "<unknown>_deg, in degrees)").replace(
-            "better guess (angles in rad)", "better [guess] (angles as <unknown>_deg, in degrees)")
+            "better guess (angles in rad)", "better [guess] (angles as <unknown>_deg, in degrees)").replace(
+            "pass on_singular='report' to go on along the branch whose tangent is continuous",
+            "the error-analysis tables sweep the scene's range and need it free of change points "
+            "([input] on_singular = \"report\" takes numkin run through them)")
         far = every if far is None else far
         hint = degrees_hint(far)
         if not hint or hint not in text:
@@ -313,18 +320,27 @@ def guess_as_written(scene: Scene, mech):
         values = ", ".join(f"{name}_deg = {scene.guess[f'{name}_deg']:g}" for name, _ in far)
         return text.replace(hint, f"[guess] {values} is more than a turn from zero (in degrees)")
 
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")  # every warning recorded; the caller's filters apply when issued again
-        try:
-            yield
-        except NumkinError as error:
-            if error.args and isinstance(error.args[0], str):
-                error.args = (as_written(error.args[0], getattr(error, "far_guess", None) or None), *error.args[1:])
-            raise
-        finally:
-            issued = list(caught)
+    caught: list = []
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")  # every warning recorded; the caller's filters apply when issued again
+            try:
+                yield
+            except NumkinError as error:
+                if error.args and isinstance(error.args[0], str):
+                    error.args = (as_written(error.args[0], getattr(error, "far_guess", None) or None),
+                                  *error.args[1:])
+                raise
+    finally:  # issued again even when a later stage fails (the warnings came first)
+        _issue_once(caught, as_written)
+
+
+def _issue_once(caught, as_written) -> None:
+    """Issue recorded warnings again, each distinct one once, their text rewritten by ``as_written``."""
+    from .errors import GuessWarning
+
     seen = set()
-    for w in issued:
+    for w in caught:
         guess_warning = isinstance(w.message, GuessWarning)
         text = as_written(str(w.message), w.message.far if guess_warning else None)
         if (w.category, text) in seen:
@@ -366,7 +382,7 @@ def render_figures(result: SceneResult, out_dir, *, formats=("png", "svg"), prog
         common = {k: options[k] for k in ("quantity", "guess")}
         sweep_opts = {k: options[k] for k in ("start", "span", "grids", "schemes") if k in options}
         # the convergence and work-precision tables sweep the same grids; a far guess is said once, as written
-        with report.shared_results(), guess_as_written(scene, result.mechanism):
+        with report.shared_results(), in_scene_terms(scene, result.mechanism):
             for kind in wanted:
                 step(f"{kind} table")
                 if kind == "convergence":

@@ -251,9 +251,12 @@ class Scene:
         options = dict(self.report)
         quantity = options.pop("quantity", None) or (self.unknowns or mech.unknowns)[0]
         check_deg = options.pop("check_deg", None)
-        if check_deg is None:
-            check_deg = self.checks[0]["at_deg"] if self.checks else self.start_deg
         span = self.stop_deg - self.start_deg  # the report sweeps a turn at most, the scene's sweep if less
+        if check_deg is None and self.checks:
+            check_deg = self.checks[0]["at_deg"]
+        elif check_deg is None:  # the start, or on less than a turn the grid point nearest the middle
+            check_deg = self.start_deg if span >= 360.0 else self.start_deg + self.step_deg * round(
+                0.5 * span / self.step_deg)
         return {
             "omega": self.speed, "quantity": quantity, "check_angle": math.radians(check_deg),
             "start": math.radians(self.start_deg), "guess": self.guess_values(mech),

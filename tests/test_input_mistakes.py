@@ -516,3 +516,82 @@ def test_a_sweep_in_degrees_is_warned_of_and_one_in_rad_is_not():
         mech.sweep(np.radians(np.arange(0.0, 361.0)))
         mech.sweep(np.arange(0.0, 20.0))  # 20 rad in steps of 1: a few turns, not degrees
     assert issubclass(GuessWarning, DegreesWarning)
+
+
+# ------------------------------------------------------------ the report and the figures of a scene
+RANGE = """
+[scene]
+description = "a four-bar that assembles for |theta2| <= 78.58 deg"
+[mechanism]
+linkage = "four_bar"
+[mechanism.dimensions]
+ground = 4
+crank = 3
+coupler = 2
+rocker = 2.5
+[input]
+speed = "10 rad/s"
+start_deg = -78
+stop_deg = 78
+step_deg = 1
+{extra}
+[output]
+quantities = ["position", "velocity"]
+[report]
+grids = [36, 72, 144]
+{report}
+"""
+
+
+def test_report_on_less_than_a_turn_checks_in_the_middle_and_says_why_an_end_fails(capsys, tmp_path):
+    # cos(theta2) >= (4^2 + 3^2 - 4.5^2) / (2 * 4 * 3): |theta2| <= 78.58 deg; the round-off scan and the
+    # Newton table solve around the check angle, which by default is the middle of the sweep (0 deg)
+    path = tmp_path / "range.toml"
+    path.write_text(textwrap.dedent(RANGE.format(extra="", report="")))
+    code, out, err = run(capsys, "report", str(path))
+    assert code == 0, err
+    path.write_text(textwrap.dedent(RANGE.format(extra="", report="check_deg = -78")))
+    code, out, err = run(capsys, "report", str(path))
+    assert code == 2
+    line = one_line_error(err)
+    assert "not solved by Newton" in line and "[report] check_deg" in line
+
+
+def test_report_through_a_change_point_says_the_tables_need_none(capsys, tmp_path):
+    path = tmp_path / "par.toml"
+    path.write_text(textwrap.dedent(PARALLELOGRAM.format(extra='on_singular = "report"\nspeed = "10 rad/s"')))
+    code, out, err = run(capsys, "report", str(path))
+    assert code == 2
+    line = one_line_error(err)
+    assert "change point" in line and "tables sweep the scene's range and need it free of change points" in line
+    assert "pass on_singular" not in line
+
+
+def test_warnings_are_said_when_a_later_stage_fails(capsys, tmp_path):
+    path = tmp_path / "par.toml"
+    path.write_text(textwrap.dedent(PARALLELOGRAM.format(extra='on_singular = "report"')) + '[output]\ntables = ["positions"]\n')
+    blocked = tmp_path / "a-file"
+    blocked.write_text("")
+    code, out, err = run(capsys, "run", str(path), "--out", str(blocked / "sub"))
+    assert code == 2
+    assert "change point" in err.split("numkin: error:")[0]  # the sweep's warning, before the error line
+
+
+def test_each_scene_of_a_command_says_its_own_warnings(capsys, tmp_path):
+    paths = []
+    for name in ("one", "two"):
+        path = tmp_path / f"{name}.toml"
+        path.write_text(textwrap.dedent(LOOPS.format(r2=1, theta3=60, stop=360, step=10))
+                        + '[output]\nfigures = ["kinematics:theta4"]\n')  # positions only: the figure is skipped
+        paths.append(str(path))
+    code, out, err = run(capsys, "figures", *paths, "--out", str(tmp_path / "figures"))
+    assert code == 0
+    assert sum("skipped" in line for line in err.splitlines()) == 2, err
+
+
+def test_a_zero_length_declared_positive_is_refused():
+    r1, r2, r3, r4 = sp.symbols("r1 r2 r3 r4", positive=True)
+    t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    loop = Loop.from_vectors([(r2, t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4], name="O2-A-B-O4")
+    with pytest.raises(ValueError, match="length r2 is zero"):
+        Mechanism([loop], t2, {r1: 4, r2: 0, r3: 3, r4: 3})

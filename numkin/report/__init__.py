@@ -263,10 +263,19 @@ def scene_report(scene, *, repeat: int | None = None) -> dict:
         options["omega"] = 1.0
     if repeat:
         options["repeat"] = repeat
-    from ..pipeline import guess_as_written
+    from ..pipeline import in_scene_terms
 
-    with guess_as_written(scene, mech):
-        tables = full_report(mech, **options)
+    from ..errors import NumkinError
+
+    with in_scene_terms(scene, mech):
+        try:
+            tables = full_report(mech, **options)
+        except NumkinError as error:
+            if "span" in options and error.args and isinstance(error.args[0], str):  # less than a turn
+                error.args = (f"{error.args[0]}; the round-off and Newton tables solve from 20° before to 11.5° "
+                              "after the check angle ([report] check_deg), inside the linkage's range",
+                              *error.args[1:])
+            raise
     if per_unit:
         for table in tables.values():
             table.attrs["caption"] = (

@@ -262,10 +262,11 @@ def solve_points(mechanism, x0, t, *, what: str = "position") -> np.ndarray:
 
     Raises
     ------
-    RuntimeError
+    ConvergenceError
         If a point does not converge or meets a singular Jacobian, naming
-        its input angle.
+        its input angle (a ``RuntimeError`` too).
     """
+    from ..errors import ConvergenceError
     from ..newton import iterate
 
     t = np.asarray(t, dtype=float).reshape(-1)
@@ -278,9 +279,10 @@ def solve_points(mechanism, x0, t, *, what: str = "position") -> np.ndarray:
     if bad.size:
         k = int(bad[0])
         why = "singular Jacobian" if out.singular[k] else f"scaled residual {float(out.residual[k]):.3g}"
-        raise RuntimeError(
+        raise ConvergenceError(
             f"{mechanism.name}: {what} at input {math.degrees(float(t[k])):.6g} deg not solved by Newton ({why}; "
-            f"{bad.size} of {t.size} points)"
+            f"{bad.size} of {t.size} points)",
+            input_value=float(t[k]), cause="singular" if out.singular[k] else "no convergence",
         )
     return out.x
 
