@@ -312,7 +312,9 @@ def in_scene_terms(scene: Scene, mech):
             "better guess (angles in rad)", "better [guess] (angles as <unknown>_deg, in degrees)").replace(
             "pass on_singular='report' to go on along the branch whose tangent is continuous",
             "the error-analysis tables sweep the scene's range and need it free of change points "
-            "([input] on_singular = \"report\" takes numkin run through them)")
+            "([input] on_singular = \"report\" takes numkin run through them)").replace(
+            ": pass at_change_point='continue' for these values", " (from Python, at_change_point='continue' "
+            "returns these values)")
         far = every if far is None else far
         hint = degrees_hint(far)
         if not hint or hint not in text:
