@@ -131,7 +131,7 @@ class Scheme:
     @property
     def reach(self) -> tuple[int, int]:
         """Points at the start and at the end of an open grid where the interior stencil does not apply
-        (they take the end stencils, :attr:`ends`): ``(-min(offsets), max(offsets))``, (0, 0) for none.
+        (they take the end stencils, ``ends``): ``(-min(offsets), max(offsets))``, (0, 0) for none.
 
         Examples
         --------
