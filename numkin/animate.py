@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -120,8 +121,13 @@ def full_turn(sweep):
     n = max(int(round(_TURN / step)), 4)
     direction = -1.0 if t.size > 1 and t[-1] < t[0] else 1.0
     inputs = t[0] + direction * _TURN * np.arange(n + 1) / n
+    # a sweep that went through change points (on_singular="report") goes through them again
+    through = "report" if any(e.kind == "change point" for e in getattr(sweep, "events", ())) else "raise"
     try:
-        turned = sweep.mechanism.sweep(inputs, guess=np.asarray(sweep.values[:, 0], dtype=float))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the sweep's own warnings were said already
+            turned = sweep.mechanism.sweep(inputs, guess=np.asarray(sweep.values[:, 0], dtype=float),
+                                           on_singular=through)
     except (NumkinError, ValueError, ArithmeticError):
         return None
     values = np.asarray(turned.values, dtype=float)

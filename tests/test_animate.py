@@ -86,3 +86,20 @@ def test_cli_animation_twice_gives_identical_bytes(tmp_path):
     for p in paths:
         assert main(["animate", "quick-return", "--out", str(p), "--frames", "6"]) == 0
     assert paths[0].read_bytes() == paths[1].read_bytes()
+
+
+def test_full_turn_goes_through_the_change_points_the_sweep_went_through():
+    # the crossed parallelogram four-bar swept from 10 to 350 deg through its change point at 180 deg
+    # (on_singular="report"): its full turn does the same, on the branch the sweep kept
+    import warnings
+
+    from numkin import linkages
+    from numkin.animate import full_turn
+
+    mech = linkages.four_bar(5, 2, 5, 2, branch="crossed")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        part = mech.sweep(np.radians(np.arange(10.0, 351.0)), on_singular="report")
+    whole = full_turn(part)
+    assert whole is not None and len(whole) == 361
+    np.testing.assert_allclose(whole.values[:, :341], part.values, atol=1e-9)
