@@ -451,7 +451,6 @@ class Continuation:
         d_prev = previous[2] if previous is not None and len(previous) > 2 else None
         iters = 0
         inv_xs = self.inv_xs
-        n, nn = self.n, self.nn
         unit = self.unit_scale
         for _ in range(MAX_TRIALS):
             if t == t1:
