@@ -228,10 +228,10 @@ class Continuation:
 
     def local1(self, v):
         """Tangent dq/dt and loop orientations at a solved point; (None, None) if its Jacobian is singular."""
-        n, nn = self.n, self.nn
         if v is None:
             return None, None
-        return self.blocks.solve1(v[n : n + nn], [-a for a in v[n + nn :]])
+        d, o, _ = self.blocks.local1(v)
+        return d, o
 
     def small_correction(self, x, x_pred) -> bool:
         """Whether Newton moved the prediction ``x_pred`` by at most :data:`MAX_CORRECTION` (scaled)."""
