@@ -35,32 +35,47 @@ def four_bar_closed_form(t2, r1=4.0, r2=1.0, r3=3.0, r4=3.0, sign=1.0):
 
 LOOPS = """
 [scene]
-description = "the four-bar 4, 1, 3, 3 written as loops"
+description = "the four-bar {r1}, {r2}, {r3}, {r4} written as loops"
 [mechanism]
 input = "theta2"
 unit = "mm"
 [mechanism.dimensions]
-r1 = 4
+r1 = {r1}
 r2 = {r2}
-r3 = 3
-r4 = 3
+r3 = {r3}
+r4 = {r4}
 [[mechanism.loops]]
 name = "O2-A-B-O4"
 unknowns = ["theta3", "theta4"]
 vectors = [["r2", "theta2"], ["r3", "theta3"], ["-r4", "theta4"], ["-r1", "0"]]
 [input]
-stop_deg = {stop}
+{speed}stop_deg = {stop}
 step_deg = {step}
 [guess]
 theta3_deg = {theta3}
-theta4_deg = 120
+theta4_deg = {theta4}
 """
 
 
-def loops_scene(tmp_path, r2=1, theta3=60, stop=360, step=1):
-    path = tmp_path / "loops.toml"
-    path.write_text(textwrap.dedent(LOOPS.format(r2=r2, theta3=theta3, stop=stop, step=step)))
+def loops_scene(tmp_path, *, r1=4, r2=1, r3=3, r4=3, theta3=60, theta4=120, stop=360, step=1, speed=None,
+                output="", edits=(), name="loops.toml"):
+    """The four-bar O2-A-B-O4 as a scene written as loops (from 0 deg), with ``output`` (the ``[output]``
+    keys) appended and each ``(old, new)`` of ``edits`` replaced in it (``old`` must be there); its path."""
+    text = textwrap.dedent(LOOPS.format(r1=r1, r2=r2, r3=r3, r4=r4, theta3=theta3, theta4=theta4, stop=stop, step=step,
+                                        speed=f'speed = "{speed}"\n' if speed else ""))
+    if output:
+        text += f"[output]\n{output}\n"
+    for old, new in edits:
+        assert old in text, old
+        text = text.replace(old, new)
+    path = tmp_path / name
+    path.write_text(text)
     return str(path)
+
+
+def warning_lines(err: str) -> list:
+    """The warning lines a command printed on stderr."""
+    return [line for line in err.splitlines() if line.startswith("numkin: warning: ")]
 
 
 # ---------------------------------------------------------- a negative length
@@ -184,7 +199,7 @@ def test_degrees_warning_names_every_unknown():
 def test_scene_guess_in_degrees_is_not_asked_whether_it_was_in_degrees(capsys, tmp_path):
     code, out, err = run(capsys, "run", loops_scene(tmp_path, theta3=1e6, stop=10, step=5))
     assert code == 0
-    warning = [line for line in err.splitlines() if line.startswith("numkin: warning: ")]
+    warning = warning_lines(err)
     assert len(warning) == 1, err
     assert "[guess] theta3_deg = 1e+06 is more than a turn from zero (in degrees)" in warning[0]
     assert "was it given in degrees" not in warning[0]
@@ -205,11 +220,12 @@ gamma_deg = 270
 """
 
 
-def test_scene_failing_from_a_guess_in_degrees_says_it_in_degrees(capsys, tmp_path):
+@pytest.mark.parametrize("command", ["run", "report"])
+def test_scene_failing_from_a_guess_in_degrees_says_it_in_degrees(capsys, tmp_path, command):
     path = tmp_path / "chained.toml"
     phi, psi = math.degrees(45), math.degrees(60)  # the guesses of linkage 1 that fail in rad, as degrees
     path.write_text(textwrap.dedent(CHAINED.format(phi=phi, psi=psi)))
-    code, out, err = run(capsys, "run", str(path))
+    code, out, err = run(capsys, command, str(path))
     assert code == 2
     line = one_line_error(err)
     assert f"[guess] phi_deg = {phi:.6g}, psi_deg = {psi:.6g} is more than a turn from zero (in degrees)" in line
@@ -220,7 +236,7 @@ def test_report_says_a_far_guess_once_and_in_degrees(capsys, tmp_path):
     # the report sweeps many grids from the same guess: one warning, as the scene writes the guess
     code, out, err = run(capsys, "report", loops_scene(tmp_path, theta3=1950, stop=360, step=10))
     assert code == 0
-    warning = [line for line in err.splitlines() if line.startswith("numkin: warning: ")]
+    warning = warning_lines(err)
     assert len(warning) == 1, err
     assert "[guess] theta3_deg = 1950 is more than a turn from zero (in degrees)" in warning[0]
     assert "was it given in degrees" not in warning[0]
@@ -229,25 +245,12 @@ def test_report_says_a_far_guess_once_and_in_degrees(capsys, tmp_path):
 
 def test_figures_say_a_far_guess_once_and_in_degrees(capsys, tmp_path):
     # the positions, then the convergence figure's table from many grids: one warning line in all
-    path = loops_scene(tmp_path, theta3=1950, stop=360, step=10)
-    text = open(path).read().replace("[input]\n", '[input]\nspeed = "10 rad/s"\n') + '[output]\nfigures = ["convergence"]\n'
-    open(path, "w").write(text)
+    path = loops_scene(tmp_path, theta3=1950, stop=360, step=10, speed="10 rad/s", output='figures = ["convergence"]')
     code, out, err = run(capsys, "figures", path, "--out", str(tmp_path / "figures"), "--formats", "png")
     assert code == 0
-    warning = [line for line in err.splitlines() if line.startswith("numkin: warning: ")]
+    warning = warning_lines(err)
     assert len(warning) == 1, err
     assert "[guess] theta3_deg = 1950 is more than a turn from zero (in degrees)" in warning[0]
-
-
-def test_report_failing_from_a_guess_in_degrees_says_it_in_degrees(capsys, tmp_path):
-    path = tmp_path / "chained.toml"
-    phi, psi = math.degrees(45), math.degrees(60)
-    path.write_text(textwrap.dedent(CHAINED.format(phi=phi, psi=psi)))
-    code, out, err = run(capsys, "report", str(path))
-    assert code == 2
-    line = one_line_error(err)
-    assert f"[guess] phi_deg = {phi:.6g}, psi_deg = {psi:.6g} is more than a turn from zero (in degrees)" in line
-    assert "was it given in degrees" not in line
 
 
 # ------------------------------------------------------------ the command
@@ -334,11 +337,9 @@ def test_on_singular_takes_raise_or_report_only(capsys, tmp_path):
     ('["a = b = c", "r2*sin(theta2) + r3*sin(theta3) - r4*sin(theta4)"]', "has 2 '=' signs"),
 ])
 def test_equations_that_are_not_one_equation_each_are_named(capsys, tmp_path, equations, words):
-    text = textwrap.dedent(LOOPS.format(r2=1, theta3=60, stop=360, step=10)).replace(
-        'vectors = [["r2", "theta2"], ["r3", "theta3"], ["-r4", "theta4"], ["-r1", "0"]]', f"equations = {equations}")
-    path = tmp_path / "eq.toml"
-    path.write_text(text)
-    code, out, err = run(capsys, "run", str(path))
+    path = loops_scene(tmp_path, step=10, edits=[(
+        'vectors = [["r2", "theta2"], ["r3", "theta3"], ["-r4", "theta4"], ["-r1", "0"]]', f"equations = {equations}")])
+    code, out, err = run(capsys, "run", path)
     assert code == 2
     assert words in one_line_error(err)
 
@@ -352,10 +353,8 @@ def test_an_input_that_appears_in_no_loop_is_named():
 
 
 def test_a_loops_scene_missing_a_guess_is_not_told_of_a_default(capsys, tmp_path):
-    text = textwrap.dedent(LOOPS.format(r2=1, theta3=60, stop=360, step=10)).replace("theta4_deg = 120\n", "")
-    path = tmp_path / "half.toml"
-    path.write_text(text)
-    code, out, err = run(capsys, "run", str(path))
+    path = loops_scene(tmp_path, step=10, edits=[("theta4_deg = 120\n", "")])
+    code, out, err = run(capsys, "run", path)
     assert code == 2
     line = one_line_error(err)
     assert "lacks theta4_deg" in line and "has no default guess" in line and "leave out" not in line
@@ -381,16 +380,13 @@ def test_zero_length_is_refused_by_the_mechanism(zero):
 
 
 # ------------------------------------------------------------ a dimension of the wrong kind
-@pytest.mark.parametrize("edit, words", [
-    (("r1 = 4", "r1_deg = 4"), "1 vector 4 length: 'r1' is an angle (given as r1_deg"),
-    (("r1 = 4", "r1 = 4\ngamma = 5"), "vector 1 angle: 'gamma' is a length (in mm"),
+@pytest.mark.parametrize("edits, words", [
+    ([("r1 = 4", "r1_deg = 4")], "1 vector 4 length: 'r1' is an angle (given as r1_deg"),
+    ([("r1 = 4", "r1 = 4\ngamma = 5"), ('["r2", "theta2"]', '["r2", "theta2 + gamma"]')],
+     "vector 1 angle: 'gamma' is a length (in mm"),
 ])
-def test_a_dimension_used_as_the_other_kind_is_refused(capsys, tmp_path, edit, words):
-    text = textwrap.dedent(LOOPS.format(r2=1, theta3=60, stop=360, step=10)).replace(*edit)
-    text = text.replace('["r2", "theta2"]', '["r2", "theta2 + gamma"]') if "gamma" in edit[1] else text
-    path = tmp_path / "kind.toml"
-    path.write_text(text)
-    code, out, err = run(capsys, "run", str(path))
+def test_a_dimension_used_as_the_other_kind_is_refused(capsys, tmp_path, edits, words):
+    code, out, err = run(capsys, "run", loops_scene(tmp_path, step=10, edits=edits))
     assert code == 2
     assert words in one_line_error(err)
 
@@ -398,59 +394,31 @@ def test_a_dimension_used_as_the_other_kind_is_refused(capsys, tmp_path, edit, w
 def test_an_angle_from_lengths_and_a_projected_length_are_fine(tmp_path):
     # atan2 of two lengths is an angle, and a length times the cosine of an angle a length: both legitimate;
     # the loop O2-A-B-O4 with O4 given by its distance and direction, checked against the closed form
-    text = textwrap.dedent(LOOPS.format(r2=1, theta3=60, stop=360, step=10)).replace(
-        "r1 = 4", "r1 = 4\nh = 0\ntilt_deg = 0").replace(
-        '["-r1", "0"]', '["-r1*cos(tilt)", "atan2(h, r1)"]')
-    path = tmp_path / "ok.toml"
-    path.write_text(text)
-    result = run_scene(load_scene(str(path)), at=90)
+    path = loops_scene(tmp_path, step=10, edits=[("r1 = 4", "r1 = 4\nh = 0\ntilt_deg = 0"),
+                                                 ('["-r1", "0"]', '["-r1*cos(tilt)", "atan2(h, r1)"]')])
+    result = run_scene(load_scene(path), at=90)
     t3, t4 = four_bar_closed_form(math.radians(90))
     assert result.at.values["theta4_deg"] == pytest.approx(math.degrees(t4), abs=1e-9)
 
 
 # ------------------------------------------------------------ a linkage that cannot turn fully
-PART_TURN = """
-[scene]
-description = "a non-Grashof four-bar (4, 2, 1.5, 3) over 80 deg of its input"
-[mechanism]
-input = "theta2"
-[mechanism.dimensions]
-r1 = 4
-r2 = 2
-r3 = 1.5
-r4 = 3
-[[mechanism.loops]]
-name = "O2-A-B-O4"
-unknowns = ["theta3", "theta4"]
-vectors = [["r2", "theta2"], ["r3", "theta3"], ["-r4", "theta4"], ["-r1", "0"]]
-[input]
-speed = "10 rad/s"
-start_deg = 0
-stop_deg = 80
-step_deg = 1
-[guess]
-theta3_deg = {theta3}
-theta4_deg = {theta4}
-[output]
-quantities = ["position", "velocity"]
-"""
+def part_turn(tmp_path, theta3, theta4):
+    """The non-Grashof four-bar (4, 2, 1.5, 3) over 0..80 deg of its input, with velocities."""
+    return loops_scene(tmp_path, r2=2, r3=1.5, theta3=theta3, theta4=theta4, stop=80, speed="10 rad/s",
+                       output='quantities = ["position", "velocity"]')
 
 
 def test_report_of_a_scene_that_cannot_turn_fully_sweeps_the_scene_s_range(capsys, tmp_path):
     # |A O4|^2 = 20 - 16 cos(theta2) reaches (r3 + r4)^2 = 20.25 at 90.895 deg, a toggle: a full turn
     # cannot be swept; the report keeps to the scene's 0..80 deg
-    path = tmp_path / "part.toml"
-    path.write_text(textwrap.dedent(PART_TURN.format(theta3=117, theta4=154)))
-    code, out, err = run(capsys, "report", str(path))
+    code, out, err = run(capsys, "report", part_turn(tmp_path, 117, 154))
     assert code == 0, err
     assert "toggle" not in err
     assert "360 points per turn over 80 deg from 0 deg" in " ".join(out.split())
 
 
 def test_a_scene_s_failing_guess_is_told_in_degrees(capsys, tmp_path):
-    path = tmp_path / "part.toml"
-    path.write_text(textwrap.dedent(PART_TURN.format(theta3=60, theta4=100)))
-    code, out, err = run(capsys, "run", str(path))
+    code, out, err = run(capsys, "run", part_turn(tmp_path, 60, 100))
     assert code == 2
     line = one_line_error(err)
     assert "cannot assemble at input 0.000°" in line
@@ -578,12 +546,9 @@ def test_warnings_are_said_when_a_later_stage_fails(capsys, tmp_path):
 
 
 def test_each_scene_of_a_command_says_its_own_warnings(capsys, tmp_path):
-    paths = []
-    for name in ("one", "two"):
-        path = tmp_path / f"{name}.toml"
-        path.write_text(textwrap.dedent(LOOPS.format(r2=1, theta3=60, stop=360, step=10))
-                        + '[output]\nfigures = ["kinematics:theta4"]\n')  # positions only: the figure is skipped
-        paths.append(str(path))
+    # positions only: the figure is skipped
+    paths = [loops_scene(tmp_path, step=10, output='figures = ["kinematics:theta4"]', name=f"{name}.toml")
+             for name in ("one", "two")]
     code, out, err = run(capsys, "figures", *paths, "--out", str(tmp_path / "figures"))
     assert code == 0
     assert sum("skipped" in line for line in err.splitlines()) == 2, err
