@@ -177,7 +177,8 @@ def never_closes(mech):
         else:
             if len(sizes) < 2:
                 continue
-            (longest, expr), rest = max(sizes, key=lambda p: p[0]), sum(a for a, _ in sizes) - max(a for a, _ in sizes)
+            longest, expr = max(sizes, key=lambda p: p[0])
+            rest = sum(a for a, _ in sizes) - longest
             if longest > rest * (1.0 + 1e-12):
                 name = str(expr).lstrip("-")
                 return lp.name, (f"loop '{lp.name}' cannot close at any input: its vector of length {name} = "

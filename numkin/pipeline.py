@@ -244,7 +244,7 @@ def _run(scene: Scene, result: SceneResult, scope: ExitStack, out, at, figures: 
         result.mechanism = mech
         scope.enter_context(in_scene_terms(scene, mech))
         step("positions")
-        result.sweep = _sweep(scene, mech)
+        result.sweep = mech.sweep(scene.inputs(), guess=scene.guess_values(mech), on_singular=scene.on_singular)
         if scene.differentiates:
             result.omega, result.alpha = scene.speed, scene.acceleration
             step("velocity and acceleration")
@@ -263,28 +263,16 @@ def _run(scene: Scene, result: SceneResult, scope: ExitStack, out, at, figures: 
             result.written += render_figures(result, out, progress=step)
 
 
-def _sweep(scene: Scene, mech):
-    """The scene's sweep; the advice of a change point said as a scene takes it (a key of ``[input]``)."""
-    from .errors import BranchError
-
-    try:
-        return mech.sweep(scene.inputs(), guess=scene.guess_values(mech), on_singular=scene.on_singular)
-    except BranchError as error:
-        if error.args and isinstance(error.args[0], str):
-            error.args = (error.args[0].replace("pass on_singular='report'", 'set on_singular = "report" in [input]'),
-                          *error.args[1:])
-        raise
-
-
 @contextmanager
-def in_scene_terms(scene: Scene, mech):
+def in_scene_terms(scene: Scene, mech, *, tables: bool = False):
     """Inside: errors and warnings said as a scene takes them, and each warning issued once, however
     many solves inside give it (a report sweeps many grids from the same guess).
 
     A ``[guess]`` angle more than a turn from zero is named as the scene writes it (``theta3_deg =
-    1950``, in degrees) instead of in rad; advice on a guess speaks of ``[guess]`` in degrees; a change
-    point met by the error-analysis tables (which sweep the scene's range) says that they need it free
-    of change points. The warnings are issued again when the block ends, also when it fails.
+    1950``, in degrees) instead of in rad; advice on a guess speaks of ``[guess]`` in degrees; the way
+    past a change point is the key ``[input] on_singular``, or, for the error-analysis tables
+    (``tables``, which sweep the scene's range), none: they need the range free of change points. The
+    warnings are issued again when the block ends, also when it fails.
 
     Examples
     --------
@@ -310,11 +298,14 @@ def in_scene_terms(scene: Scene, mech):
         text = text.replace("guess nearer the position (angles in rad)", "[guess] nearer the position (angles as "
                             "<unknown>_deg, in degrees)").replace(
             "better guess (angles in rad)", "better [guess] (angles as <unknown>_deg, in degrees)").replace(
-            "pass on_singular='report' to go on along the branch whose tangent is continuous",
-            "the error-analysis tables sweep the scene's range and need it free of change points "
-            "([input] on_singular = \"report\" takes numkin run through them)").replace(
             ": pass at_change_point='continue' for these values", " (from Python, at_change_point='continue' "
             "returns these values)")
+        if tables:
+            text = text.replace(
+                "pass on_singular='report' to go on along the branch whose tangent is continuous",
+                "the error-analysis tables sweep the scene's range and need it free of change points "
+                "([input] on_singular = \"report\" takes numkin run through them)")
+        text = text.replace("pass on_singular='report'", 'set on_singular = "report" in [input]')
         far = every if far is None else far
         hint = degrees_hint(far)
         if not hint or hint not in text:
@@ -384,7 +375,7 @@ def render_figures(result: SceneResult, out_dir, *, formats=("png", "svg"), prog
         common = {k: options[k] for k in ("quantity", "guess")}
         sweep_opts = {k: options[k] for k in ("start", "span", "grids", "schemes") if k in options}
         # the convergence and work-precision tables sweep the same grids; a far guess is said once, as written
-        with report.shared_results(), in_scene_terms(scene, result.mechanism):
+        with report.shared_results(), in_scene_terms(scene, result.mechanism, tables=True):
             for kind in wanted:
                 step(f"{kind} table")
                 if kind == "convergence":

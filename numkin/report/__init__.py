@@ -267,7 +267,7 @@ def scene_report(scene, *, repeat: int | None = None) -> dict:
 
     from ..errors import NumkinError
 
-    with in_scene_terms(scene, mech):
+    with in_scene_terms(scene, mech, tables=True):
         try:
             tables = full_report(mech, **options)
         except NumkinError as error:
