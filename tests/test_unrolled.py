@@ -74,7 +74,16 @@ def test_written_out_predictor_is_the_list_predictor(n, data):
     with_tangent = data.draw(st.booleans())
     args = (t, x, d, t_prev if with_prev else None, x_prev if with_prev else None, t_new)
     tail = (rate, d_prev if with_tangent else None)
-    assert unrolled_predict(n, weights)(*args, *tail) == predict(*args, list(weights) if weights else None, *tail)
+    # the same floats, or the same error (a step of zero length with the previous point at the same input)
+    assert _outcome(unrolled_predict(n, weights), *args, *tail) == _outcome(
+        predict, *args, list(weights) if weights else None, *tail)
+
+
+def _outcome(fn, *args):
+    try:
+        return fn(*args)
+    except ArithmeticError as error:
+        return type(error)
 
 
 def test_written_out_predictor_is_exact_for_a_cubic():
