@@ -45,16 +45,17 @@ def cond2(p, q, r, s):
     return c if c >= 1.0 else (1.0 if math.isfinite(c) else math.inf)
 
 
-def step_lines(n, blocks, zeros, singular, indent="    "):
+def step_lines(n, blocks, zeros, singular, indent="    ", rows=0):
     """Lines computing the Newton step, d = -J^-1 F in ``d0``, ``d1``, ..., from ``v = [F..., J rows...]``
     by forward substitution through the blocks (sizes 1 and 2); ``singular`` is the statement
-    run where a block's determinant is zero or not finite. ``singular=None``: whole arrays, no
-    test (the caller tests the result), each 2 x 2 block multiplied by ``1 / det``."""
+    run where a block's determinant (``det<k>`` for block k) is zero or not finite, or the step not
+    finite. ``singular=None``: whole arrays, no test (the caller tests the result), each 2 x 2 block
+    multiplied by ``1 / det``. ``rows``: where in ``v`` the right-hand side F starts (0: the residuals)."""
     lines = []
-    for a, b in blocks:
+    for k, (a, b) in enumerate(blocks):
         for i in range(a, b):
             terms = "".join(f" + v[{n + i * n + j}] * d{j}" for j in range(a) if (i, j) not in zeros)
-            lines.append(f"r{i} = v[{i}]{terms}")
+            lines.append(f"r{i} = v[{rows + i}]{terms}")
         if b - a == 2:
             i0 = n + a * n + a
             lines.append(f"a00 = v[{i0}]; a01 = v[{i0 + 1}]; a10 = v[{i0 + n}]; a11 = v[{i0 + n + 1}]")
@@ -66,18 +67,18 @@ def step_lines(n, blocks, zeros, singular, indent="    "):
                 ]
                 continue
             lines += [
-                "det = a00 * a11 - a01 * a10",
-                f"if not (det != 0.0 and -INF < det < INF): {singular}",
-                f"d{a} = (a01 * r{a + 1} - r{a} * a11) / det",
-                f"d{a + 1} = (a10 * r{a} - a00 * r{a + 1}) / det",
+                f"det{k} = a00 * a11 - a01 * a10",
+                f"if not (det{k} != 0.0 and -INF < det{k} < INF): {singular}",
+                f"d{a} = (a01 * r{a + 1} - r{a} * a11) / det{k}",
+                f"d{a + 1} = (a10 * r{a} - a00 * r{a + 1}) / det{k}",
             ]
         elif singular is None:
             lines.append(f"d{a} = -r{a} / v[{n + a * n + a}]")
         else:
             lines += [
-                f"det = v[{n + a * n + a}]",
-                f"if not (det != 0.0 and -INF < det < INF): {singular}",
-                f"d{a} = -r{a} / det",
+                f"det{k} = v[{n + a * n + a}]",
+                f"if not (det{k} != 0.0 and -INF < det{k} < INF): {singular}",
+                f"d{a} = -r{a} / det{k}",
             ]
     if singular is not None:
         lines.append(f"if not -INF < {' + '.join(f'd{i}' for i in range(n))} < INF: {singular}")
@@ -341,31 +342,10 @@ def unrolled_local(n, blocks, zeros, col):
         conds.append(f"c{k}")
     cmax = conds[0] if len(conds) == 1 else f"max({', '.join(conds)})"
     lines.append(f"    cmax = {cmax}")
-    singular = "return None, None, cmax"
-    for k, (a, b) in enumerate(blocks):
-        for i in range(a, b):
-            terms = "".join(f" - v[{n + i * n + j}] * d{j}" for j in range(a) if (i, j) not in zeros)
-            lines.append(f"    r{i} = -v[{n + nn + i}]{terms}")
-        if b - a == 2:
-            i0 = n + a * n + a
-            lines += [
-                f"    a00 = v[{i0}]; a01 = v[{i0 + 1}]; a10 = v[{i0 + n}]; a11 = v[{i0 + n + 1}]",
-                f"    det{k} = a00 * a11 - a01 * a10",
-                f"    if not (det{k} != 0.0 and -INF < det{k} < INF): {singular}",
-                f"    d{a} = (r{a} * a11 - a01 * r{a + 1}) / det{k}",
-                f"    d{a + 1} = (a00 * r{a + 1} - a10 * r{a}) / det{k}",
-            ]
-        else:
-            lines += [
-                f"    det{k} = v[{n + a * n + a}]",
-                f"    if not (det{k} != 0.0 and -INF < det{k} < INF): {singular}",
-                f"    d{a} = r{a} / det{k}",
-            ]
+    # the tangent is the Newton step of dF/dt: -J^-1 dF/dt, the same floats as solve1(J, -dF/dt)
+    lines += step_lines(n, blocks, zeros, "return None, None, cmax", rows=n + nn)
     signs = ", ".join(f"(1.0 if det{k} > 0 else -1.0)" for k in range(len(blocks)))
-    lines += [
-        f"    if not -INF < {' + '.join(f'd{i}' for i in range(n))} < INF: {singular}",
-        f"    return [{', '.join(f'd{i}' for i in range(n))}], [{signs}], cmax",
-    ]
+    lines.append(f"    return [{', '.join(f'd{i}' for i in range(n))}], [{signs}], cmax")
     namespace = {"INF": math.inf, "COND2": cond2}
     exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
     return namespace["local1"]
