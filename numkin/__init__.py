@@ -26,7 +26,7 @@ import sys
 import types
 
 from .errors import (AssemblyError, BranchError, ConvergenceError, ConvergenceWarning, DegreesWarning, GuessWarning,
-                     NumkinError)
+                     InputError, NumkinError)
 
 __version__ = "0.1.0"
 
@@ -59,6 +59,7 @@ __all__ = [
     "LostDigitsWarning",
     "Mechanism",
     "NewtonResult",
+    "InputError",
     "NumkinError",
     "SingularityWarning",
     "Sweep",

@@ -83,7 +83,7 @@ from .quantities import input_quantity, point_quantities, unknown_quantities
 from .units import input_rates
 from .complex_solve import COMPLEX_STEP, complex_positions, complex_step, complex_tangent
 from .sweep import COND_MAX, SingularityWarning, check_sweep, record_evaluations
-from .errors import warn
+from .errors import InputError, warn
 
 __all__ = [
     "derivatives",
@@ -438,13 +438,13 @@ _POINT_CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 def _point_names(mech, points) -> list:
     if not mech.points:
-        raise ValueError(f"{mech.name} has no named points (give points= when building the Mechanism)")
+        raise InputError(f"{mech.name} has no named points (give points= when building the Mechanism)")
     if points is None:
         return list(mech.points)
     names = [points] if isinstance(points, str) else list(points)
     unknown = [p for p in names if p not in mech.points]
     if unknown:
-        raise ValueError(f"{mech.name} has no point(s) {unknown}; its points are {list(mech.points)}")
+        raise InputError(f"{mech.name} has no point(s) {unknown}; its points are {list(mech.points)}")
     return names
 
 

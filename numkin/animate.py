@@ -40,6 +40,7 @@ from .figures.drawing import (
 )
 from .figures.labels import deg_text, input_name, length_unit, mechanism_title, sym
 from .figures.style import close, style
+from .errors import InputError
 
 __all__ = ["animate", "frame_indices", "full_turn"]
 
@@ -78,12 +79,12 @@ def frame_indices(inputs, frames: int) -> np.ndarray:
     """
     t = np.asarray(inputs, dtype=float)
     if isinstance(frames, bool) or not isinstance(frames, numbers.Integral) or frames < 2:
-        raise ValueError(f"frames must be an integer >= 2, got {frames!r}")
+        raise InputError(f"frames must be an integer >= 2, got {frames!r}")
     n = t.size
     full = _is_full_turn(t)
     distinct = n - 1 if full else n
     if frames > distinct:
-        raise ValueError(
+        raise InputError(
             f"frames = {frames} is more than the {distinct} distinct inputs of the sweep; "
             "ask for fewer frames or sweep a finer grid"
         )
@@ -199,24 +200,24 @@ def animate(sweep, path, frames: int = 72, fps: float = 24, *, dpi: int = 80, wi
 
     mech = sweep.mechanism
     if not mech.points or not mech.links:
-        raise ValueError(f"{mech.name} has no named points and links to animate")
+        raise InputError(f"{mech.name} has no named points and links to animate")
     path = Path(path)
     if path.suffix.lower() != ".gif":
-        raise ValueError(f"path must end in .gif (the Pillow writer writes GIF), got {str(path)!r}")
+        raise InputError(f"path must end in .gif (the Pillow writer writes GIF), got {str(path)!r}")
     if not (isinstance(fps, numbers.Real) and math.isfinite(fps) and fps > 0):
-        raise ValueError(f"fps must be a positive number, got {fps!r}")
+        raise InputError(f"fps must be a positive number, got {fps!r}")
     if isinstance(dpi, bool) or not isinstance(dpi, numbers.Integral) or not 10 <= dpi <= 600:
-        raise ValueError(f"dpi must be an integer from 10 to 600, got {dpi!r}")
+        raise InputError(f"dpi must be an integer from 10 to 600, got {dpi!r}")
     if isinstance(width, bool) or not isinstance(width, numbers.Real) or not (1.0 <= width <= 40.0):
-        raise ValueError(f"width must be a number of inches from 1 to 40, got {width!r}")
+        raise InputError(f"width must be a number of inches from 1 to 40, got {width!r}")
     if turn not in ("full", "sweep"):
-        raise ValueError(f"turn must be 'full' or 'sweep', got {turn!r}")
+        raise InputError(f"turn must be 'full' or 'sweep', got {turn!r}")
     traces = [traces] if isinstance(traces, str) else list(traces or ())
     for n in traces:
         if n not in mech.points:
-            raise ValueError(f"traces: {n!r} is not a named point of {mech.name}; points are {list(mech.points)}")
+            raise InputError(f"traces: {n!r} is not a named point of {mech.name}; points are {list(mech.points)}")
     if arrows is not None and omega is None:
-        raise ValueError("arrows: give the input speed omega (for example omega='10 rad/s')")
+        raise InputError("arrows: give the input speed omega (for example omega='10 rad/s')")
     if turn == "full":
         sweep = full_turn(sweep) or sweep
     idx = frame_indices(sweep.inputs, frames)

@@ -51,6 +51,7 @@ from pathlib import Path
 import numpy as np
 
 from . import linkages
+from .errors import InputError
 
 __all__ = ["run", "format_report", "textbook_sweep", "closed_form_sweep", "build_times", "main"]
 
@@ -259,9 +260,9 @@ def run(repeat: int = 5, *, textbook_points: int = 12, inner_seconds: float = 0.
     from . import __version__, linkages
 
     if isinstance(repeat, bool) or not isinstance(repeat, int) or repeat < 1:
-        raise ValueError(f"repeat must be a positive integer, got {repeat!r}")
+        raise InputError(f"repeat must be a positive integer, got {repeat!r}")
     if isinstance(textbook_points, bool) or not isinstance(textbook_points, int) or not 1 <= textbook_points <= 361:
-        raise ValueError(f"textbook_points must be an integer from 1 to 361, got {textbook_points!r}")
+        raise InputError(f"textbook_points must be an integer from 1 to 361, got {textbook_points!r}")
     theta_deg = np.arange(0.0, 361.0)
     theta = np.radians(theta_deg)
 

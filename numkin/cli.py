@@ -13,7 +13,10 @@
 SCENE is a built-in name (``numkin scenes``) or the path of a scene file
 (see :mod:`numkin.scene` for the format). A mistake in a scene or in the
 arguments is reported on one line of stderr with exit status 2; a check point
-that disagrees with its expected value gives exit status 1.
+that disagrees with its expected value gives exit status 1; an error numkin
+does not check for (a ``ValueError`` that is not a
+:class:`~numkin.NumkinError`) is one line with exit status 3, its traceback
+shown with the environment variable ``NUMKIN_TRACEBACK=1``.
 
 Examples
 --------
@@ -34,13 +37,14 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import sys
 import textwrap
 import warnings
 from contextlib import contextmanager
 from pathlib import Path
 
-from .errors import NumkinError
+from .errors import InputError, NumkinError
 
 __all__ = ["main", "build_parser", "format_result"]
 
@@ -291,11 +295,11 @@ def _scenes_for_figures(args) -> list[str]:
     from .schema import list_scenes
 
     if args.all and args.scenes:
-        raise ValueError("give scene names or --all, not both")
+        raise InputError("give scene names or --all, not both")
     if args.all:
         return list(list_scenes())
     if not args.scenes:
-        raise ValueError("name at least one scene, or give --all")
+        raise InputError("name at least one scene, or give --all")
     return list(args.scenes)
 
 
@@ -334,7 +338,7 @@ def _animation_options(args, scene) -> dict:
             options[key] = list(value) if key == "traces" else value
     if options.get("arrows"):
         if not scene.speed:
-            raise ValueError(f"--arrows {options['arrows']}: scene '{scene.name}' has no [input] speed")
+            raise InputError(f"--arrows {options['arrows']}: scene '{scene.name}' has no [input] speed")
         options["omega"] = scene.speed
         if scene.acceleration:
             options["alpha"] = scene.acceleration
@@ -346,10 +350,10 @@ def _cmd_animate(args) -> int:
 
     scene = load_scene(args.scene)
     if scene.kind != "mechanism":
-        raise ValueError(f"scene '{scene.name}' has no mechanism to animate")
+        raise InputError(f"scene '{scene.name}' has no mechanism to animate")
     path = Path(args.out)
     if path.suffix.lower() != ".gif":
-        raise ValueError(f"--out {args.out!r}: the animation is written as a GIF (Pillow); give a .gif file")
+        raise InputError(f"--out {args.out!r}: the animation is written as a GIF (Pillow); give a .gif file")
     options = _animation_options(args, scene)  # the input speed read before positions_only()
     scene = scene.positions_only()
     with _progress(f"{scene.name} animation") as step, _about(scene):
@@ -569,7 +573,9 @@ def main(argv=None) -> int:
     -------
     int
         0 on success, 1 if a check point disagrees, 2 for a mistake in a scene
-        or in the arguments (one line on stderr).
+        or in the arguments (one line on stderr), 3 for an error numkin does
+        not check for (one line; with the environment variable
+        ``NUMKIN_TRACEBACK=1`` the traceback).
     """
     parser = build_parser()
     try:
@@ -580,9 +586,15 @@ def main(argv=None) -> int:
         with warnings.catch_warnings():
             warnings.showwarning = _WarningLines()
             return args.func(args)
-    except (NumkinError, ValueError) as error:
+    except NumkinError as error:
         print(f"{PROG}: error: {_where(error)}{_one_line(error)}", file=sys.stderr)
         return 2
+    except ValueError as error:  # not a mistake numkin checks for: a check it lacks, or a defect
+        if os.environ.get("NUMKIN_TRACEBACK"):
+            raise
+        print(f"{PROG}: error: {_where(error)}{_one_line(error)} ({type(error).__name__}, not an error numkin "
+              "checks for; NUMKIN_TRACEBACK=1 shows where it was raised)", file=sys.stderr)
+        return 3
     except ArithmeticError as error:  # overflow or division by zero deep in the numbers
         print(f"{PROG}: error: {_where(error)}numerical failure ({type(error).__name__}: {_one_line(error)}); "
               "check the scene's dimensions and their unit", file=sys.stderr)

@@ -49,6 +49,7 @@ from . import derivatives as _d
 from .analytic import check_sweep, derivatives, input_rates, point_derivatives
 from .kinematics import PARTNER, prepare_rows, scheme_for, sweep_grid
 from .quantities import Quantity, catalogue, input_quantity
+from .errors import InputError
 
 __all__ = ["Comparison", "compare", "quantities", "DEFAULT_SCHEMES"]
 
@@ -134,8 +135,15 @@ def quantities(mechanism) -> dict:
 def _resolve(mech, quantity) -> Quantity:
     """The :class:`~numkin.quantities.Quantity` of a velocity or acceleration, or a ValueError listing the valid ones."""
     catalog = _catalog(mech)
-    if isinstance(quantity, Quantity) and quantity.order in (1, 2):
-        return quantity
+    if isinstance(quantity, Quantity):
+        # one of this mechanism's own quantities, as resolve() gives it: a Quantity made elsewhere may
+        # carry another unit or dimension, which would label the comparison's columns wrongly
+        own = catalog.get(quantity.name)
+        if own is None or own != quantity or own.order not in (1, 2):
+            what = "a velocity or acceleration" if own is None or own.order not in (1, 2) else repr(own)
+            raise InputError(f"quantity {quantity!r} is not {what} of {mech.name}: give its name, or the Quantity "
+                             f"numkin.quantities.resolve(mechanism, name) returns; valid: {sorted(catalog)}")
+        return own
     if not isinstance(quantity, str):
         raise TypeError(f"quantity must be a string such as 'omega_{mech.unknowns[0]}', got {quantity!r}")
     if quantity in catalog:
@@ -144,7 +152,7 @@ def _resolve(mech, quantity) -> Quantity:
     if quantity in mech.unknowns:
         velocity, acceleration = (catalog[n] for n in catalogue(mech, (1, 2), points=False) if catalog[n].of == quantity)
         hint = f" (for the unknown {quantity!r} use {velocity.name!r} or {acceleration.name!r})"
-    raise ValueError(f"unknown quantity {quantity!r} for {mech.name}{hint}; valid: {sorted(catalog)}")
+    raise InputError(f"unknown quantity {quantity!r} for {mech.name}{hint}; valid: {sorted(catalog)}")
 
 
 # --------------------------------------------------------------------------- compare
@@ -229,7 +237,7 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
     parameter = "schemes" + ("" if order == 1 else f" (for the acceleration {quantity})")
     chosen = [scheme_for(s, order, parameter) for s in schemes]
     if not chosen:
-        raise ValueError("schemes must name at least one finite-difference scheme")
+        raise InputError("schemes must name at least one finite-difference scheme")
 
     in_col = f"{input_quantity(mech).name} [deg]"
     analytic_q = target.with_source("analytic")

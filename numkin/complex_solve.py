@@ -20,7 +20,7 @@ import numpy as np
 from .march import deg_text
 from .newton import iterate
 from .sweep import COND_MAX, SingularityWarning, check_sweep, record_evaluations
-from .errors import warn
+from .errors import InputError, warn
 
 __all__ = ["complex_step", "complex_positions", "complex_tangent", "COMPLEX_STEP"]
 
@@ -170,9 +170,9 @@ def complex_step(sweep, h: float = COMPLEX_STEP, *, order: int = 1) -> np.ndarra
     [-112.         34.914862]
     """
     if isinstance(h, bool) or not isinstance(h, numbers.Real) or not (math.isfinite(h) and h > 0):
-        raise ValueError(f"h must be a finite positive number, got {h!r}")
+        raise InputError(f"h must be a finite positive number, got {h!r}")
     if order not in (1, 2):
-        raise ValueError(f"order must be 1 (dq/dtheta) or 2 (d2q/dtheta2), got {order!r}")
+        raise InputError(f"order must be 1 (dq/dtheta) or 2 (d2q/dtheta2), got {order!r}")
     mech, t, q = check_sweep(sweep)
     x, failed, singular = complex_positions(mech, q, t, float(h))
     if failed.any():

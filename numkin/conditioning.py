@@ -21,7 +21,7 @@ import numpy as np
 
 from .quantities import catalogue
 from .sweep import COND_MAX, SingularityWarning
-from .errors import warn
+from .errors import InputError, warn
 
 __all__ = [
     "DIGITS_RTOL",
@@ -107,10 +107,10 @@ def check_at_change_point(at_change_point: str) -> None:
     >>> check_at_change_point("skip")
     Traceback (most recent call last):
     ...
-    ValueError: at_change_point must be one of ('nan', 'continue'), got 'skip'
+    numkin.errors.InputError: at_change_point must be one of ('nan', 'continue'), got 'skip'
     """
     if at_change_point not in AT_CHANGE_POINT:
-        raise ValueError(f"at_change_point must be one of {AT_CHANGE_POINT}, got {at_change_point!r}")
+        raise InputError(f"at_change_point must be one of {AT_CHANGE_POINT}, got {at_change_point!r}")
 
 
 def continue_branch(mech, t, cond, change, arrays, what: str, at_change_point: str = "nan") -> None:

@@ -62,7 +62,7 @@ import math
 import numpy as np
 
 from .batch_fill import fill, nodes_of, report_near_singular
-from .errors import DegreesWarning, warn
+from .errors import DegreesWarning, InputError, warn
 from .first_point import solve_start
 from .march import (CROSSING_STEP, DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_TANGENT_TURN, TREND_REACH,
                     Continuation)
@@ -79,14 +79,14 @@ def _validate_inputs(inputs) -> np.ndarray:
     if t.ndim == 0:
         t = t.reshape(1)
     if t.ndim != 1 or t.size == 0:
-        raise ValueError(f"inputs must be a non-empty 1-D array of input values (rad), got shape {t.shape}")
+        raise InputError(f"inputs must be a non-empty 1-D array of input values (rad), got shape {t.shape}")
     if not math.isfinite(t.sum()):
-        raise ValueError(f"inputs[{int(np.flatnonzero(~np.isfinite(t))[0])}] is not finite")
+        raise InputError(f"inputs[{int(np.flatnonzero(~np.isfinite(t))[0])}] is not finite")
     if t.size > 1:
         d = t[1:] - t[:-1]
         if not ((d > 0).all() or (d < 0).all()):
             k = int(np.flatnonzero(np.sign(d) != np.sign(d[0]))[0]) if np.any(d != 0) else 0
-            raise ValueError(f"inputs must be strictly monotonic for continuation (check inputs[{k}:{k + 2}])")
+            raise InputError(f"inputs must be strictly monotonic for continuation (check inputs[{k}:{k + 2}])")
     return t
 
 
@@ -119,16 +119,16 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
     array([120.    , 119.3714])
     """
     if on_singular not in ("raise", "report"):
-        raise ValueError(f"on_singular must be 'raise' or 'report', got {on_singular!r}")
+        raise InputError(f"on_singular must be 'raise' or 'report', got {on_singular!r}")
     if max_step is None:
         max_step = DEFAULT_MAX_STEP
     if not (isinstance(max_step, (int, float, np.number)) and max_step > 0 and math.isfinite(max_step)):
-        raise ValueError(f"max_step must be a positive angle in rad, got {max_step!r}")
+        raise InputError(f"max_step must be a positive angle in rad, got {max_step!r}")
     tol = check_tol(tol)
     if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
-        raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")
+        raise InputError(f"maxiter must be a positive integer, got {maxiter!r}")
     if jacobian not in JACOBIANS:
-        raise ValueError(f"jacobian must be one of {JACOBIANS}, got {jacobian!r}")
+        raise InputError(f"jacobian must be one of {JACOBIANS}, got {jacobian!r}")
     t = _validate_inputs(inputs)
     _warn_if_degrees(mech, t)
     mech.check_assembly(t)

@@ -69,6 +69,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import stencils as _st
 from .schemes import BUILT_IN, SCHEMES, Scheme, get_scheme
+from .errors import InputError
 
 __all__ = [
     "Scheme",
@@ -203,7 +204,7 @@ def _built_in(name: str, **doc) -> Callable[..., FloatArray]:
 
 def _require_periodic(scheme: str, periodic: bool) -> None:
     if not periodic:
-        raise ValueError(
+        raise InputError(
             f"scheme {scheme!r} requires periodic=True (N samples covering exactly one "
             "period); use five_point or five_point_second on open grids"
         )

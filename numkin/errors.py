@@ -13,7 +13,7 @@ import os
 import sys
 import warnings
 
-__all__ = ["NumkinError", "AssemblyError", "ConvergenceError", "BranchError", "ConvergenceWarning", "DegreesWarning",
+__all__ = ["NumkinError", "InputError", "AssemblyError", "ConvergenceError", "BranchError", "ConvergenceWarning", "DegreesWarning",
            "GuessWarning", "warn"]
 
 _PACKAGE = os.path.dirname(os.path.abspath(__file__)) + os.sep
@@ -65,6 +65,26 @@ class NumkinError(Exception):
     def message(self) -> str:
         """The message alone (``str(error)``)."""
         return str(self.args[0]) if self.args else ""
+
+
+class InputError(NumkinError, ValueError):
+    """A value given to numkin is not one it can use: a parameter, an argument, a scene's key.
+
+    The message names the value and where it was given. A ``ValueError``, so
+    that ``except ValueError`` catches it as it catches Python's own; the
+    ``numkin`` command says it in one line and exits with status 2, while a
+    ``ValueError`` that is not a ``NumkinError`` is a check numkin lacks
+    (exit status 3).
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> try:
+    ...     linkages.four_bar(4.0, -1.0, 3.0, 3.0)
+    ... except ValueError as error:
+    ...     print(type(error).__name__)
+    InputError
+    """
 
 
 class AssemblyError(NumkinError, ValueError):

@@ -17,7 +17,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from .errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning, warn
+from .errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning, InputError, warn
 from .march import FAR, TWO_PI, Continuation, deg_text
 from .newton import COND_MAX, is_singular
 
@@ -98,7 +98,7 @@ def guess_vector(mech, guess, at: float) -> np.ndarray:
     [0.5, 2.0]
     """
     if guess is None:
-        raise ValueError(
+        raise InputError(
             f"{mech.name}: no guess given and the mechanism has no default; pass guess= "
             f"with values for {list(mech.unknowns)}"
         )
@@ -109,18 +109,18 @@ def guess_vector(mech, guess, at: float) -> np.ndarray:
         if values.keys() != set(mech.unknowns):
             unknown = sorted(set(values) - set(mech.unknowns))
             if unknown:
-                raise ValueError(f"guess names {unknown}, which are not unknowns of {mech.name} {list(mech.unknowns)}")
-            raise ValueError(f"guess lacks values for {[u for u in mech.unknowns if u not in values]}")
+                raise InputError(f"guess names {unknown}, which are not unknowns of {mech.name} {list(mech.unknowns)}")
+            raise InputError(f"guess lacks values for {[u for u in mech.unknowns if u not in values]}")
         vec = np.array([values[u] for u in mech.unknowns], dtype=float)
     else:
         vec = np.asarray(guess, dtype=float).reshape(-1)
         if vec.size != len(mech.unknowns):
-            raise ValueError(
+            raise InputError(
                 f"guess has {vec.size} values but {mech.name} has {len(mech.unknowns)} unknowns {list(mech.unknowns)}"
             )
     if not np.all(np.isfinite(vec)):
         bad = mech.unknowns[int(np.flatnonzero(~np.isfinite(vec))[0])]
-        raise ValueError(f"guess for {bad} is not finite")
+        raise InputError(f"guess for {bad} is not finite")
     return vec
 
 

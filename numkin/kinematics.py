@@ -53,7 +53,7 @@ from . import derivatives as _d
 from .analytic import check_sweep, input_rates, kinematics_frame
 from .conditioning import DIGITS_RTOL, rounding_error, warn_rounding
 from . import schemes as _schemes
-from .errors import warn
+from .errors import InputError, warn
 
 __all__ = ["finite_difference", "rounding_error", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "PARTNER"]
 
@@ -118,12 +118,12 @@ def sweep_grid(sweep, periodic="auto") -> SweepGrid:
     """
     _, t, _ = check_sweep(sweep)
     if periodic not in ("auto", True, False):
-        raise ValueError(f"periodic must be 'auto', True or False, got {periodic!r}")
+        raise InputError(f"periodic must be 'auto', True or False, got {periodic!r}")
     if t.size < 2:
-        raise ValueError(f"finite differences need at least 2 points in the sweep, got {t.size}")
+        raise InputError(f"finite differences need at least 2 points in the sweep, got {t.size}")
     d = np.diff(t)
     if not np.allclose(d, d[0], rtol=1e-9, atol=1e-14):
-        raise ValueError(
+        raise InputError(
             "finite differences need a uniform grid: the steps of sweep.inputs vary from "
             f"{math.degrees(np.min(np.abs(d))):.6g}° to {math.degrees(np.max(np.abs(d))):.6g}°; "
             "sweep a uniform grid (np.linspace) or use numkin.analytic"
@@ -132,7 +132,7 @@ def sweep_grid(sweep, periodic="auto") -> SweepGrid:
     span = float(t[-1] - t[0])
     full_turn = bool(t.size >= 3 and abs(abs(span) - _TURN) <= 1e-9 * _TURN)
     if periodic is True and not full_turn:
-        raise ValueError(
+        raise InputError(
             "periodic=True needs a sweep over exactly one turn, inputs[-1] = inputs[0] + 360° "
             f"(the last sample repeating the first); this sweep spans {math.degrees(span):.6g}°"
         )
@@ -185,7 +185,7 @@ class Rows:
     def apply(self, scheme) -> np.ndarray:
         """One scheme (a :class:`numkin.derivatives.Scheme`) on all rows: (k, N) in the sweep's order."""
         if scheme.periodic_only and not self.periodic:
-            raise ValueError(
+            raise InputError(
                 f"scheme {scheme.name!r} needs a periodic sweep over exactly one turn "
                 "(inputs[-1] = inputs[0] + 360°, e.g. np.linspace(0, 2*np.pi, N + 1)); "
                 "use five_point or five_point_second on a partial sweep"
@@ -244,7 +244,7 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
         row = names[int(np.flatnonzero(~np.isfinite(y[:, k]))[0])]
-        raise ValueError(f"{row} is not finite at input {math.degrees(inputs[k]):.3f}°: cannot difference it")
+        raise InputError(f"{row} is not finite at input {math.degrees(inputs[k]):.3f}°: cannot difference it")
     y = _unwrapped(y, angle, names, inputs)
     if grid.reverse:
         y = y[:, ::-1]
@@ -259,7 +259,7 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
                 "the sweep is not periodic (did it change branch?)"
             )
             if periodic is True:
-                raise ValueError(msg)
+                raise InputError(msg)
             warn(msg + "; differenced as an open grid", UserWarning)
             is_periodic, offset = False, None
     return Rows(y, grid.h, is_periodic, grid.reverse, offset)
@@ -286,13 +286,13 @@ def scheme_for(name, derivative: int, parameter: str):
     >>> scheme_for("forward", 2, "second_method")
     Traceback (most recent call last):
     ...
-    ValueError: second_method='forward' estimates a first derivative; second_method must be one of ['second_difference', 'forward_of_forward', 'centred_of_centred', 'five_point_second', 'spectral_second']
+    numkin.errors.InputError: second_method='forward' estimates a first derivative; second_method must be one of ['second_difference', 'forward_of_forward', 'centred_of_centred', 'five_point_second', 'spectral_second']
     """
     scheme = _d.get_scheme(name)
     if scheme.derivative != derivative:
         valid = [s for s, v in _d.SCHEMES.items() if v.derivative == derivative]
         kind = "first" if scheme.derivative == 1 else "second"
-        raise ValueError(f"{parameter}={name!r} estimates a {kind} derivative; {parameter} must be one of {valid}")
+        raise InputError(f"{parameter}={name!r} estimates a {kind} derivative; {parameter} must be one of {valid}")
     return scheme
 
 

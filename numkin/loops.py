@@ -8,6 +8,7 @@ given directly as sympy residual expressions.
 """
 
 from __future__ import annotations
+from .errors import InputError
 
 from collections.abc import Mapping
 from typing import Callable, Iterable, Sequence
@@ -26,7 +27,7 @@ def as_symbol(name):
         return name
     if isinstance(name, str) and name.isidentifier():
         return sp.Symbol(name, real=True)
-    raise ValueError(f"{name!r} is not a symbol name (use an identifier such as 'theta3')")
+    raise InputError(f"{name!r} is not a symbol name (use an identifier such as 'theta3')")
 
 
 def _angle_unknowns(residuals, unknowns) -> set:
@@ -84,25 +85,25 @@ class Loop:
         self.unknowns = [as_symbol(u) for u in unknowns]
         self.name = name or "-".join(str(u) for u in self.unknowns)
         if not self.unknowns:
-            raise ValueError(f"loop '{self.name}' has no unknowns")
+            raise InputError(f"loop '{self.name}' has no unknowns")
         if len(set(self.unknowns)) != len(self.unknowns):
-            raise ValueError(f"loop '{self.name}' lists an unknown twice: {self.unknowns}")
+            raise InputError(f"loop '{self.name}' lists an unknown twice: {self.unknowns}")
         if len(self.residuals) != len(self.unknowns):
-            raise ValueError(
+            raise InputError(
                 f"loop '{self.name}' has {len(self.residuals)} equations for "
                 f"{len(self.unknowns)} unknowns; it must have as many of each"
             )
         free = set().union(*(r.free_symbols for r in self.residuals))
         missing = [str(u) for u in self.unknowns if u not in free]
         if missing:
-            raise ValueError(f"loop '{self.name}': unknown(s) {', '.join(missing)} appear in no equation")
+            raise InputError(f"loop '{self.name}': unknown(s) {', '.join(missing)} appear in no equation")
         if angles is None:
             self.angles = _angle_unknowns(self.residuals, self.unknowns)
         else:
             self.angles = {as_symbol(a) for a in angles}
             stray = self.angles - set(self.unknowns)
             if stray:
-                raise ValueError(f"loop '{self.name}': angles {sorted(map(str, stray))} are not unknowns of it")
+                raise InputError(f"loop '{self.name}': angles {sorted(map(str, stray))} are not unknowns of it")
         self.length_symbols: set = set()
         self.vector_symbols: list = []  # (length symbols, angle symbols) of every vector, where given as vectors
         self.vectors: list = []  # the (length, angle) pairs, where given as vectors
@@ -122,10 +123,10 @@ class Loop:
             try:
                 length, angle = v
             except (TypeError, ValueError):
-                raise ValueError(f"vector {k} of loop '{name}' must be a (length, angle) pair, got {v!r}") from None
+                raise InputError(f"vector {k} of loop '{name}' must be a (length, angle) pair, got {v!r}") from None
             pairs.append((sp.sympify(length), sp.sympify(angle)))
         if len(pairs) < 2:
-            raise ValueError(f"loop '{name}' needs at least two vectors")
+            raise InputError(f"loop '{name}' needs at least two vectors")
         re = sum(length * sp.cos(angle) for length, angle in pairs)
         im = sum(length * sp.sin(angle) for length, angle in pairs)
         unknown_syms = [as_symbol(u) for u in unknowns]
@@ -280,7 +281,7 @@ def check_lengths(model: dict, value_of: dict, every_link: bool = False) -> None
     >>> check_lengths(model, {"r2": -1.0}, every_link=True)
     Traceback (most recent call last):
     ...
-    ValueError: loop 'O2-A': length r2 = -1 is negative (a negative length mirrors the linkage): lengths must be positive; write the vector as (-r2, angle) in the loop
+    numkin.errors.InputError: loop 'O2-A': length r2 = -1 is negative (a negative length mirrors the linkage): lengths must be positive; write the vector as (-r2, angle) in the loop
     """
     given = every_link
     # a signed offset is declared real (and not non-negative); undeclared and non-negative ones are lengths
@@ -293,7 +294,7 @@ def check_lengths(model: dict, value_of: dict, every_link: bool = False) -> None
             if value is not None and value <= 0:
                 why = ("is zero (a link of no length: its angle is free, or its input moves nothing)" if value == 0
                        else f"= {value:g} is negative (a negative length mirrors the linkage)")
-                error = ValueError(
+                error = InputError(
                     f"loop '{lp['name']}': length {sym} {why}: lengths must be positive"
                     + ("" if value == 0 else f"; write the vector as (-{sym}, angle) in the loop")
                     + ("" if given else f", or declare {sym} real (sympy.Symbol('{sym}', real=True)) if it is "
@@ -324,14 +325,14 @@ def check_symbols(loops, input_symbol, parameters) -> None:
     >>> check_symbols([loop], sp.Symbol("theta22"), {})
     Traceback (most recent call last):
     ...
-    ValueError: the input theta22 appears in no loop: the loops use theta2, which has no value; is it the input?
+    numkin.errors.InputError: the input theta22 appears in no loop: the loops use theta2, which has no value; is it the input?
     """
     known = {input_symbol} | set(parameters)
     used = set().union(*(r.free_symbols for lp in loops for r in lp.residuals))
     if input_symbol not in used:
         unknowns = set().union(*(set(lp.unknowns) for lp in loops))
         others = sorted(map(str, used - known - unknowns))
-        raise ValueError(
+        raise InputError(
             f"the input {input_symbol} appears in no loop"
             + (f": the loops use {', '.join(others)}, " + ("which has no value; is it the input?" if len(others) == 1
                else "which have no values; is one of them the input?") if others else "")
@@ -339,14 +340,14 @@ def check_symbols(loops, input_symbol, parameters) -> None:
     for lp in loops:
         clash = set(lp.unknowns) & known
         if clash:
-            raise ValueError(
+            raise InputError(
                 f"loop '{lp.name}': {sorted(map(str, clash))} already known "
                 "(the input, a parameter or an unknown of an earlier loop)"
             )
         free = set().union(*(r.free_symbols for r in lp.residuals))
         stray = free - known - set(lp.unknowns)
         if stray:
-            raise ValueError(
+            raise InputError(
                 f"loop '{lp.name}' uses symbol(s) {', '.join(sorted(map(str, stray)))} that are neither "
                 "its unknowns, earlier unknowns, the input nor a parameter with a value"
             )

@@ -16,7 +16,7 @@ from typing import Callable, Mapping, Sequence
 import numpy as np
 
 from .compiled import BlockStructure, CompiledMechanism, KernelNotKept, compiled_once, export_function, import_function
-from .errors import AssemblyError, ConvergenceError
+from .errors import AssemblyError, ConvergenceError, InputError
 from .loops import (LazyPoints, Loop, SymbolName, as_symbol, check_lengths, check_symbols, default_length_scale,
                     describe)
 from .newton import JACOBIANS, TOL_MIN, NewtonResult, check_tol, iterate, residual_floor, scaled_cond
@@ -110,7 +110,7 @@ class Mechanism:
             loops = [loops]
         self.loops = list(loops)
         if not self.loops or not all(isinstance(lp, Loop) for lp in self.loops):
-            raise ValueError("`loops` must be a non-empty sequence of numkin.Loop")
+            raise InputError("`loops` must be a non-empty sequence of numkin.Loop")
         self.name = name
         self.input_symbol = as_symbol(input)
         self.parameters = {}
@@ -118,7 +118,7 @@ class Mechanism:
             sym = as_symbol(key)
             value = finite(f"parameter {sym}", value)
             if value < 0 and (sym.is_positive or sym.is_nonnegative):
-                raise ValueError(f"parameter {sym} = {value:g} is negative, but {sym} is declared non-negative")
+                raise InputError(f"parameter {sym} = {value:g} is negative, but {sym} is declared non-negative")
             self.parameters[sym] = value
         check_symbols(self.loops, self.input_symbol, self.parameters)
         self.unknown_symbols = [u for lp in self.loops for u in lp.unknowns]
@@ -142,11 +142,11 @@ class Mechanism:
         self.input_name = model["input"]
         params = model["parameters"]
         if len(values) != len(params):
-            raise ValueError(f"{name}: {len(values)} parameter values for {len(params)} parameters")
+            raise InputError(f"{name}: {len(values)} parameter values for {len(params)} parameters")
         values = [finite(f"parameter {p}", v) for (p, _, _), v in zip(params, values)]
         for (p, nonnegative, _), v in zip(params, values):
             if v < 0 and nonnegative:
-                raise ValueError(f"parameter {p} = {v:g} is negative, but {p} is declared non-negative")
+                raise InputError(f"parameter {p} = {v:g} is negative, but {p} is declared non-negative")
         value_of = {p: v for (p, _, _), v in zip(params, values)}
         check_lengths(model, value_of)
         self._description = model  # numkin.loops.describe's names: what check_lengths reads
@@ -162,10 +162,10 @@ class Mechanism:
             length_scale = default_length_scale(model, value_of)
         self.length_scale = float(length_scale)
         if not (math.isfinite(self.length_scale) and self.length_scale > 0):
-            raise ValueError(f"length_scale must be a positive number, got {self.length_scale}")
+            raise InputError(f"length_scale must be a positive number, got {self.length_scale}")
         lo, hi = LENGTH_SCALE_RANGE
         if not lo <= self.length_scale <= hi:
-            raise ValueError(
+            raise InputError(
                 f"{name}: length scale {self.length_scale:.3g} is outside the range numkin solves, "
                 f"{lo:.0e} to {hi:.0e} (products of two lengths must stay normal float64 numbers): "
                 "give the lengths in another unit"
@@ -176,7 +176,7 @@ class Mechanism:
         unknown_points = {p for link in self.links for p in link} | set(self.ground)
         missing = sorted(unknown_points - set(model["points"]))
         if missing:
-            raise ValueError(f"links or ground name undefined point(s) {missing}")
+            raise InputError(f"links or ground name undefined point(s) {missing}")
         self.assembly_check = assembly_check
         self.branch = branch
         self._guess = guess
@@ -224,7 +224,7 @@ class Mechanism:
         symbols = list(symbols)
         values = list(values)
         if len(values) != len(symbols):
-            raise ValueError(f"{len(values)} parameter values for {len(symbols)} parameters {[str(s) for s in symbols]}")
+            raise InputError(f"{len(values)} parameter values for {len(symbols)} parameters {[str(s) for s in symbols]}")
         mech = cls(loops, input_symbol, dict(zip(symbols, values)), points=points, **options)
         mech._keep(key)
         return mech
@@ -340,7 +340,7 @@ class Mechanism:
     def jacobian_function(self, inputs, jacobian="symbolic"):
         """``J(x, idx)`` for the Newton batch, or the name of a finite-difference rule."""
         if jacobian not in JACOBIANS:
-            raise ValueError(f"jacobian must be one of {JACOBIANS}, got {jacobian!r}")
+            raise InputError(f"jacobian must be one of {JACOBIANS}, got {jacobian!r}")
         if jacobian != "symbolic":
             return jacobian
         t = np.asarray(inputs)
@@ -451,7 +451,7 @@ class Mechanism:
         input_value = finite("input_value (rad)", input_value)
         tol = check_tol(tol)
         if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
-            raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")
+            raise InputError(f"maxiter must be a positive integer, got {maxiter!r}")
         t = np.array([input_value])
         x0 = self.guess_vector(self._guess if guess is None else guess, input_value)
         F = self.residual_function(t)

@@ -17,6 +17,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
+from .errors import InputError
 from .newton_rules import (  # noqa: F401  (re-exported: one place for the rules, importable from here)
     COND_MAX,
     COND_WARN,
@@ -401,12 +402,12 @@ def _sympy_system(exprs, unknowns):
     extra = set().union(*(sp.sympify(e).free_symbols for e in exprs)) - set(syms)
     if extra:
         names = ", ".join(sorted(str(s) for s in extra))
-        raise ValueError(
+        raise InputError(
             f"unknown symbol(s) {names} in the residuals: substitute a value (expr.subs) "
             "or list them in `unknowns`"
         )
     if len(exprs) != len(syms):
-        raise ValueError(
+        raise InputError(
             f"`fun` has {len(exprs)} residuals for {len(syms)} unknowns: the system must be square"
         )
     jac = sp.Matrix(exprs).jacobian(syms)
@@ -479,19 +480,19 @@ def newton(
     """
     x0 = np.atleast_1d(np.asarray(x0, dtype=float if not np.iscomplexobj(x0) else complex))
     if x0.ndim != 1:
-        raise ValueError(f"x0 must be a 1-D guess, got shape {x0.shape}")
+        raise InputError(f"x0 must be a 1-D guess, got shape {x0.shape}")
     if not np.all(np.isfinite(x0)):
-        raise ValueError(f"x0 has a non-finite entry at index {int(np.flatnonzero(~np.isfinite(x0))[0])}")
+        raise InputError(f"x0 has a non-finite entry at index {int(np.flatnonzero(~np.isfinite(x0))[0])}")
     tol = check_tol(tol)
     if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
-        raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")
+        raise InputError(f"maxiter must be a positive integer, got {maxiter!r}")
     n = x0.size
     symbolic = not callable(fun)
     if symbolic:
         if unknowns is None:
-            raise ValueError("a symbolic system needs `unknowns` (the symbols solved for)")
+            raise InputError("a symbolic system needs `unknowns` (the symbols solved for)")
         if len(unknowns) != n:
-            raise ValueError(f"x0 has {n} entries but `unknowns` names {len(unknowns)}")
+            raise InputError(f"x0 has {n} entries but `unknowns` names {len(unknowns)}")
         F, Jsym = _sympy_system(fun, unknowns)
         jacobian = "symbolic" if jacobian is None else jacobian
     else:
@@ -508,23 +509,23 @@ def newton(
             mats = [np.asarray(user_jac(x[:, k], *args), dtype=x.dtype) for k in range(x.shape[1])]
             for m in mats:
                 if m.shape != (n, n):
-                    raise ValueError(f"the callable jacobian returned shape {m.shape}; expected ({n}, {n})")
+                    raise InputError(f"the callable jacobian returned shape {m.shape}; expected ({n}, {n})")
             return np.stack(mats)
 
     elif jacobian == "symbolic":
         if not symbolic:
-            raise ValueError(
+            raise InputError(
                 "jacobian='symbolic' needs sympy expressions; pass a callable jacobian or use 'forward'/'central'"
             )
         J = Jsym
     elif jacobian in ("forward", "central"):
         J = jacobian
     else:
-        raise ValueError(f"jacobian must be one of {JACOBIANS} or a callable, got {jacobian!r}")
+        raise InputError(f"jacobian must be one of {JACOBIANS} or a callable, got {jacobian!r}")
 
     f0 = F(x0[:, None])
     if f0.shape[0] != n:
-        raise ValueError(
+        raise InputError(
             f"`fun` has {f0.shape[0]} residual components for {n} unknowns (the size of x0): "
             "the system must be square"
         )

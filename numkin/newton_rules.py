@@ -51,6 +51,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from .errors import InputError
 
 __all__ = [
     "EPS", "JACOBIANS", "COND_MAX", "COND_WARN", "TOL_MIN", "has_converged", "residual_floor", "check_tol",
@@ -110,14 +111,14 @@ def residual_floor(x, t=0.0):
 def check_tol(tol, name="tol"):
     """``tol`` as a float, or ValueError if it is not a number in [TOL_MIN, 1)."""
     if isinstance(tol, bool) or not isinstance(tol, (int, float, np.number)) or not math.isfinite(tol) or tol <= 0:
-        raise ValueError(f"{name} must be a positive number, got {tol!r}")
+        raise InputError(f"{name} must be a positive number, got {tol!r}")
     if tol < TOL_MIN:
-        raise ValueError(
+        raise InputError(
             f"{name}={tol:.3g} is below the round-off floor of float64 residuals (about {TOL_MIN:.1e}, "
             f"a few units of eps = {EPS:.3g}): no Newton step can meet it; use {name} >= {TOL_MIN:.1e}"
         )
     if tol >= 1:
-        raise ValueError(f"{name} must be below 1 (a relative tolerance), got {tol!r}")
+        raise InputError(f"{name} must be below 1 (a relative tolerance), got {tol!r}")
     return float(tol)
 
 

@@ -39,6 +39,7 @@ Examples
 from __future__ import annotations
 
 import difflib
+from .errors import InputError
 from dataclasses import dataclass, replace
 
 __all__ = ["Quantity", "catalogue", "resolve", "input_quantity", "unknown_quantities", "point_quantities", "KINDS", "SOURCES"]
@@ -97,13 +98,13 @@ class Quantity:
 
     def __post_init__(self):
         if self.order not in (0, 1, 2):
-            raise ValueError(f"order must be 0, 1 or 2, got {self.order!r}")
+            raise InputError(f"order must be 0, 1 or 2, got {self.order!r}")
         if self.dimension not in ("angle", "length"):
-            raise ValueError(f"dimension must be 'angle' or 'length', got {self.dimension!r}")
+            raise InputError(f"dimension must be 'angle' or 'length', got {self.dimension!r}")
         if self.wrt not in ("time", "input"):
-            raise ValueError(f"wrt must be 'time' or 'input', got {self.wrt!r}")
+            raise InputError(f"wrt must be 'time' or 'input', got {self.wrt!r}")
         if self.axis not in (None, "x", "y"):
-            raise ValueError(f"axis must be 'x', 'y' or None, got {self.axis!r}")
+            raise InputError(f"axis must be 'x', 'y' or None, got {self.axis!r}")
 
     def __copy__(self) -> "Quantity":
         return self  # immutable: frozen, every field a str, an int or None
@@ -179,7 +180,7 @@ class Quantity:
     def derivative(self, wrt: str | None = None) -> "Quantity":
         """The next derivative (velocity of a position, acceleration of a velocity)."""
         if self.order == 2:
-            raise ValueError(f"{self.name} is an acceleration: numkin computes no third derivative")
+            raise InputError(f"{self.name} is an acceleration: numkin computes no third derivative")
         return replace(self, order=self.order + 1, wrt=self.wrt if wrt is None else wrt)
 
     def position(self) -> "Quantity":
@@ -251,7 +252,7 @@ def resolve(mechanism, name, *, wrt: str = "time") -> Quantity:
     >>> resolve(linkages.four_bar(4, 1, 3, 3), "omega_theta5")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ValueError: unknown quantity 'omega_theta5' for four-bar ... (did you mean 'omega_theta4'?); valid: ...
+    numkin.errors.InputError: unknown quantity 'omega_theta5' for four-bar ... (did you mean 'omega_theta4'?); valid: ...
     """
     if isinstance(name, Quantity):
         return name
@@ -262,7 +263,7 @@ def resolve(mechanism, name, *, wrt: str = "time") -> Quantity:
         return table[name]
     near = difflib.get_close_matches(name, list(table), n=1)
     hint = f" (did you mean {near[0]!r}?)" if near else ""
-    raise ValueError(f"unknown quantity {name!r} for {mechanism.name}{hint}; valid: {', '.join(table)}")
+    raise InputError(f"unknown quantity {name!r} for {mechanism.name}{hint}; valid: {', '.join(table)}")
 
 
 def input_quantity(mechanism) -> Quantity:

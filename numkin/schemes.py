@@ -48,6 +48,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from .stencils import Rule, Stencil
+from .errors import InputError
 
 __all__ = [
     "Scheme",
@@ -189,7 +190,8 @@ def _load() -> dict[str, Scheme]:
         from . import derivatives
 
         for name, decl in BUILT_IN.items():
-            _REGISTRY[name] = _build(name, function=getattr(derivatives, name), **decl)
+            # a stencil scheme without its own documented function in numkin.derivatives gets the generated one
+            _REGISTRY[name] = _build(name, function=getattr(derivatives, name, None), **decl)
     return _REGISTRY
 
 
@@ -308,15 +310,15 @@ def register(name: str, offsets, derivative: int, *, partner: str | None = None,
     >>> s = schemes.register("seven_point_second", range(-3, 4), 2, partner="five_point")
     Traceback (most recent call last):
     ...
-    ValueError: partner='five_point' of seven_point_second has order 4; the scheme has order 6: give a partner of the same order
+    numkin.errors.InputError: partner='five_point' of seven_point_second has order 4; the scheme has order 6: give a partner of the same order
     """
     registry = _load()
     if not isinstance(name, str) or not name.isidentifier():
-        raise ValueError(f"a scheme name must be letters, digits and '_', got {name!r}")
+        raise InputError(f"a scheme name must be letters, digits and '_', got {name!r}")
     if name in BUILT_IN or name in ALIASES or (name in registry and not replace):
-        raise ValueError(f"scheme {name!r} is already registered" + ("" if name in BUILT_IN else "; pass replace=True"))
+        raise InputError(f"scheme {name!r} is already registered" + ("" if name in BUILT_IN else "; pass replace=True"))
     if derivative not in (1, 2) or isinstance(derivative, bool):
-        raise ValueError(f"derivative must be 1 or 2, got {derivative!r}")
+        raise InputError(f"derivative must be 1 or 2, got {derivative!r}")
     scheme = _build(name, derivative=derivative, offsets=tuple(offsets), ends=ends, family=family,
                     description=description)
     if partner is None:
@@ -324,13 +326,13 @@ def register(name: str, offsets, derivative: int, *, partner: str | None = None,
     if partner is not None:
         other = get_scheme(partner)
         if other.derivative == derivative:
-            raise ValueError(f"partner={partner!r} of {name} estimates the same derivative; it must estimate the other")
+            raise InputError(f"partner={partner!r} of {name} estimates the same derivative; it must estimate the other")
         if other.order != scheme.order:
-            raise ValueError(f"partner={partner!r} of {name} has order {other.order}; the scheme has order "
+            raise InputError(f"partner={partner!r} of {name} has order {other.order}; the scheme has order "
                              f"{scheme.order}: give a partner of the same order")
         partner = other.name
     elif derivative == 2:
-        raise ValueError(f"{name}: no first-derivative scheme of order {scheme.order} on the same offsets is "
+        raise InputError(f"{name}: no first-derivative scheme of order {scheme.order} on the same offsets is "
                          "registered; register one first or give partner=")
     scheme = _build(name, derivative=derivative, offsets=tuple(offsets), ends=ends, family=family,
                     description=description, partner=partner)
@@ -341,9 +343,9 @@ def register(name: str, offsets, derivative: int, *, partner: str | None = None,
 def unregister(name: str) -> None:
     """Remove a scheme added with :func:`register` (built-in schemes stay)."""
     if name in BUILT_IN:
-        raise ValueError(f"{name!r} is a built-in scheme and cannot be removed")
+        raise InputError(f"{name!r} is a built-in scheme and cannot be removed")
     if _load().pop(name, None) is None:
-        raise ValueError(f"no scheme {name!r} was registered")
+        raise InputError(f"no scheme {name!r} was registered")
 
 
 def lookup(name: str) -> Scheme:
@@ -352,7 +354,7 @@ def lookup(name: str) -> Scheme:
     try:
         return _load()[ALIASES.get(key, key)]
     except (KeyError, TypeError):
-        raise ValueError(
+        raise InputError(
             f"unknown finite-difference method {name!r}; valid names: "
             f"{', '.join(SCHEMES)} (aliases: {', '.join(ALIASES)})"
         ) from None
@@ -386,7 +388,7 @@ def get_scheme(name: str) -> Scheme:
     """
     scheme = lookup(name)
     if scheme.kind == "complex_step":
-        raise ValueError(f"{name!r} differentiates a function, not samples; valid names: {', '.join(SCHEMES)}")
+        raise InputError(f"{name!r} differentiates a function, not samples; valid names: {', '.join(SCHEMES)}")
     return scheme
 
 
@@ -419,5 +421,5 @@ def point_stencil(name: str) -> Stencil:
         return scheme.rule.interior
     if scheme.kind == "richardson":
         return Stencil.from_offsets(scheme.offsets, scheme.derivative)
-    raise ValueError(f"{scheme.name} ({scheme.kind}) has no finite stencil at one input")
+    raise InputError(f"{scheme.name} ({scheme.kind}) has no finite stencil at one input")
 

@@ -47,7 +47,7 @@ import numpy as np
 from . import analytic, kinematics, linkages
 from .conditioning import LostDigitsWarning, lost_digits
 from .derivatives import SCHEMES
-from .errors import AssemblyError, BranchError, ConvergenceError, NumkinError
+from .errors import AssemblyError, BranchError, ConvergenceError, InputError, NumkinError
 from .sweep import Sweep
 from .units import input_rate
 
@@ -371,7 +371,7 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
     names = list(CASES) if cases is None else ([cases] if isinstance(cases, str) else list(cases))
     unknown = [n for n in names if n not in CASES]
     if unknown:
-        raise ValueError(f"unknown stability case(s) {unknown}; the cases are {list(CASES)}")
+        raise InputError(f"unknown stability case(s) {unknown}; the cases are {list(CASES)}")
     scheme_list = list(SCHEMES.values()) if schemes is None else [get_scheme(s) for s in schemes]
     rows = {}
     for name in names:

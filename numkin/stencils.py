@@ -35,6 +35,7 @@ from fractions import Fraction
 from functools import cached_property, lru_cache, reduce
 
 import numpy as np
+from .errors import InputError
 from numpy.typing import ArrayLike, NDArray
 
 __all__ = ["Stencil", "Rule", "weights", "apply_rule", "check_step", "validated"]
@@ -61,9 +62,9 @@ def weights(offsets, derivative: int) -> tuple[Fraction, ...]:
     ks = _offsets(offsets)
     n = len(ks)
     if isinstance(derivative, bool) or not isinstance(derivative, numbers.Integral) or derivative < 1:
-        raise ValueError(f"derivative must be a positive integer, got {derivative!r}")
+        raise InputError(f"derivative must be a positive integer, got {derivative!r}")
     if n <= derivative:
-        raise ValueError(f"a derivative of order {derivative} needs at least {derivative + 1} offsets, got {ks}")
+        raise InputError(f"a derivative of order {derivative} needs at least {derivative + 1} offsets, got {ks}")
     rows = [[Fraction(k) ** m / math.factorial(m) for k in ks] + [Fraction(int(m == derivative))] for m in range(n)]
     for col in range(n):
         pivot = next(r for r in range(col, n) if rows[r][col] != 0)
@@ -81,9 +82,9 @@ def _offsets(offsets) -> tuple[int, ...]:
     try:
         ks = tuple(int(k) for k in offsets)
     except (TypeError, ValueError):
-        raise ValueError(f"offsets must be integers (steps h), got {offsets!r}") from None
+        raise InputError(f"offsets must be integers (steps h), got {offsets!r}") from None
     if any(k != o for k, o in zip(ks, offsets)) or len(set(ks)) != len(ks):
-        raise ValueError(f"offsets must be distinct integers, got {tuple(offsets)!r}")
+        raise InputError(f"offsets must be distinct integers, got {tuple(offsets)!r}")
     return ks
 
 
@@ -93,7 +94,7 @@ def _moments(ks, ws, derivative):
         c = sum((w * Fraction(k) ** m for k, w in zip(ks, ws)), Fraction(0)) / math.factorial(m)
         if c != 0:
             return m - derivative, c
-    raise ValueError("stencil is exact for every polynomial it can see: no truncation error found")
+    raise InputError("stencil is exact for every polynomial it can see: no truncation error found")
 
 
 @dataclass(frozen=True)
@@ -228,10 +229,10 @@ class Rule:
         elif ends == "mirror":
             m = interior.mirrored()
             if (lo and min(m.offsets) < 0) or (hi and max(m.offsets) > 0):
-                raise ValueError(f"ends='mirror' needs a one-sided stencil, got offsets {interior.offsets}")
+                raise InputError(f"ends='mirror' needs a one-sided stencil, got offsets {interior.offsets}")
             left, right = (m,) * lo, (m,) * hi
         else:
-            raise ValueError(f"ends must be 'one-sided' or 'mirror', got {ends!r}")
+            raise InputError(f"ends must be 'one-sided' or 'mirror', got {ends!r}")
         return cls(interior, ends, left, right)
 
     @property
@@ -260,17 +261,17 @@ class Rule:
 def check_step(h) -> float:
     """`h` as a float, or a ValueError if it is not finite and positive."""
     if isinstance(h, bool) or not isinstance(h, numbers.Real) or not (math.isfinite(h) and h > 0):
-        raise ValueError(f"h must be a finite positive number, got {h!r}")
+        raise InputError(f"h must be a finite positive number, got {h!r}")
     return float(h)
 
 
 def _check_samples(y: ArrayLike, scheme: str, minimum: int, periodic: bool) -> FloatArray:
     samples = np.asarray(y, dtype=float)
     if samples.ndim == 0:
-        raise ValueError(f"y must be an array of samples, got the scalar {samples.item()!r}")
+        raise InputError(f"y must be an array of samples, got the scalar {samples.item()!r}")
     if samples.shape[-1] < minimum:
         grid = "a periodic" if periodic else "an open"
-        raise ValueError(
+        raise InputError(
             f"scheme {scheme!r} needs at least {minimum} samples along the last axis "
             f"on {grid} grid, got {samples.shape[-1]}"
         )
@@ -278,20 +279,20 @@ def _check_samples(y: ArrayLike, scheme: str, minimum: int, periodic: bool) -> F
     if bad.any():
         first = tuple(int(i) for i in np.argwhere(bad)[0])
         index = first[0] if samples.ndim == 1 else first
-        raise ValueError(f"y contains {samples[first]} at index {index}")
+        raise InputError(f"y contains {samples[first]} at index {index}")
     return samples
 
 
 def _check_offset(period_offset: ArrayLike, periodic: bool, samples: FloatArray) -> FloatArray:
     offset = np.asarray(period_offset, dtype=float)
     if not np.all(np.isfinite(offset)):
-        raise ValueError(f"period_offset must be finite, got {period_offset!r}")
+        raise InputError(f"period_offset must be finite, got {period_offset!r}")
     if not periodic and np.any(offset != 0):
-        raise ValueError("period_offset only applies to periodic grids (periodic=True)")
+        raise InputError("period_offset only applies to periodic grids (periodic=True)")
     try:
         offset = np.broadcast_to(offset, samples.shape[:-1])
     except ValueError:
-        raise ValueError(
+        raise InputError(
             f"period_offset must be a float or have shape {samples.shape[:-1]} "
             f"(one offset per row of y), got shape {offset.shape}"
         ) from None

@@ -25,6 +25,7 @@ import numbers
 import re
 
 import numpy as np
+from .errors import InputError
 from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
@@ -84,7 +85,7 @@ _QUANTITY = re.compile(
 )
 
 
-class UnitError(ValueError):
+class UnitError(InputError):
     """A quantity with a missing, unknown or wrong-dimension unit.
 
     Examples
@@ -311,14 +312,14 @@ def finite(name: str, value) -> float:
     >>> finite("parameter r2", "x")
     Traceback (most recent call last):
     ...
-    ValueError: parameter r2 = 'x' is not a number
+    numkin.errors.InputError: parameter r2 = 'x' is not a number
     """
     try:
         v = float(value)
     except (TypeError, ValueError):
-        raise ValueError(f"{name} = {value!r} is not a number") from None
+        raise InputError(f"{name} = {value!r} is not a number") from None
     if not math.isfinite(v):
-        raise ValueError(f"{name} = {value!r} is not finite")
+        raise InputError(f"{name} = {value!r} is not finite")
     return v
 
 
@@ -369,7 +370,7 @@ def input_rate(value, kind: str = "speed", count: int | None = None, name: str |
     numkin.units.UnitError: omega: '5 m/s' is a linear speed, not an angular speed; ...
     """
     if kind not in _RATE_PARSERS:
-        raise ValueError(f"kind must be 'speed' or 'acceleration', got {kind!r}")
+        raise InputError(f"kind must be 'speed' or 'acceleration', got {kind!r}")
     default, parse = _RATE_PARSERS[kind]
     name = name or default
 
@@ -392,9 +393,9 @@ def input_rate(value, kind: str = "speed", count: int | None = None, name: str |
         return input_rate(float(arr), kind, count, name)
     if count is None or arr.shape != (count,):
         want = "a single value" if count is None else f"one value per input of the sweep, shape ({count},)"
-        raise ValueError(f"{name} as an array must have {want}, got shape {arr.shape}")
+        raise InputError(f"{name} as an array must have {want}, got shape {arr.shape}")
     if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name}[{int(np.flatnonzero(~np.isfinite(arr))[0])}] is not finite")
+        raise InputError(f"{name}[{int(np.flatnonzero(~np.isfinite(arr))[0])}] is not finite")
     return arr
 
 

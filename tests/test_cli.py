@@ -522,3 +522,40 @@ def test_lazy_names_of_the_package():
     assert callable(numkin.newton) and numkin.newton.__name__ == "newton"
     with pytest.raises(AttributeError, match="no attribute 'nonexistent'"):
         numkin.nonexistent  # noqa: B018
+
+
+def test_an_error_numkin_does_not_check_for_is_told_apart_from_a_mistake(capsys, monkeypatch):
+    """A mistake numkin checks for is a NumkinError (exit 2); any other ValueError is a check numkin
+    lacks or a defect: one line that says so (exit 3), the traceback with NUMKIN_TRACEBACK=1."""
+    import numkin.cli as cli
+
+    def broken(args):
+        raise ValueError("operands could not be broadcast together with shapes (3,) (4,)")
+
+    monkeypatch.setattr(cli, "_cmd_scenes", broken)
+    monkeypatch.delenv("NUMKIN_TRACEBACK", raising=False)
+    code, out, err = run(capsys, "scenes")
+    line = one_line_error(err)
+    assert code == 3 and out == ""
+    assert "broadcast" in line and "not an error numkin checks for" in line and "NUMKIN_TRACEBACK=1" in line
+    monkeypatch.setenv("NUMKIN_TRACEBACK", "1")
+    with pytest.raises(ValueError, match="broadcast"):
+        main(["scenes"])
+
+
+def test_every_error_numkin_raises_on_purpose_is_a_numkin_error():
+    """Input checks raise InputError (a NumkinError and a ValueError), never a bare ValueError,
+    so that the command can tell a user's mistake from a defect."""
+    import pathlib
+
+    import numkin
+    from numkin import linkages
+
+    with pytest.raises(numkin.InputError, match="crank") as caught:
+        linkages.four_bar(4.0, -1.0, 3.0, 3.0)
+    assert isinstance(caught.value, ValueError) and isinstance(caught.value, numkin.NumkinError)
+    package = pathlib.Path(numkin.__file__).parent
+    bare = [f"{path.relative_to(package)}:{number}" for path in sorted(package.rglob("*.py"))
+            for number, text in enumerate(path.read_text().splitlines(), 1)
+            if "raise ValueError(" in text or "= ValueError(" in text]
+    assert bare == []

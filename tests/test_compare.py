@@ -166,3 +166,21 @@ def test_numkin_run_names_the_end_stencils_of_an_open_grid():
     at_ninety = text.split("check at theta = 90°")[1].split("largest error")[0]
     assert "one-sided" not in at_ninety
     assert "ends, one-sided" in text
+
+
+def test_a_quantity_made_elsewhere_is_refused_not_labelled_with_its_unit():
+    """A Quantity is compared only if it is the mechanism's own: one declared with another unit or
+    dimension would label the comparison's columns wrongly (a rad/s column as furlong/s)."""
+    import dataclasses
+
+    from numkin.quantities import resolve
+
+    mech = linkages.four_bar(4.0, 1.0, 3.0, 3.0)
+    sweep = mech.sweep(np.linspace(0.0, 2.0 * np.pi, 73))
+    own = resolve(mech, "omega_theta4")
+    table = compare(sweep, 10.0, own).table
+    assert "analytic [rad/s]" in table.columns
+    for foreign in (dataclasses.replace(own, dimension="length", length_unit="furlong"),
+                    dataclasses.replace(own, of="theta9"), resolve(mech, "theta4")):
+        with pytest.raises(ValueError, match="is not a velocity or acceleration of four-bar"):
+            compare(sweep, 10.0, foreign)

@@ -220,3 +220,55 @@ def test_register_refuses_a_spec_whose_drawing_names_no_point():
     with pytest.raises(ValueError, match="'Q'"):
         linkages.register(bad)
     assert "bad_linkage" not in linkages.SPECS
+
+
+def test_a_linkage_module_dropped_into_the_package_is_found_with_its_builder(tmp_path, monkeypatch):
+    """The README's recipe: one module in numkin/linkages/ whose builder is then numkin.linkages.<name>
+    (not the module of that name) and whose spec scenes find; positions against circle intersections."""
+    import importlib
+    import sys
+    import types
+
+    source = textwrap.dedent('''
+        import sympy as sp
+        from numkin import Loop, Mechanism
+        from .base import Dimension, LinkageSpec, finish, length
+
+        def dropped_four_bar(ground, crank, coupler, rocker, *, length_unit="mm"):
+            r1, r2, r3, r4 = (length(n, v) for n, v in
+                              (("ground", ground), ("crank", crank), ("coupler", coupler), ("rocker", rocker)))
+            t2, t3, t4 = sp.symbols("theta2 theta3 theta4", real=True)
+            R1, R2, R3, R4 = sp.symbols("r1 r2 r3 r4", positive=True)
+            loop = Loop.from_vectors([(R2, t2), (R3, t3), (-R4, t4), (-R1, 0)], [t3, t4], name="O2-A-B-O4")
+            return finish(Mechanism([loop], t2, {R1: r1, R2: r2, R3: r3, R4: r4}, name="dropped",
+                                    guess={"theta3": 0.5, "theta4": 2.0}, length_unit=length_unit,
+                                    points={"O2": (0, 0), "A": (R2 * sp.cos(t2), R2 * sp.sin(t2)),
+                                            "B": (R1 + R4 * sp.cos(t4), R4 * sp.sin(t4)), "O4": (R1, 0)},
+                                    links=SPEC.links, ground=SPEC.ground), SPEC)
+
+        SPEC = LinkageSpec(
+            name="dropped_four_bar", build=dropped_four_bar, summary="a four-bar dropped in as a module",
+            dimensions=tuple(Dimension(n, "length") for n in ("ground", "crank", "coupler", "rocker")),
+            input="theta2", unknowns=(("theta3", "angle"), ("theta4", "angle")),
+            points=("O2", "A", "B", "O4"), links=(("O2", "A"), ("A", "B"), ("B", "O4")), ground=("O2", "O4"),
+        )
+    ''')
+    (tmp_path / "dropped_four_bar.py").write_text(source)
+    monkeypatch.setattr(linkages, "__path__", [*linkages.__path__, str(tmp_path)])
+    try:
+        linkages._discover()
+        assert not isinstance(linkages.dropped_four_bar, types.ModuleType)
+        mech = linkages.dropped_four_bar(4.0, 1.0, 3.0, 3.0)
+        assert linkages.spec_of(mech).name == "dropped_four_bar"
+        t = np.radians([0.0, 60.0, 90.0])
+        s = mech.sweep(t)
+        for k, theta in enumerate(t):
+            a = np.array([math.cos(theta), math.sin(theta)])
+            b = circle_intersection(a, 3.0, np.array([4.0, 0.0]), 3.0, 1.0)
+            assert math.atan2(*(b - np.array([4.0, 0.0]))[::-1]) == pytest.approx(s["theta4"][k], abs=1e-12)
+    finally:
+        linkages.SPECS.pop("dropped_four_bar", None)
+        if hasattr(linkages, "dropped_four_bar"):
+            delattr(linkages, "dropped_four_bar")
+        sys.modules.pop("numkin.linkages.dropped_four_bar", None)
+        importlib.invalidate_caches()

@@ -237,3 +237,20 @@ def test_any_stencil_differentiates_polynomials_of_its_degree_exactly(offsets, d
     exact = sum(F(c) * math.perm(m, derivative) * x0 ** (m - derivative)
                 for m, c in enumerate(coefficients) if m >= derivative)
     assert sum(w * poly(x0 + k) for k, w in zip(s.offsets, s.weights)) == exact
+
+
+def test_a_built_in_stencil_scheme_is_one_declaration(monkeypatch):
+    """A stencil scheme declared in BUILT_IN alone (no function of its own in numkin.derivatives) gets the
+    generated one: sixth order, observed from the log-log slope on sin."""
+    monkeypatch.setitem(schemes.BUILT_IN, "centred_seven", dict(offsets=tuple(range(-3, 4)), derivative=1))
+    monkeypatch.setattr(schemes, "_REGISTRY", {})
+    monkeypatch.setattr(schemes, "_LOADED", False)
+    scheme = schemes.get_scheme("centred_seven")
+    assert (scheme.order, scheme.derivative) == (6, 1) and not hasattr(derivatives, "centred_seven")
+    steps, errors = [], []
+    for n in (24, 32, 48):
+        x = np.linspace(0.0, 2.0 * math.pi, n + 1)
+        h = x[1] - x[0]
+        steps.append(h)
+        errors.append(np.abs(scheme.function(np.sin(x), h)[3:-3] - np.cos(x)[3:-3]).max())
+    assert observed_order(steps, errors) == pytest.approx(6.0, abs=0.2)

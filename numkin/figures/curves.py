@@ -13,6 +13,7 @@ from .labels import (
 )
 from .ends import END_LABEL, end_mask, frame_ends, scheme_reach
 from .style import CYCLE, SOURCE_STYLE, new_figure, shared_doc, source_label, source_style, style
+from ..errors import InputError
 
 __all__ = ["acceleration_comparison", "derivative", "difference", "kinematics", "position", "slider"]
 
@@ -53,7 +54,7 @@ def position(sweep, names: Sequence[str] | None = None):
         names = [names]
     names = list(sweep.unknowns) if names is None else [check_unknown(sweep, n) for n in names]
     if not names:
-        raise ValueError("names: no unknown to draw")
+        raise InputError("names: no unknown to draw")
     groups: dict[str, list[str]] = {}
     for n in names:
         groups.setdefault("deg" if is_angle(sweep, n) else length_unit(sweep), []).append(n)
@@ -118,7 +119,7 @@ def derivative(sweep, name: str, schemes: Sequence[str] = ("forward", "centred")
     for s in schemes:
         sch = fd.get_scheme(s)
         if sch.derivative != 1:
-            raise ValueError(f"schemes: {s!r} estimates a second derivative; give first-derivative schemes")
+            raise InputError(f"schemes: {s!r} estimates a second derivative; give first-derivative schemes")
         resolved.append(sch.name)
     x = np.degrees(sweep.inputs)
     t, ti = tex(name), tex(input_name(sweep))
@@ -263,7 +264,7 @@ def kinematics(
             src.append(("analytic", analytic))
         panels.append(src)
     if not panels[0] and not panels[1]:
-        raise ValueError(
+        raise InputError(
             f"kinematics of {name!r}: no analytic or finite-difference frame holds {vcol!r} or {acol!r}"
         )
     labels = quantity_labels(sweep, name)
@@ -343,7 +344,7 @@ def slider(sweep, name: str | None = None, *, analytic=None, finite: Mapping | N
     if name is None:
         lengths = [n for n in sweep.unknowns if not is_angle(sweep, n)]
         if not lengths:
-            raise ValueError(f"{sweep.mechanism.name} has no length unknown (slider) to draw")
+            raise InputError(f"{sweep.mechanism.name} has no length unknown (slider) to draw")
         name = "x" if "x" in lengths else lengths[0]
     return kinematics(
         sweep, name, analytic=analytic, finite=finite, check_angles=check_angles,
@@ -385,7 +386,7 @@ def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
     """
     check_unknown(sweep, name)
     if analytic is None or not finite:
-        raise ValueError(f"acceleration of {name!r}: needs both the analytic frame and finite-difference frames")
+        raise InputError(f"acceleration of {name!r}: needs both the analytic frame and finite-difference frames")
     _, acol = rate_columns(sweep, name)
     _, _, alabel = quantity_labels(sweep, name)
     unit = unit_of(alabel)

@@ -14,7 +14,7 @@ from .drawing import mechanism
 from .error_plots import convergence, jacobian_of, newton_residuals, roundoff, work_precision
 from .labels import check_unknown, input_name, is_angle, rate_columns, table_column
 from .style import METADATA, gc_paused, save
-from ..errors import warn
+from ..errors import InputError, warn
 
 __all__ = ["CAPTIONS", "FIGURES", "FigureSkipped", "caption", "parse_spec", "render"]
 
@@ -101,7 +101,7 @@ def parse_spec(spec: str) -> tuple[str, str | None]:
     ('mechanism', '30')
     """
     if not isinstance(spec, str) or not spec.strip():
-        raise ValueError(f"figure name must be a non-empty string, got {spec!r}")
+        raise InputError(f"figure name must be a non-empty string, got {spec!r}")
     name, _, arg = spec.strip().partition(":")
     kind = name.strip().lower().replace("_", "-")
     arg = arg.strip() or None
@@ -110,14 +110,14 @@ def parse_spec(spec: str) -> tuple[str, str | None]:
 
         near = difflib.get_close_matches(kind, list(FIGURES), n=1)
         hint = f" (did you mean '{near[0]}'?)" if near else ""
-        raise ValueError(f"unknown figure {spec!r}{hint}; figures are: {', '.join(FIGURES)}")
+        raise InputError(f"unknown figure {spec!r}{hint}; figures are: {', '.join(FIGURES)}")
     if arg is not None and kind not in _WITH_UNKNOWN and kind != "mechanism":
-        raise ValueError(f"figure {spec!r}: '{kind}' takes no ':' argument")
+        raise InputError(f"figure {spec!r}: '{kind}' takes no ':' argument")
     if arg is not None and kind == "mechanism":
         try:
             float(arg)
         except ValueError:
-            raise ValueError(f"figure {spec!r}: 'mechanism:<angle in degrees>', got {arg!r}") from None
+            raise InputError(f"figure {spec!r}: 'mechanism:<angle in degrees>', got {arg!r}") from None
     return kind, arg
 
 
@@ -152,7 +152,7 @@ def caption(stem: str) -> str:
                 return forms[-1]
             at = f"{arg.removesuffix('deg')}°" if kind == "mechanism" else ""
             return forms[0].format(q=sym(arg), at=at)
-    raise ValueError(f"figure file {stem!r}: no figure of that name; figures are: {', '.join(FIGURES)}")
+    raise InputError(f"figure file {stem!r}: no figure of that name; figures are: {', '.join(FIGURES)}")
 
 
 class _Data:
@@ -308,7 +308,7 @@ def _build(kind: str, arg, d: _Data):
         if not found:
             raise _Missing("no 'newton' table in the result (numkin.report.newton_table makes it)")
         return newton_residuals(found), "newton"
-    raise ValueError(f"unknown figure {kind!r}")  # pragma: no cover - parse_spec checked it
+    raise InputError(f"unknown figure {kind!r}")  # pragma: no cover - parse_spec checked it
 
 
 def render(result, names: Sequence[str] | None = None, out_dir=".", formats: Sequence[str] = ("png", "svg")) -> list[Path]:
@@ -371,7 +371,7 @@ def render(result, names: Sequence[str] | None = None, out_dir=".", formats: Seq
         formats = (formats,)
     bad = [f for f in formats if str(f).lower().lstrip(".") not in METADATA]
     if bad or not formats:
-        raise ValueError(
+        raise InputError(
             f"formats: {bad[0] if bad else 'nothing'!r} is not a figure format numkin writes; choose from {sorted(METADATA)}"
         )
     data = _Data(result)

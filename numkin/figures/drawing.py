@@ -16,7 +16,7 @@ from .labels import (
     deg_text, input_name, is_angle, length_text, length_unit, mechanism_title, no_negative_zero, sym,
     value_text,
 )
-from ..errors import ConvergenceWarning
+from ..errors import ConvergenceWarning, InputError
 from .registries import dimensions_of
 from .style import CYCLE, new_figure, shared_doc, style
 
@@ -167,14 +167,14 @@ def arrow_vectors(sweep, kind: str, omega, alpha=0.0, points: Sequence[str] | No
     from .. import analytic
 
     if kind not in ("velocity", "acceleration"):
-        raise ValueError(f"arrows: {kind!r} is neither 'velocity' nor 'acceleration'")
+        raise InputError(f"arrows: {kind!r} is neither 'velocity' nor 'acceleration'")
     mech = sweep.mechanism
     if points is None:
         points = [n for n in mech.points if n not in (mech.ground or ())]
     points = [points] if isinstance(points, str) else list(points)
     for n in points:
         if n not in mech.points:
-            raise ValueError(f"arrows: {n!r} is not a named point of {mech.name}; points are {list(mech.points)}")
+            raise InputError(f"arrows: {n!r} is not a named point of {mech.name}; points are {list(mech.points)}")
     frame = analytic.point_kinematics(sweep, omega, alpha, points=points)
     head = "v" if kind == "velocity" else "a"
     unit = f"{mech.length_unit}/s" if kind == "velocity" else f"{mech.length_unit}/s²"
@@ -387,7 +387,7 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
     """
     mech = sweep.mechanism
     if not mech.points or not mech.links:
-        raise ValueError(f"{mech.name} has no named points and links to draw")
+        raise InputError(f"{mech.name} has no named points and links to draw")
     at = float(sweep.inputs[0]) if at is None else float(at)
     k = sweep.index(at)
     q = sweep.values[:, k]
@@ -396,7 +396,7 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
             warnings.simplefilter("ignore", ConvergenceWarning)
             res = mech.solve(at, guess=q)
         if not res.converged:
-            raise ValueError(f"{mech.name}: cannot solve the position at input {deg_text(at)} to draw it")
+            raise InputError(f"{mech.name}: cannot solve the position at input {deg_text(at)} to draw it")
         q = np.asarray(res.x, dtype=float).reshape(-1)
     pts = {n: xy[:, 0] for n, xy in mech.point_coordinates(q[:, None], np.array([at])).items()}
     all_pts = sweep.points()
@@ -407,11 +407,11 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
     traces = [traces] if isinstance(traces, str) else list(traces or ())
     for n in traces:
         if n not in all_pts:
-            raise ValueError(f"traces: {n!r} is not a named point of {mech.name}; points are {list(all_pts)}")
+            raise InputError(f"traces: {n!r} is not a named point of {mech.name}; points are {list(all_pts)}")
     vectors, vec_unit = {}, ""
     if arrows is not None:
         if omega is None:
-            raise ValueError("arrows: give the input speed omega (for example omega='10 rad/s')")
+            raise InputError("arrows: give the input speed omega (for example omega='10 rad/s')")
         one = _one_point(sweep, at, q)
         vectors, vec_unit = arrow_vectors(one, arrows, omega, alpha, arrow_points)
         vectors = {n: v[:, 0] for n, v in vectors.items()}
@@ -425,7 +425,7 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
         side = float(d[3]) if len(d) > 3 else 1.0
         for n in (p, r):
             if n not in pts:
-                raise ValueError(f"dimensions: {n!r} is not a named point of {mech.name}; points are {list(pts)}")
+                raise InputError(f"dimensions: {n!r} is not a named point of {mech.name}; points are {list(pts)}")
         dims.append((p, r, label, side))
     # without dimension lines, every link segment is labelled with its length
     plain = []

@@ -10,25 +10,10 @@ import numpy as np
 from .labels import sym, table_column, tex
 from .registries import is_second_derivative
 from .style import CYCLE, marker_style, new_figure, shared_doc, source_label, source_style, style
+from ..errors import InputError
 
 __all__ = ["convergence", "jacobian_of", "newton_residuals", "on_curve", "quantity_of", "roundoff", "table_caption",
            "work_precision"]
-
-
-def _quantity_text(q: str) -> tuple[str, str]:
-    """``"omega_beta [rad/s]"`` -> (``"$\\omega_{\\beta}$"``, ``"rad/s"``); ``"^2"`` shown as ``"²"``."""
-    q = str(q)
-    m = re.fullmatch(r"\s*(.*?)\s*\[(.*)\]\s*", q)
-    name, unit = (m.group(1), m.group(2)) if m else (q, "")
-    unit = unit.replace("^2", "²")
-    pm = re.fullmatch(r"(omega|alpha|v|a|vx|vy|ax|ay)_(.+)", name)
-    if pm:
-        head = {"omega": r"\omega", "alpha": r"\alpha"}.get(pm.group(1), pm.group(1))
-        return f"${head}_{{{tex(pm.group(2))}}}$", unit
-    dm = re.fullmatch(r"d(2?)q/dtheta(2?)", name)
-    if dm:
-        return (r"$d^2q/d\theta^2$" if dm.group(1) else r"$dq/d\theta$"), unit
-    return name, unit
 
 
 def quantity_of(table, value):
@@ -60,13 +45,15 @@ def _panel_text(quantity, error: str, table=None) -> tuple[str, str]:
     """Title text and error unit of one panel of a report figure (``"–"`` for a relative error).
 
     From the quantity's :class:`~numkin.quantities.Quantity` when the table
-    carries it; else read from the text ``"omega_beta [rad/s]"``.
+    carries it (every table of :mod:`numkin.report` does); else the table's
+    text as it stands, without a unit: a label is never parsed back into a
+    quantity.
     """
     q = quantity_of(table, quantity) if quantity is not None and table is not None else None
     if q is not None:
         qtext, unit = f"${q.symbol}$", q.unit.replace("^2", "²")
     else:
-        qtext, unit = _quantity_text(quantity) if quantity is not None else ("", "")
+        qtext, unit = ("" if quantity is None else str(quantity)), ""
     if "rel" in error:
         unit = "–"
     return qtext, unit
@@ -275,7 +262,7 @@ def work_precision(table, *, work: str = "work", time: str | None = None, error:
     else:
         xcol = table_column(table, work, what, required=False)
         if xcol is None:
-            raise ValueError(
+            raise InputError(
                 f"{what}: no column starting with {work!r} (a table from an older numkin?); columns are "
                 f"{list(table.columns)}; pass time='sweep + derivative time' to draw the measured run time"
             )
@@ -363,10 +350,11 @@ def roundoff(table):
     """
     what = "round-off table"
     scol = table_column(table, "scheme", what)
-    cols = [(float(m.group(1)), c) for c in table.columns
-            if (m := re.match(r"rel error at h = ([0-9.eE+-]+) rad", str(c)))]
+    steps = table.attrs.get("steps") or {}
+    cols = [(float(h), c) for c, h in steps.items() if c in table.columns]
     if not cols:
-        raise ValueError(f"{what}: no 'rel error at h = ... rad [-]' columns; columns are {list(table.columns)}")
+        raise InputError(f"{what}: no columns of errors at a step h (attrs['steps'], which "
+                         "numkin.report.roundoff_table sets); columns are " + str(list(table.columns)))
     cols.sort()
     hs = np.array([h for h, _ in cols])
     eps = float(np.finfo(float).eps)
@@ -459,7 +447,7 @@ def newton_residuals(tables):
         else:
             tables = {jacobian_of(tables, "newton"): tables}
     if not tables:
-        raise ValueError("newton_residuals: no Newton table given")
+        raise InputError("newton_residuals: no Newton table given")
     # overlapping curves stay visible: large open, medium open, small filled markers
     styles = {"symbolic": ("black", "-", "o", 10, "none"), "forward": ("#D55E00", "--", "s", 6.5, "none"),
               "central": ("#0072B2", ":", "^", 4.5, "#0072B2")}

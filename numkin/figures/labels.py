@@ -16,6 +16,7 @@ import math
 import re
 
 import numpy as np
+from ..errors import InputError
 
 __all__ = [
     "GREEK", "check_points", "check_unknown", "deg_text", "degree_ticks", "frame_column", "frame_input",
@@ -189,7 +190,7 @@ def degree_ticks(ax, degrees: np.ndarray) -> None:
 def check_unknown(sweep, name: str) -> str:
     """`name`, if it is an unknown of the sweep; else a ValueError listing them."""
     if name not in sweep.unknowns:
-        raise ValueError(
+        raise InputError(
             f"{name!r} is not an unknown of {sweep.mechanism.name}; unknowns are {list(sweep.unknowns)}"
         )
     return name
@@ -199,7 +200,7 @@ def uniform_step(sweep) -> float:
     """The sweep's input step (rad); a ValueError if the grid is not uniform."""
     h = sweep.step
     if h is None:
-        raise ValueError(
+        raise InputError(
             f"sweep of {sweep.mechanism.name}: finite differences need a uniform input step; "
             "sweep a grid like np.radians(np.arange(0, 361))"
         )
@@ -212,7 +213,7 @@ def frame_input(frame, sweep) -> np.ndarray:
     if col in frame.columns:
         return np.asarray(frame[col], dtype=float)
     if len(frame) != len(sweep):
-        raise ValueError(
+        raise InputError(
             f"kinematics frame has {len(frame)} rows and no {col!r} column; the sweep has {len(sweep)} inputs"
         )
     return sweep.inputs
@@ -221,7 +222,7 @@ def frame_input(frame, sweep) -> np.ndarray:
 def frame_column(frame, column: str, what: str) -> np.ndarray:
     """A column of a frame as floats; a ValueError naming `what` if it is absent."""
     if column not in frame.columns:
-        raise ValueError(f"{what} has no column {column!r}; columns are {list(frame.columns)}")
+        raise InputError(f"{what} has no column {column!r}; columns are {list(frame.columns)}")
     return np.asarray(frame[column], dtype=float)
 
 
@@ -242,7 +243,7 @@ def table_column(table, prefix: str, what: str, required: bool = True):
         if str(c).startswith(prefix):
             return c
     if required:
-        raise ValueError(f"{what}: no column starting with {prefix!r}; columns are {list(table.columns)}")
+        raise InputError(f"{what}: no column starting with {prefix!r}; columns are {list(table.columns)}")
     return None
 
 

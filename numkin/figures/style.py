@@ -23,11 +23,12 @@ from pathlib import Path
 from typing import Sequence
 
 from .registries import family_of
+from ..errors import InputError
 
 __all__ = [
     "DOC_PARTS",
     "shared_doc",
-    "CYCLE", "METADATA", "SAVE_OPTIONS", "SOURCE_MARKERS", "SOURCE_STYLE", "STYLE", "close", "gc_paused", "new_figure", "save", "source_label",
+    "CYCLE", "METADATA", "SAVE_OPTIONS", "SOURCE_CYCLE", "SOURCE_MARKERS", "SOURCE_STYLE", "STYLE", "close", "gc_paused", "new_figure", "save", "source_label",
     "marker_style", "source_style", "style",
 ]
 
@@ -66,8 +67,12 @@ SOURCE_MARKERS = {
     "spectral_second": ("*", 7.0, True),
 }
 
-#: Colour cycle of sources and curves without a fixed style.
+#: Colour cycle of curves without a fixed style (unknowns, links, Jacobians).
 CYCLE = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000"]
+
+#: Colours of sources without a fixed style (a registered scheme): none of :data:`SOURCE_STYLE`'s, so
+#: that a scheme is never drawn in the colour of another (Paul Tol's muted palette).
+SOURCE_CYCLE = ["#882255", "#44AA99", "#999933", "#AA4499", "#332288", "#DDCC77"]
 
 #: Further savefig arguments per format. PNG: zlib level 1 (lossless like every level; about a third
 #: faster to write than the default 6, the files about a tenth larger).
@@ -197,7 +202,7 @@ def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
     try:
         bad = [f for f in fmts if f not in METADATA]
         if bad or not fmts:
-            raise ValueError(
+            raise InputError(
                 f"formats: {bad[0] if bad else 'nothing'!r} is not a figure format numkin writes; "
                 f"choose from {sorted(METADATA)}"
             )
@@ -262,19 +267,22 @@ def source_label(key: str) -> str:
 
 
 def source_style(key: str, k: int) -> dict:
-    """Line style of a source (colour of its family for second-derivative schemes); cycle index `k` else.
+    """Line style of a source (colour of its family for second-derivative schemes); else colour `k` of
+    :data:`SOURCE_CYCLE`, none of the fixed ones.
 
     Examples
     --------
     >>> source_style("forward_of_forward", 0)["color"] == source_style("forward", 3)["color"]
     True
+    >>> {source_style("seven_point", k)["color"] for k in range(6)} & {s["color"] for s in SOURCE_STYLE.values()}
+    set()
     """
     key = str(key)
     style_ = SOURCE_STYLE.get(key) or SOURCE_STYLE.get(family_of(key))
     if key in ("complex_step", "complex step"):
         style_ = {"color": "0.45", "linestyle": "-", "linewidth": 1.2}
     if style_ is None:
-        style_ = {"color": CYCLE[k % len(CYCLE)], "linestyle": "-.", "linewidth": 1.5}
+        style_ = {"color": SOURCE_CYCLE[k % len(SOURCE_CYCLE)], "linestyle": "-.", "linewidth": 1.5}
     style_ = dict(style_)
     if key != family_of(key) and key not in ("complex_step", "complex step"):
         style_["linestyle"] = (0, (7, 2, 1.5, 2)) if key != "second_difference" else style_["linestyle"]

@@ -38,6 +38,7 @@ from __future__ import annotations
 import difflib
 import importlib
 import pkgutil
+import types
 
 from .base import Dimension, LinkageSpec
 from .chained_four_bars import chained_four_bars
@@ -45,6 +46,7 @@ from .four_bar import four_bar, grashof
 from .quick_return import quick_return
 from .six_bar import six_bar
 from .slider_crank import slider_crank
+from ..errors import InputError
 
 __all__ = [
     "four_bar", "slider_crank", "quick_return", "six_bar", "chained_four_bars", "grashof",
@@ -83,21 +85,21 @@ def register(linkage_spec: LinkageSpec, *, replace: bool = False) -> LinkageSpec
         raise TypeError(f"register() takes a LinkageSpec, got {type(linkage_spec).__name__}")
     name = linkage_spec.name
     if not name.isidentifier():
-        raise ValueError(f"linkage name {name!r} must be an identifier (it is the builder's name)")
+        raise InputError(f"linkage name {name!r} must be an identifier (it is the builder's name)")
     if name in SPECS and not replace and SPECS[name] is not linkage_spec:
-        raise ValueError(f"a linkage named {name!r} is already registered (pass replace=True)")
+        raise InputError(f"a linkage named {name!r} is already registered (pass replace=True)")
     names = [d.name for d in linkage_spec.dimensions]
     if len(set(names)) != len(names):
-        raise ValueError(f"{name}: a dimension is named twice in {names}")
+        raise InputError(f"{name}: a dimension is named twice in {names}")
     points = set(linkage_spec.points)
     used = [p for link in linkage_spec.links for p in link] + list(linkage_spec.ground)
     used += [p for line in linkage_spec.dimension_lines for p in line[:2]]
     for p in used:
         if p not in points:
-            raise ValueError(f"{name}: point {p!r} of a link, ground or dimension line is not in points {sorted(points)}")
+            raise InputError(f"{name}: point {p!r} of a link, ground or dimension line is not in points {sorted(points)}")
     for kind in (kind for _, kind in linkage_spec.unknowns):
         if kind not in ("angle", "length"):
-            raise ValueError(f"{name}: an unknown is an 'angle' or a 'length', got {kind!r}")
+            raise InputError(f"{name}: an unknown is an 'angle' or a 'length', got {kind!r}")
     SPECS[name] = linkage_spec
     return linkage_spec
 
@@ -120,7 +122,7 @@ def spec(name: str) -> LinkageSpec:
     except (KeyError, TypeError):
         match = difflib.get_close_matches(str(name), list(SPECS), n=1, cutoff=0.5)
         hint = f" (did you mean '{match[0]}'?)" if match else ""
-        raise ValueError(f"unknown linkage {name!r}{hint}; ready-made linkages: {', '.join(SPECS)}") from None
+        raise InputError(f"unknown linkage {name!r}{hint}; ready-made linkages: {', '.join(SPECS)}") from None
 
 
 def spec_of(mechanism) -> LinkageSpec | None:
@@ -135,7 +137,8 @@ def spec_of(mechanism) -> LinkageSpec | None:
 
 
 def _discover() -> None:
-    """Register the SPEC of every linkage module of this package (built-ins first, in table order)."""
+    """Register the SPEC of every linkage module of this package, and its builder as
+    ``numkin.linkages.<name>`` (where importing a module of that name bound the module itself)."""
     for info in sorted(pkgutil.iter_modules(__path__), key=lambda m: m.name):
         if info.name.startswith("_") or info.name in _NOT_LINKAGES:
             continue
@@ -143,7 +146,8 @@ def _discover() -> None:
         linkage_spec = getattr(module, "SPEC", None)
         if isinstance(linkage_spec, LinkageSpec):
             register(linkage_spec)
-            globals().setdefault(linkage_spec.name, linkage_spec.build)
+            if isinstance(globals().get(linkage_spec.name, module), types.ModuleType):
+                globals()[linkage_spec.name] = linkage_spec.build
 
 
 for _module in (four_bar, slider_crank, quick_return, six_bar, chained_four_bars):

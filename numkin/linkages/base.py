@@ -22,6 +22,7 @@ from functools import lru_cache
 from typing import Callable
 
 from ..units import finite
+from ..errors import InputError
 
 __all__ = ["Dimension", "LinkageSpec", "DIMENSION_KINDS", "length", "finite", "finish", "build"]
 
@@ -54,7 +55,7 @@ class Dimension:
 
     def __post_init__(self):
         if self.kind not in DIMENSION_KINDS:
-            raise ValueError(f"dimension {self.name!r}: kind must be one of {DIMENSION_KINDS}, got {self.kind!r}")
+            raise InputError(f"dimension {self.name!r}: kind must be one of {DIMENSION_KINDS}, got {self.kind!r}")
 
     @property
     def required(self) -> bool:
@@ -154,10 +155,10 @@ def length(name: str, value) -> float:
 
     v = finite(name, value)
     if v <= 0:
-        raise ValueError(f"{name} = {value!r} must be a positive, finite length")
+        raise InputError(f"{name} = {value!r} must be a positive, finite length")
     lo, hi = LENGTH_SCALE_RANGE
     if not lo <= v <= hi:
-        raise ValueError(
+        raise InputError(
             f"{name} = {value!r} is outside the lengths numkin solves, {lo:.0e} to {hi:.0e}: "
             "give the lengths in another unit"
         )

@@ -7,6 +7,7 @@ import math
 import numpy as np
 
 from .base import Dimension, LinkageSpec, build, length
+from ..errors import InputError
 
 __all__ = ["four_bar", "grashof", "SPEC"]
 
@@ -139,7 +140,7 @@ def four_bar(ground, crank, coupler, rocker, *, branch: str = "open", length_uni
     r1, r2 = length("ground", ground), length("crank", crank)
     r3, r4 = length("coupler", coupler), length("rocker", rocker)
     if branch not in SPEC.branches:
-        raise ValueError(f"branch must be 'open' or 'crossed', got {branch!r}")
+        raise InputError(f"branch must be 'open' or 'crossed', got {branch!r}")
     sign = 1.0 if branch == "open" else -1.0
     klass = grashof(r1, r2, r3, r4)
     label = f"four-bar (ground {r1:g}, crank {r2:g}, coupler {r3:g}, rocker {r4:g})"

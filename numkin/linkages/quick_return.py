@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from .base import Dimension, LinkageSpec, build, length
+from ..errors import InputError
 
 __all__ = ["quick_return", "SPEC"]
 
@@ -43,7 +44,7 @@ def quick_return(r1=60.0, r2=40.0, r6=60.0, *, length_unit: str = "mm"):
     """
     a, b, c = length("r1", r1), length("r2", r2), length("r6", r6)
     if b >= a:
-        raise ValueError(f"r2 = {b:g} must be shorter than r1 = {a:g}: otherwise the crank passes the rocker pivot O1")
+        raise InputError(f"r2 = {b:g} must be shorter than r1 = {a:g}: otherwise the crank passes the rocker pivot O1")
 
     def guess(theta2):
         ax, ay = b * math.cos(theta2), a + b * math.sin(theta2)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from .base import Dimension, LinkageSpec, build, finite, length
+from ..errors import InputError
 
 __all__ = ["six_bar", "SPEC"]
 
@@ -45,7 +46,7 @@ def six_bar(
     yd = finite("slider_y", slider_y)
     cos_b = (l41**2 + l42**2 - l43**2) / (2 * l41 * l42)
     if not -1 < cos_b < 1:
-        raise ValueError(f"o4b = {l41:g}, bc = {l42:g}, o4c = {l43:g} do not form a triangle (ternary link)")
+        raise InputError(f"o4b = {l41:g}, bc = {l42:g}, o4c = {l43:g} do not form a triangle (ternary link)")
     beta_val = math.pi - math.acos(cos_b)
 
     def guess(theta2):

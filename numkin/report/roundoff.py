@@ -14,6 +14,7 @@ from .study import (
     EPS, UNIT, branch_point, deg_text, exact_derivatives, order_text, position_record, quantity_labels, set_caption,
     set_views, silenced, solve_points, table_quantities, unknown_index,
 )
+from ..errors import InputError
 
 __all__ = [
     "ROUNDOFF_SCHEMES",
@@ -158,7 +159,7 @@ def complex_step_scan(mechanism, point, steps) -> np.ndarray:
 
     h = np.asarray(steps, dtype=float).reshape(-1)
     if not np.all(np.isfinite(h) & (h > 0)):
-        raise ValueError(f"steps must be finite and positive, got {steps!r}")
+        raise InputError(f"steps must be finite and positive, got {steps!r}")
     q = np.repeat(np.asarray(point.values, dtype=float)[:, :1], h.size, axis=1)
     t = np.full(h.size, float(np.asarray(point.inputs, dtype=float)[0]))
     x, failed, _ = complex_positions(mechanism, q, t, h)
@@ -206,7 +207,8 @@ def roundoff_table(
     forward, cbrt(eps) centred, eps^(1/4) second difference, eps^(1/5)
     five-point) stands beside them. The scan itself is kept in
     ``attrs["scan"]`` (``"h [rad]"`` and the relative error of each scheme)
-    for plots.
+    for plots, and each shown column's step in ``attrs["steps"]`` (column ->
+    h in rad).
 
     Parameters
     ----------
@@ -254,11 +256,11 @@ def roundoff_table(
     lab = quantity_labels(mechanism, quantity)
     steps = [float(h) for h in steps]
     if not steps or not all(math.isfinite(h) and 0 < h < 1 for h in steps):
-        raise ValueError(f"steps must be positive and below 1 rad, got {steps!r}")
+        raise InputError(f"steps must be positive and below 1 rad, got {steps!r}")
     names = [schemes] if isinstance(schemes, str) else list(schemes)
     sch = [None if n == "complex_step" else get_scheme(n) for n in names]
     if any(s is not None and s.periodic_only for s in sch):
-        raise ValueError("spectral schemes need a full periodic sweep; they have no step h at one angle")
+        raise InputError("spectral schemes need a full periodic sweep; they have no step h at one angle")
     stencils = {s.name: stencil(s) for s in sch if s is not None}
     theta = float(check_angle)
     base = branch_point(mechanism, theta, guess, start)
@@ -350,6 +352,7 @@ def roundoff_table(
         ("optimal step: textbook", key[:2] + ["textbook rule", "textbook optimal h [rad]", "textbook error [-]"]),
     ], row_keys=["scheme"])
     df.attrs["scan"] = {"h [rad]": [float(h) for h in eff], **scan_errors}
+    df.attrs["steps"] = {f"rel error at h = {h:.0e} rad [-]": float(h) for h in steps}
     return set_caption(df, caption, [position_record("check angle", mechanism, theta, x0)])
 
 

@@ -38,6 +38,7 @@ import numpy as np
 from .. import analytic, kinematics, units
 from ..derivatives import SCHEMES, get_scheme
 from ..sweep import Sweep
+from ..errors import InputError
 
 __all__ = [
     "EPS",
@@ -89,7 +90,7 @@ def input_speed(omega) -> float:
 
 def unknown_index(mechanism, quantity: str) -> int:
     if quantity not in mechanism.unknowns:
-        raise ValueError(
+        raise InputError(
             f"quantity {quantity!r} is not an unknown of {mechanism.name}; choose one of {list(mechanism.unknowns)}"
         )
     return mechanism.unknowns.index(quantity)
@@ -155,7 +156,7 @@ def scheme_list(names, periodic: bool | None = None) -> list:
     if periodic is False:
         bad = [s.name for s in out if s.periodic_only]
         if bad:
-            raise ValueError(f"scheme(s) {bad} need a grid over one full turn (span = 2 pi)")
+            raise InputError(f"scheme(s) {bad} need a grid over one full turn (span = 2 pi)")
     return out
 
 
@@ -167,16 +168,16 @@ def full_turn(span: float) -> bool:
 def grid_inputs(points: int, start: float, span: float) -> np.ndarray:
     """Inputs of a grid with `points` per turn: a full turn (N + 1 samples) or `span` rad."""
     if isinstance(points, bool) or int(points) != points or points < 4:
-        raise ValueError(f"points per turn must be an integer >= 4, got {points!r}")
+        raise InputError(f"points per turn must be an integer >= 4, got {points!r}")
     points = int(points)
     h = TURN / points
     if full_turn(span):
         return start + h * np.arange(points + 1)
     if not (0 < span < TURN):
-        raise ValueError(f"span must be in (0, 2 pi] rad, got {span!r}")
+        raise InputError(f"span must be in (0, 2 pi] rad, got {span!r}")
     count = int(math.floor(span / h + 1e-9)) + 1
     if count < 5:
-        raise ValueError(f"span {math.degrees(span):.4g} deg holds fewer than 5 points of a {points}-point grid")
+        raise InputError(f"span {math.degrees(span):.4g} deg holds fewer than 5 points of a {points}-point grid")
     return start + h * np.arange(count)
 
 
@@ -185,7 +186,7 @@ def grid_list(grids) -> list:
         grids = [grids]
     out = [int(g) for g in grids]
     if not out:
-        raise ValueError("grids must name at least one grid (points per turn)")
+        raise InputError("grids must name at least one grid (points per turn)")
     return out
 
 
@@ -223,7 +224,7 @@ def timing_repeats(repeat) -> int:
     if repeat is None:
         return 0
     if isinstance(repeat, bool) or int(repeat) != repeat or repeat < 0:
-        raise ValueError(f"repeat must be None (no timing) or a non-negative integer, got {repeat!r}")
+        raise InputError(f"repeat must be None (no timing) or a non-negative integer, got {repeat!r}")
     return int(repeat)
 
 

@@ -8,7 +8,7 @@ import warnings
 import numpy as np
 
 from ..derivatives import get_scheme
-from ..errors import NumkinError
+from ..errors import InputError, NumkinError
 from ..sweep import Sweep
 from .study import (
     TURN, check_index, deg_text, differenced, exact_derivatives, full_turn, grid_inputs, input_speed, position_record,
@@ -89,9 +89,9 @@ def student_sweep(
     array([120.    , 119.6689, 119.3426])
     """
     if rule not in STUDENT_RULES:
-        raise ValueError(f"rule must be one of {list(STUDENT_RULES)}, got {rule!r}")
+        raise InputError(f"rule must be one of {list(STUDENT_RULES)}, got {rule!r}")
     if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
-        raise ValueError(f"tol must be a positive number, got {tol!r}")
+        raise InputError(f"tol must be a positive number, got {tol!r}")
     t = np.atleast_1d(np.asarray(inputs, dtype=float))
     comp, p = mechanism.compiled, mechanism.parameter_values
     g = mechanism.default_guess if guess is None else guess
@@ -247,11 +247,11 @@ def tolerance_table(
     lab = quantity_labels(mechanism, quantity)
     s1, s2 = get_scheme(method), get_scheme(second_method)
     if s1.derivative != 1 or s2.derivative != 2:
-        raise ValueError("method must be a first-derivative scheme and second_method a second-derivative one")
+        raise InputError("method must be a first-derivative scheme and second_method a second-derivative one")
     inputs = grid_inputs(points_per_turn, start, span)
     k = check_index(inputs, check_angle)
     if k is None:
-        raise ValueError(
+        raise InputError(
             f"check_angle {math.degrees(check_angle):.6g} deg is not on the {points_per_turn}-point grid from "
             f"{math.degrees(start):.6g} deg"
         )

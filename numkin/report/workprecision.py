@@ -13,6 +13,7 @@ from .study import (
     DEFAULT_GRIDS, TURN, UNIT, VARIES, differenced, exact_derivatives, grid_inputs, grid_positions, grid_study,
     median_time, set_caption, set_views, silenced, solve_sweep, table_quantities, timing_repeats,
 )
+from ..errors import InputError
 
 __all__ = [
     "work_precision_table",
@@ -300,9 +301,9 @@ def cheapest_table(work_precision, targets: Sequence[float] = (1e-2, 1e-4, 1e-6,
         caption = ("Cheapest method for a wanted accuracy, by work (point evaluations of the compiled loop "
                    "equations plus stencil evaluations: the same in every run).")
     else:
-        raise ValueError(f"by must be 'time' or 'work', got {by!r}")
+        raise InputError(f"by must be 'time' or 'work', got {by!r}")
     if cost not in work_precision.columns:
-        raise ValueError(f"work_precision table has no column {cost!r}; columns are {list(work_precision.columns)}")
+        raise InputError(f"work_precision table has no column {cost!r}; columns are {list(work_precision.columns)}")
     err = "max rel error [-]"
     rows = []
     for quantity in dict.fromkeys(work_precision["quantity"]):

@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Mapping, Sequence
 
 import numpy as np
+from ..errors import InputError
 
 __all__ = [
     "write_tables",
@@ -324,7 +325,7 @@ def write_tables(tables: Mapping, out_dir, formats: Sequence[str] = ("md", "csv"
     formats = [formats] if isinstance(formats, str) else list(formats)
     bad = [f for f in formats if f not in allowed]
     if bad:
-        raise ValueError(f"unknown table format(s) {bad}; choose from {list(allowed)}")
+        raise InputError(f"unknown table format(s) {bad}; choose from {list(allowed)}")
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written = []
