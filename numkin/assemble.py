@@ -116,6 +116,14 @@ def read_mechanism(r: SceneReader, scene: Scene, mech: dict) -> None:
         for j, (length, angle) in enumerate(lp["vectors"] or ()):
             _check_kinds(r, f"[[mechanism.loops]] {k + 1} vector {j + 1}", length, angle, angles,
                          set(params) - angles, scene.unit)
+    # a name that is a whole term of a vector's angle is an angle: never a whole term of a point's coordinate
+    turning = angles | {n for lp in loops for _, angle in (lp["vectors"] or ()) for n in _bare_names(angle)}
+    for p, xy in points.items():
+        for axis, text in zip("xy", xy):
+            for name in sorted(_bare_names(text) & turning):
+                r.fail(f"[mechanism.points] {p} {axis}",
+                       f"'{name}' is an angle but is a whole term of the point's coordinate, which is a length "
+                       f"in {scene.unit} (a length times cos or sin of an angle, e.g. 'r*cos({name})')")
     scene.dimensions = params
     scene.custom = {
         "input": input_name, "loops": loops, "points": points, "links": links, "ground": ground,

@@ -384,6 +384,11 @@ def test_zero_length_is_refused_by_the_mechanism(zero):
     ([("r1 = 4", "r1_deg = 4")], "1 vector 4 length: 'r1' is an angle (given as r1_deg"),
     ([("r1 = 4", "r1 = 4\ngamma = 5"), ('["r2", "theta2"]', '["r2", "theta2 + gamma"]')],
      "vector 1 angle: 'gamma' is a length (in mm"),
+    # the transmission angle written as a point: its "x" would be labelled mm and hold rad
+    ([("[input]", '[mechanism.points]\nO2 = ["0", "0"]\nMU = ["theta4 - theta3", "0"]\n[input]')],
+     "[mechanism.points] MU x: 'theta3' is an angle but is a whole term of the point's coordinate"),
+    ([("[input]", '[mechanism.points]\nA = ["r2*cos(theta2)", "2*theta2"]\n[input]')],
+     "[mechanism.points] A y: 'theta2' is an angle"),
 ])
 def test_a_dimension_used_as_the_other_kind_is_refused(capsys, tmp_path, edits, words):
     code, out, err = run(capsys, "run", loops_scene(tmp_path, step=10, edits=edits))
