@@ -137,9 +137,9 @@ is in rad: a dimension given as ``<name>_deg`` is converted, and a bare number
 in an angle (``"theta2 + 0.5"``) is rad. A dimension is a length or an angle,
 never both: an angle dimension as a whole term of a vector's length, or a
 length dimension added to an angle, is refused (a product or a function of
-them, ``"r*cos(tilt)"``, ``"atan2(h, d)"``, is fine); so is an angle (an angle
+them, ``"r*cos(tilt)"``, ``"atan2(h, d)"``, is fine). An angle (an angle
 dimension, or a name that is a whole term of a vector's angle) as a whole term
-of a point's coordinate, which is a length. The lengths of vectors
+of a point's coordinate, which is a length, is refused too. The lengths of vectors
 that turn must be positive; a loop written as ``equations`` has no vector
 lengths, so nothing checks their signs there.
 
