@@ -58,7 +58,8 @@ are optional. ::
     table_formats = ["csv"]  # csv, md, tex
     figures = ["kinematics:theta4"]   # names of numkin.figures.FIGURES (default none)
 
-    [compare]                # finite differences against the analytic solution
+    [compare]                # finite differences against the analytic solution, for the
+                             # unknowns' rates (numkin.compare.compare takes a point's too)
     schemes = ["forward", "centred"]            # first derivative -> velocity
     second_schemes = ["second_difference"]      # second derivative -> acceleration
 
