@@ -421,24 +421,18 @@ def scene_quantities(scene: Scene, mech, *, all_unknowns: bool = False, all_poin
     Per unknown its position, velocity and acceleration (those the scene
     wants), then per point its x, y coordinates and their derivatives.
     """
-    from .quantities import Quantity
+    from .quantities import catalogue
     from .schema import QUANTITIES
 
     unknowns = mech.unknowns if all_unknowns or scene.unknowns is None else scene.unknowns
     points = tuple(mech.points) if all_points else scene.points
     if orders is None:
         orders = [k for k, kind in enumerate(QUANTITIES) if scene.wants(kind)]
-    common = {"length_unit": mech.length_unit, "input_name": mech.input_name}
+    every = catalogue(mech, sorted(orders), points=bool(points)).values()  # by order, then unknown or point
     out = {}
-    for u in unknowns:
-        dimension = "angle" if u in mech.angles else "length"
-        for order in orders:
-            q = Quantity(u, order, dimension, source="solved" if order == 0 else "analytic", **common)
-            out[scene_key(q)] = q
-    for p in points:
-        for order in orders:
-            for axis in "xy":
-                q = Quantity(p, order, "length", axis=axis, source="solved" if order == 0 else "analytic", **common)
+    for of, is_point in [(u, False) for u in unknowns] + [(p, True) for p in points]:
+        for q in every:
+            if q.of == of and q.is_point == is_point:
                 out.setdefault(scene_key(q), q)
     return out
 

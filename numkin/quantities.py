@@ -39,10 +39,13 @@ Examples
 from __future__ import annotations
 
 import difflib
-from .errors import InputError
+import re
 from dataclasses import dataclass, replace
 
-__all__ = ["Quantity", "catalogue", "resolve", "input_quantity", "unknown_quantities", "point_quantities", "KINDS", "SOURCES"]
+from .errors import InputError
+
+__all__ = ["Quantity", "catalogue", "resolve", "input_quantity", "unknown_quantities", "point_quantities", "KINDS", "SOURCES",
+           "GREEK", "tex"]
 
 #: Names of the derivative orders.
 KINDS = ("position", "velocity", "acceleration")
@@ -56,9 +59,11 @@ _PREFIX = {  # (dimension, order) -> name prefix, time derivatives
     ("length", 2): "a_",
 }
 _POINT_PREFIX = {0: "", 1: "v", 2: "a"}
-_GREEK = {
+#: Names written as Greek letters.
+GREEK = {
     "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa", "lambda",
     "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi", "omega",
+    "Gamma", "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi", "Psi", "Omega",
 }
 
 
@@ -156,21 +161,21 @@ class Quantity:
 
     @property
     def symbol(self) -> str:
-        r"""Mathtext symbol for figures (``"\omega_{\beta}"``, ``"\ddot{x}_{P}"``)."""
-        of = _tex(self.of)
+        r"""Mathtext symbol for figures (``"\omega_{\beta}"``, ``"v_{x}"``, ``"\ddot{x}_{P}"``)."""
+        of = tex(self.of)
         if self.wrt == "input" and self.order:
             top = "d" if self.order == 1 else "d^2"
-            bottom = f"d{_tex(self.input_name)}" + ("" if self.order == 1 else "^2")
+            bottom = f"d{tex(self.input_name)}" + ("" if self.order == 1 else "^2")
             inner = f"{self.axis}_{{{of}}}" if self.is_point else of
             return rf"\frac{{{top}{inner}}}{{{bottom}}}"
         if self.is_point:
             base = self.axis
             dots = ("", r"\dot", r"\ddot")[self.order]
             return f"{dots}{{{base}}}_{{{of}}}" if dots else f"{base}_{{{of}}}"
-        if self.dimension == "angle" and self.order:
-            return (r"\omega", r"\alpha")[self.order - 1] + f"_{{{of}}}"
-        dots = ("", r"\dot", r"\ddot")[self.order]
-        return f"{dots}{{{of}}}" if dots else of
+        if self.order:  # as the names: omega_beta, alpha_beta; v_x, a_x
+            heads = (r"\omega", r"\alpha") if self.dimension == "angle" else ("v", "a")
+            return heads[self.order - 1] + f"_{{{of}}}"
+        return of
 
     # ------------------------------------------------------------ variants
     def with_source(self, source: str) -> "Quantity":
@@ -191,13 +196,23 @@ class Quantity:
         return self.label
 
 
-def _tex(name: str) -> str:
-    head, _, tail = name.partition("_")
-    digits = head.rstrip("0123456789")
-    sub = head[len(digits):]
-    head = "\\" + digits if digits in _GREEK else digits
-    sub = "_".join(s for s in (sub, tail) if s)
-    return f"{head}_{{{sub}}}" if sub else head
+def tex(name: str) -> str:
+    r"""Mathtext body of a symbol's name: ``theta2`` -> ``\theta_{2}``, ``x_P`` -> ``x_{P}``, ``xD`` -> ``\mathrm{xD}``.
+
+    Examples
+    --------
+    >>> tex("theta2"), tex("r3"), tex("beta"), tex("x_P"), tex("xD")
+    ('\\theta_{2}', 'r_{3}', '\\beta', 'x_{P}', '\\mathrm{xD}')
+    """
+    m = re.fullmatch(r"([A-Za-z]+?)_?(\d+|_[A-Za-z0-9]+)?", name)
+    if not m:
+        return r"\mathrm{" + re.sub(r"([_{}$\\])", r"\\\1", name) + "}"
+    base, sub = m.group(1), (m.group(2) or "").lstrip("_")
+    if base in GREEK:
+        base = "\\" + base
+    elif len(base) > 1:
+        base = r"\mathrm{" + base + "}"
+    return base + ("_{" + sub + "}" if sub else "")
 
 
 def catalogue(mechanism, orders=(0, 1, 2), *, wrt: str = "time", points: bool = True) -> dict:

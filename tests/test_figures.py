@@ -580,7 +580,8 @@ def test_velocity_arrows_of_the_crank_pin(crank):
 
 
 def test_error_figures_prefer_the_quantity_a_table_carries(tables):
-    """A Quantity in attrs names the panel and its unit; without one the text header is read."""
+    """A Quantity in attrs names the panel and its unit; without one the table's text stands as it is,
+    never parsed back into a quantity."""
     from numkin.quantities import Quantity
 
     table = tables["convergence"].copy()
@@ -593,8 +594,12 @@ def test_error_figures_prefer_the_quantity_a_table_carries(tables):
                    "title": "piston"}
     fig = figures.convergence(table)
     ax = fig.axes[0]
-    assert ax.get_title() == "$\\dot{x}$" and ax.get_ylabel().endswith("[cm/s]")
+    assert ax.get_title() == "$v_{x}$" and ax.get_ylabel().endswith("[cm/s]")
     assert fig._suptitle.get_text() == "piston"
+    plt.close(fig)
+    table.attrs = {k: v for k, v in table.attrs.items() if k != "quantities"}
+    fig = figures.convergence(table)
+    assert fig.axes[0].get_title() == first and "[rad/s]" not in fig.axes[0].get_ylabel()
     plt.close(fig)
 
 

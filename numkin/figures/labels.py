@@ -17,33 +17,13 @@ import re
 
 import numpy as np
 from ..errors import InputError
+from ..quantities import GREEK, tex
 
 __all__ = [
     "GREEK", "check_points", "check_unknown", "deg_text", "degree_ticks", "frame_column", "frame_input",
     "input_label", "input_name", "is_angle", "length_text", "length_unit", "mechanism_title", "no_negative_zero", "quantity_labels", "rate_columns",
     "sig5", "sym", "table_column", "tex", "uniform_step", "unit_of", "value_text",
 ]
-
-#: Names written as Greek letters.
-GREEK = {
-    "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa", "lambda",
-    "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi", "omega",
-    "Gamma", "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi", "Psi", "Omega",
-}
-
-
-def tex(name: str) -> str:
-    """Mathtext body for a symbol name: ``theta2`` -> ``\\theta_{2}``, ``r3`` -> ``r_{3}``."""
-    m = re.fullmatch(r"([A-Za-z]+?)_?(\d+|_[A-Za-z0-9]+)?", name)
-    if not m:
-        return r"\mathrm{" + re.sub(r"([_{}$\\])", r"\\\1", name) + "}"
-    base, sub = m.group(1), (m.group(2) or "").lstrip("_")
-    if base in GREEK:
-        base = "\\" + base
-    elif len(base) > 1:
-        base = r"\mathrm{" + base + "}"
-    return base + ("_{" + sub + "}" if sub else "")
-
 
 def sym(name: str) -> str:
     """Mathtext symbol of a name: ``"beta"`` -> ``"$\\beta$"``."""

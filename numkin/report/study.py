@@ -96,26 +96,24 @@ def unknown_index(mechanism, quantity: str) -> int:
     return mechanism.unknowns.index(quantity)
 
 
+def _rates(mechanism, quantity: str) -> dict:
+    """The Quantities of one unknown's rates: 1, 2 (with respect to time), "d1", "d2" (to the input)."""
+    from ..quantities import catalogue
+
+    position = catalogue(mechanism, (0,), points=False)[quantity].with_source("analytic")
+    first, by_input = position.derivative(), position.derivative("input")
+    return {1: first, 2: first.derivative(), "d1": by_input, "d2": by_input.derivative()}
+
+
 def quantity_labels(mechanism, quantity: str) -> dict:
-    """Names and units of q, dq/dt, d2q/dt2, dq/dtheta and d2q/dtheta2 for one unknown."""
-    if quantity in mechanism.angles:
-        u = "rad"
-        first, second = f"omega_{quantity}", f"alpha_{quantity}"
-    else:
-        u = mechanism.length_unit
-        first, second = f"v_{quantity}", f"a_{quantity}"
-    t = mechanism.input_name
+    """Labels, names and units of dq/dt, d2q/dt2, dq/dtheta and d2q/dtheta2 for one unknown, as its
+    :class:`~numkin.quantities.Quantity` objects give them (``table_quantities`` maps each label back)."""
+    q = _rates(mechanism, quantity)
     return {
-        "unit": u,
-        1: f"{first} [{u}/s]",
-        2: f"{second} [{u}/s^2]",
-        "name1": first,
-        "name2": second,
-        "unit1": f"{u}/s",
-        "unit2": f"{u}/s^2",
-        "d1": f"d{quantity}/d{t} [{u}/rad]",
-        "d2": f"d2{quantity}/d{t}2 [{u}/rad^2]",
-        "input": t,
+        "unit": q[1].position().unit,
+        1: q[1].label, 2: q[2].label, "d1": q["d1"].label, "d2": q["d2"].label,
+        "name1": q[1].name, "name2": q[2].name, "unit1": q[1].unit, "unit2": q[2].unit,
+        "input": mechanism.input_name,
     }
 
 
@@ -132,14 +130,7 @@ def table_quantities(mechanism, quantity: str) -> dict:
     >>> q["v_x [mm/s]"].unit, q["d2x/dtheta2 [mm/rad^2]"].order
     ('mm/s', 2)
     """
-    from ..quantities import catalogue
-
-    lab = quantity_labels(mechanism, quantity)
-    t = lab["input"]
-    wanted = {lab[1]: ("time", lab["name1"]), lab[2]: ("time", lab["name2"]),
-              lab["d1"]: ("input", f"d{quantity}/d{t}"), lab["d2"]: ("input", f"d2{quantity}/d{t}2")}
-    found = {wrt: catalogue(mechanism, wrt=wrt, points=False) for wrt in ("time", "input")}
-    return {label: found[wrt][name] for label, (wrt, name) in wanted.items() if name in found[wrt]}
+    return {q.label: q for q in _rates(mechanism, quantity).values()}
 
 
 def deg_text(angle: float) -> str:
