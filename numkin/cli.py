@@ -39,141 +39,16 @@ import json
 import math
 import os
 import sys
-import textwrap
 import warnings
 from contextlib import contextmanager
 from pathlib import Path
 
+from .cli_text import fmt_value, format_result
 from .errors import InputError, NumkinError
 
 __all__ = ["main", "build_parser", "format_result"]
 
 PROG = "numkin"
-
-
-# ----------------------------------------------------------------------- output
-def _fmt(value: float, expected: float | None = None) -> str:
-    """A value to the decimals of its expected value, else to 6 significant digits."""
-    if value is None or (isinstance(value, float) and not math.isfinite(value)):
-        return "-"
-    if value == 0:
-        value = 0.0  # no "-0"
-    if expected is not None:
-        text = repr(float(expected))
-        if "e" not in text.lower():
-            decimals = 0 if text.endswith(".0") else len(text.split(".")[1])
-            return f"{value:.{decimals}f}"
-    return f"{value:#.6g}".rstrip(".")
-
-
-def _label(name: str, unit: str) -> str:
-    base = name[:-4] if name.endswith("_deg") else name
-    return f"{base} [{unit}]"
-
-
-def _check_lines(check, input_name: str, title: str) -> list[str]:
-    head = f"{title} {input_name} = {check.at_deg:g}°"
-    if not check.on_grid:
-        head += " (between grid points: no finite differences)"
-    lines = [head]
-    width = max((len(_label(k, check.units[k])) for k in check.values), default=10) + 2
-    for key, value in check.values.items():
-        expected = check.expected.get(key)
-        line = f"  {_label(key, check.units[key]):<{width}}{_fmt(value, expected):>12}"
-        if expected is not None:
-            mark = "ok" if check.ok[key] else f"MISMATCH (tolerance {check.tolerance[key]:.1g})"
-            line += f"   expected {_fmt(expected, expected)} {mark}"
-        schemes = [f"{s}{' (one-sided end stencil)' if key in check.end_stencil.get(s, ()) else ''} {_fmt(vals[key])}"
-                   for s, vals in check.schemes.items() if key in vals]
-        if schemes:
-            line += "   " + "   ".join(schemes)
-        lines.append(line.rstrip())
-    return lines
-
-
-def format_result(result) -> str:
-    """The text summary printed by ``numkin run``: sweep, check points, largest errors, files."""
-    scene = result.scene
-    lines = [f"{scene.name}: {scene.title or scene.description}"]
-    if scene.kind == "stability":
-        lines += _suite_lines(result.suite)
-    else:
-        mech, sweep = result.mechanism, result.sweep
-        name = mech.input_name
-        motion = f"{name} {scene.start_deg:g}..{scene.stop_deg:g}° step {scene.step_deg:g}° ({scene.n_points} points)"
-        if result.omega is not None:
-            speed = f"{result.omega:.6g} rad/s"
-            if scene.speed_text and scene.speed_text.strip() != speed:
-                speed = f"{scene.speed_text} = {speed}"
-            motion += f", speed {speed}"
-            if result.alpha:
-                motion += f", acceleration {result.alpha:.6g} rad/s^2"
-        lines.append(f"  {mech.name}; {motion}")
-        lines.append(
-            f"  Newton: max {int(sweep.iterations.max())} iterations, max residual "
-            f"{float(sweep.residual.max()):.1e}, max condition number {float(sweep.cond.max()):.3g}"
-        )
-        for event in sweep.events:
-            lines.append(f"  {event.kind} at {name} = {math.degrees(event.input_value):.3f}°: {event.message}")
-        for check in result.checks:
-            lines += [""] + _check_lines(check, name, "check at")
-        if result.at is not None:
-            lines += [""] + _check_lines(result.at, name, "every quantity at")
-        if result.comparisons:
-            lines += ["", "largest error over the sweep, against the exact (analytic) solution"]
-            rows = []
-            open_grid = any(not c.periodic for c in result.comparisons.values())
-            for quantity, comparison in result.comparisons.items():
-                unit = comparison.unit
-                for scheme, row in comparison.summary.iterrows():
-                    ends = row.get(f"ends abs error [{unit}]", math.nan)
-                    rows.append((
-                        f"{quantity} [{unit}]", str(scheme), f"{row[f'max abs error [{unit}]']:.3g}",
-                        f"{100 * row['max rel error']:.3g}%", f"{row[f'max at {name} [deg]']:g}",
-                        *([f"{ends:.3g}" if ends == ends else ""] if open_grid else []),
-                    ))
-            head = ("quantity", "scheme", "max abs error", "max rel error", f"at {name} [deg]",
-                    *(["ends, one-sided"] if open_grid else []))
-            widths = [max(len(r[k]) for r in [head, *rows]) for k in range(len(head))]
-            for r in [head, *rows]:
-                lines.append("  " + "  ".join(
-                    (f"{c:<{w}}" if k < 2 else f"{c:>{w}}") for k, (c, w) in enumerate(zip(r, widths))
-                ).rstrip())
-            lines.append("  (max rel error: the largest error over the largest |exact value| of the sweep)")
-            if open_grid:
-                lines.append("  (an open grid: the first and last points take one-sided end stencils, whose largest "
-                             "error is given apart)")
-    if result.written:
-        lines += ["", "written:"] + [f"  {p}" for p in result.written]
-    return "\n".join(lines)
-
-
-def _suite_lines(suite) -> list[str]:
-    """The stability suite, one line per case plus what happened (the full table goes to --out / JSON)."""
-    columns = [
-        ("case", "case", str), ("outcome", "outcome", str),
-        ("as expected", "as expected", lambda v: "yes" if v else "NO"),
-        ("max cond [-]", "max cond", lambda v: _fmt(float(v))),
-        ("Newton iterations (max)", "iterations", lambda v: "-" if v != v else str(int(v))),
-        ("centred max rel error [-]", "centred rel err", lambda v: "-" if v != v else f"{float(v):.2e}"),
-        ("second_difference max rel error [-]", "2nd diff rel err", lambda v: "-" if v != v else f"{float(v):.2e}"),
-    ]
-    columns = [c for c in columns if c[0] in suite.columns]
-    rows = [[head for _, head, _ in columns]]
-    for _, record in suite.iterrows():
-        rows.append([fmt(record[col]) for col, _, fmt in columns])
-    widths = [max(len(r[k]) for r in rows) for k in range(len(columns))]
-    lines = []
-    for n, r in enumerate(rows):
-        lines.append("  " + "  ".join(f"{c:<{w}}" for c, w in zip(r, widths)).rstrip())
-    notes = []
-    for _, record in suite.iterrows():
-        what = " ".join(str(record.get("what happened", "") or "").split())
-        raised = " ".join(str(record.get("error or warning raised", "") or "").split())
-        text = "; ".join(t for t in (what, raised) if t)
-        if text:
-            notes += textwrap.wrap(f"{record['case']}: {text}", width=118, initial_indent="  ", subsequent_indent="    ")
-    return lines + ([""] + notes if notes else [])
 
 
 # ----------------------------------------------------------------------- progress
@@ -261,7 +136,7 @@ def _cmd_run(args) -> int:
             print(f"{PROG}: not as expected: " + "; ".join(bad), file=sys.stderr)
             return 1
     failed = [
-        f"{key} = {_fmt(c.values[key])} at {c.at_deg:g}° (expected {_fmt(c.expected[key], c.expected[key])})"
+        f"{key} = {fmt_value(c.values[key])} at {c.at_deg:g}° (expected {fmt_value(c.expected[key], c.expected[key])})"
         for c in result.checks for key, ok in c.ok.items() if not ok
     ]
     if failed:

@@ -83,3 +83,19 @@ def test_every_row_has_as_many_cells_as_its_header(page):
                 f"{page.name}:{n}: {len(cells(line))} cells under a header of {header} "
                 f"(escape a | inside a cell as \\|): {line.strip()[:80]}"
             )
+
+
+def test_the_readme_names_every_module_in_how_numkin_is_built():
+    """The stage table of README's "How numkin is built" is written by hand: every module of the
+    package (and every subpackage) must be named there, so that the map stays whole."""
+    import re
+
+    import numkin
+
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    section = text.split("## How numkin is built", 1)[1].split("\n## ", 1)[0]
+    named = set(re.findall(r"`(?:numkin\.)?([a-z_]+)(?:/|\.py)?`", section))
+    package = Path(numkin.__file__).parent
+    modules = {p.stem for p in package.glob("*.py") if not p.stem.startswith("_")}
+    modules |= {p.name for p in package.iterdir() if p.is_dir() and (p / "__init__.py").exists()}
+    assert sorted(modules - named) == []
