@@ -274,6 +274,27 @@ def test_convergence_reference_slopes_and_observed_order(tables):
     assert {"slope 1", "slope 2", "slope 4"} <= set(all_text(fig).split("\n"))
 
 
+def test_convergence_draws_the_reference_slope_of_a_registered_higher_order_scheme():
+    """A sixth-order scheme registered by its stencil gets a slope-6 reference beside its own line,
+    and its own line falls with that slope (observed from the log-log slope of its last two grids)."""
+    from numkin import linkages, report, schemes
+
+    schemes.register("seven_point_check", range(-3, 4), 1)
+    try:
+        conv = report.convergence_table(linkages.chained_four_bars(), omega="450 rad/min", quantity="beta",
+                                        grids=(72, 144, 360), schemes=("centred", "seven_point_check"))
+        fig = figures.convergence(conv)
+    finally:
+        schemes.unregister("seven_point_check")
+    ax = fig.axes[0]
+    refs = [ln for ln in ax.get_lines() if ln.get_label().startswith("_") and len(ln.get_xdata()) == 50]
+    slopes = sorted(round(float(np.polyfit(np.log(ln.get_xdata()), np.log(ln.get_ydata()), 1)[0]), 9) for ln in refs)
+    assert slopes == [1.0, 2.0, 4.0, 6.0] and "slope 6" in all_text(fig).split("\n")
+    h, e = line(ax, "seven point check (order 6)")
+    assert np.log(e[-1] / e[-2]) / np.log(h[-1] / h[-2]) == pytest.approx(6.0, abs=0.5)
+    plt.close(fig)
+
+
 def test_roundoff_v_curves(tables):
     fig = figures.roundoff(tables["roundoff"])
     ax = fig.axes[0]

@@ -124,7 +124,8 @@ def _log_limits(values, pad: float = 3.0) -> tuple[float, float]:
 
 @shared_doc
 def convergence(table, *, error: str = "max abs error"):
-    """Error against step h (log-log) for each scheme, with reference slopes 1, 2 and 4.
+    """Error against step h (log-log) for each scheme, with reference slopes 1, 2 and 4 (and the
+    formal order of any other scheme drawn, e.g. 6).
 
     Parameters
     ----------
@@ -153,6 +154,10 @@ def convergence(table, *, error: str = "max abs error"):
     scol = table_column(table, "scheme", what)
     h_unit = str(hcol)[3:-1]
     groups = _groups(table)
+    orders = {1, 2, 4}
+    if "formal order" in table.columns:
+        orders |= {int(o) for o in table["formal order"].astype(str) if o.isdigit() and int(o) > 0}
+    dashes = [(0, (6, 2)), (0, (3, 2)), (0, (1, 1.5)), (0, (5, 1.5, 1, 1.5)), (0, (8, 2, 1, 2, 1, 2))]
     with style():
         from .ticks import log_scale
 
@@ -175,7 +180,7 @@ def convergence(table, *, error: str = "max abs error"):
             at_max = e_all[np.isclose(h_all, hmax)]
             anchor = float(np.nanmin(at_max)) / 4 if np.isfinite(at_max).any() else yhi / 10
             hh = np.geomspace(hmin, hmax, 50)
-            for p, ls in ((1, (0, (6, 2))), (2, (0, (3, 2))), (4, (0, (1, 1.5)))):
+            for p, ls in zip(sorted(orders), dashes * len(orders)):
                 yy = anchor * (hh / hmax) ** p
                 ax.plot(hh, yy, color="0.35", linestyle=ls, linewidth=0.9, scalex=False, scaley=False)
                 inside = np.flatnonzero(yy >= ylo * 1.5)
