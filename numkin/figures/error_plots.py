@@ -476,19 +476,18 @@ def newton_residuals(tables):
         ax.set_xlabel("iteration $k$ [–]")
         ax.set_ylabel("residual norm (scaled) [–]")
         first = next(iter(tables.values()))
-        caption = table_caption(first)
-        where = re.search(r" at (\w+) = ([-0-9.]+) deg", caption)
-        at = f" at {sym(where.group(1))} = {where.group(2)}°" if where else ""
+        check = getattr(first, "attrs", {}).get("check")
+        at = f" at {sym(check[0])} = {check[1]:.6g}°" if check else ""
         ax.set_title(f"Newton: residual per iteration{at}")
         ax.legend(loc="upper right")
     return fig
 
 
 def jacobian_of(table, key: str) -> str:
-    """Name of the Jacobian of a Newton table: from its key (``newton_forward``) or caption."""
+    """Name of the Jacobian of a Newton table: the one it was solved with (``attrs["jacobian"]``, set by
+    :func:`numkin.report.newton_table`), else its key (``newton_forward``), else ``"symbolic"``."""
+    jacobian = getattr(table, "attrs", {}).get("jacobian")
+    if jacobian:
+        return str(jacobian)
     m = re.fullmatch(r"newton[_-](\w+)", key)
-    if m:
-        return m.group(1)
-    caption = table_caption(table)
-    m = re.search(r"(\w+) Jacobian", caption)
     return m.group(1) if m else "symbolic"

@@ -133,6 +133,8 @@ def newton_table(
             "order estimate from steps [-]": _step_orders(steps[: k.size - 1]),
         }
     )
+    df.attrs["jacobian"] = jacobian
+    df.attrs["check"] = (mechanism.input_name, math.degrees(check_angle))  # the input's name and angle (deg)
     return set_caption(
         df,
         f"Newton iterations: {mechanism.name} at {mechanism.input_name} = {deg_text(check_angle)} deg, "
