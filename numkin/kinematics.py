@@ -198,7 +198,8 @@ class Rows:
         return d[:, ::-1] if self.reverse else d
 
 
-def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, periodic="auto") -> Rows:
+def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, periodic="auto", *,
+                 close: bool = False) -> Rows:
     """Unwrap the angle rows of ``y`` (k, N), orient them ascending and settle periodicity.
 
     On a full-turn grid every row must return to its starting value (up to
@@ -222,6 +223,11 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
         Scale of the length rows, for the closure test.
     periodic : {"auto", True, False}
         As passed by the user (decides between raising and falling back).
+    close : bool
+        On a full-turn grid, difference as periodic a row whose last sample
+        misses its first by solver error (a loosely solved sweep): the period
+        offset is then the whole number of turns nearest to the rows' (0 for
+        lengths), and the last sample is not used.
 
     Returns
     -------
@@ -251,6 +257,8 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
     is_periodic, offset = grid.periodic, None
     if is_periodic:
         offset, ok = _closure(y, angle, length_scale)
+        if close:  # the mismatch is the solver's error: the period is whole turns (angles), none (lengths)
+            offset, ok = np.where(angle, _TURN * np.round(offset / _TURN), 0.0), np.ones_like(ok)
         if not ok.all():
             bad_names = [names[i] for i in np.flatnonzero(~ok)]
             msg = (
@@ -265,12 +273,12 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
     return Rows(y, grid.h, is_periodic, grid.reverse, offset)
 
 
-def _unknown_rows(sweep, periodic):
+def _unknown_rows(sweep, periodic, close=False):
     """(mechanism, inputs, prepared rows of the unknowns)."""
     grid = sweep_grid(sweep, periodic)
     mech, t, q = check_sweep(sweep)
     angle = np.array([u in mech.angles for u in mech.unknowns], dtype=bool)
-    return mech, t, prepare_rows(q, angle, mech.unknowns, t, grid, mech.length_scale, periodic)
+    return mech, t, prepare_rows(q, angle, mech.unknowns, t, grid, mech.length_scale, periodic, close=close)
 
 
 def scheme_for(name, derivative: int, parameter: str):
@@ -296,7 +304,7 @@ def scheme_for(name, derivative: int, parameter: str):
     return scheme
 
 
-def sweep_derivative(sweep, method="centred", periodic="auto") -> np.ndarray:
+def sweep_derivative(sweep, method="centred", periodic="auto", *, close: bool = False) -> np.ndarray:
     """dq/dtheta (or d2q/dtheta2) of all unknowns by one finite-difference scheme.
 
     Parameters
@@ -308,6 +316,11 @@ def sweep_derivative(sweep, method="centred", periodic="auto") -> np.ndarray:
         second-derivative scheme returns d2q/dtheta2.
     periodic : {"auto", True, False}
         See the module notes.
+    close : bool
+        On a full-turn sweep, difference it as periodic even where its last
+        point misses its first by the solver's error (see :func:`prepare_rows`):
+        for a study of loosely solved sweeps, whose end mismatch is that
+        error and not a change of branch.
 
     Returns
     -------
@@ -324,7 +337,7 @@ def sweep_derivative(sweep, method="centred", periodic="auto") -> np.ndarray:
     -79.9959
     """
     scheme = _d.get_scheme(method)
-    _, _, rows = _unknown_rows(sweep, periodic)
+    _, _, rows = _unknown_rows(sweep, periodic, close)
     return rows.apply(scheme)
 
 

@@ -195,6 +195,49 @@ def test_convergence_against_closed_form(slider):
     assert r2["abs error at theta = 90 deg [unit of quantity]"] == pytest.approx(e2[n // 4], rel=1e-5)
 
 
+def test_open_grid_statistics_leave_the_end_stencils_apart(slider):
+    """0-180 deg: max, RMS, relative error and observed order over the points where the second
+    difference applies, the one-sided ends (2y0 - 5y1 + 4y2 - y3)/h^2 in their own column; closed form."""
+    t = report.convergence_table(slider, omega="6000 rpm", quantity="x", check_angle=0.0, grids=(180, 360),
+                                 span=math.pi, schemes=("second_difference",))
+    for row, n in zip(t.itertuples(index=False), (180, 360)):
+        th = np.linspace(0.0, math.pi, n // 2 + 1)
+        x, _, d2x = piston(th)
+        h = th[1]
+        inner = W_SC**2 * np.abs((x[2:] - 2 * x[1:-1] + x[:-2]) / h**2 - d2x[1:-1])
+        first = W_SC**2 * abs((2 * x[0] - 5 * x[1] + 4 * x[2] - x[3]) / h**2 - d2x[0])
+        last = W_SC**2 * abs((2 * x[-1] - 5 * x[-2] + 4 * x[-3] - x[-4]) / h**2 - d2x[-1])
+        values = dict(zip(t.columns, row))
+        assert values["max abs error [unit of quantity]"] == pytest.approx(inner.max(), rel=1e-6)
+        assert values["RMS abs error [unit of quantity]"] == pytest.approx(np.sqrt(np.mean(inner**2)), rel=1e-6)
+        assert values["ends abs error [unit of quantity]"] == pytest.approx(max(first, last), rel=1e-6)
+        assert values["abs error at theta = 0 deg [unit of quantity]"] == pytest.approx(first, rel=1e-6)
+    assert t["observed order [-]"].iloc[1] == pytest.approx(2.0, abs=0.01)
+    assert "own stencil applies" in t.attrs["caption"] and "check angle is an end point" in t.attrs["caption"]
+
+
+def test_a_loosely_solved_full_turn_is_differenced_as_periodic():
+    """The residual rule's sweep of the six-bar misses its start after a turn by its position error: its
+    centred and second differences at 0 deg wrap around like every other row's (an own periodic stencil)."""
+    from numkin.report.tolerance import student_sweep
+
+    six_bar = linkages.six_bar()
+    t = report.tolerance_table(six_bar, omega=-10.0, quantity="x", check_angle=0.0)
+    inputs = np.linspace(0.0, 2 * math.pi, 361)
+    loose = student_sweep(six_bar, inputs, rule="residual", tol=1e-4)
+    exact = analytic.derivatives(six_bar.sweep(inputs))
+    j = list(six_bar.unknowns).index("x")
+    x, h, w = loose.values[j, :-1], inputs[1], -10.0
+    v = w * (np.roll(x, -1) - np.roll(x, 1)) / (2 * h)
+    a = w * w * (np.roll(x, -1) - 2 * x + np.roll(x, 1)) / h**2
+    v_ex, a_ex = w * exact[0][j, :-1], w * w * exact[1][j, :-1]
+    row = t[t["rule"] == "residual"].iloc[0]
+    assert row["v_x at theta2 = 0 deg [cm/s]"] == pytest.approx(v[0], rel=1e-9)
+    assert row["a_x at theta2 = 0 deg [cm/s^2]"] == pytest.approx(a[0], rel=1e-9)
+    assert row["v_x max rel error [%]"] == pytest.approx(100 * np.abs(v - v_ex).max() / np.abs(v_ex).max(), rel=1e-6)
+    assert row["a_x max rel error [%]"] == pytest.approx(100 * np.abs(a - a_ex).max() / np.abs(a_ex).max(), rel=1e-6)
+
+
 def test_check_angle_off_the_grid_is_blank(slider):
     t = report.convergence_table(slider, omega=1.0, quantity="x", check_angle=math.radians(7), grids=(36,),
                                  schemes=("centred",))

@@ -9,7 +9,7 @@ import numpy as np
 
 from .study import (
     DEFAULT_GRIDS, TURN, UNIT, check_index, deg_text, differenced, exact_derivatives, grid_inputs, grid_positions,
-    grid_study, order_text, set_caption, set_views, solve_sweep, table_quantities,
+    grid_study, order_text, set_caption, set_views, solve_sweep, stencil_points, table_quantities,
 )
 
 __all__ = [
@@ -60,8 +60,11 @@ def convergence_table(
         One row per scheme and grid (scheme order, then grids as given):
         ``scheme``, ``formal order``, ``quantity``, ``points per turn``,
         ``h [deg]``, ``max abs error``, ``RMS abs error`` (both ``[unit of
-        quantity]``), ``max rel error [-]`` (over ``max |exact|``), the abs error
-        at the check angle, and ``observed order [-]``
+        quantity]``), ``max rel error [-]`` (over ``max |exact|``), all over the
+        points where the scheme's own stencil applies; on an open grid
+        ``ends abs error`` (the largest error of the one-sided end stencils at
+        the first and last points); the abs error at the check angle, and
+        ``observed order [-]``
         ``log(e_prev / e) / log(h_prev / h)`` from the max error of the row
         above (same scheme).
 
@@ -84,6 +87,7 @@ def convergence_table(
         dq, d2q = exact_derivatives(s, quiet=False)
         data[n] = (s, dq[j], d2q[j])
     rows = []
+    at_end = set()  # schemes whose error at the check angle is their end stencil's
     for scheme in scheme_list:
         scale = w if scheme.derivative == 1 else w * w
         prev = None
@@ -92,9 +96,11 @@ def convergence_table(
             exact = scale * (dq if scheme.derivative == 1 else d2q)
             est = scale * differenced(s, scheme, quiet=False)[j]
             err = np.abs(est - exact)
-            if periodic:  # the last sample repeats the first: statistics over one period
-                err, exact = err[:-1], exact[:-1]
-            e_max = float(np.max(err))
+            # statistics where the scheme's own stencil applies: one period of a periodic grid; on an
+            # open grid the first and last points (one-sided end stencils) have their own column
+            keep = stencil_points(scheme, err.size, periodic)
+            inner = err[keep]
+            e_max = float(np.max(inner))
             h = TURN / n
             row = {
                 "scheme": scheme.name,
@@ -103,12 +109,18 @@ def convergence_table(
                 "points per turn": n,
                 "h [deg]": 360.0 / n,
                 f"max abs error {UNIT}": e_max,
-                f"RMS abs error {UNIT}": float(np.sqrt(np.mean(err**2))),
-                "max rel error [-]": e_max / float(np.max(np.abs(exact))),
+                f"RMS abs error {UNIT}": float(np.sqrt(np.mean(inner**2))),
+                "max rel error [-]": e_max / float(np.max(np.abs(exact[: err.size - 1 if periodic else None]))),
             }
+            if not periodic:
+                ends = np.ones(err.size, dtype=bool)
+                ends[keep] = False
+                row[f"ends abs error {UNIT}"] = float(np.max(err[ends])) if ends.any() else math.nan
             if check_col is not None:
                 k = check_index(s.inputs, check_angle)
                 row[check_col] = float(err[k]) if k is not None else math.nan
+                if k is not None and not periodic and not keep.start <= k < keep.stop:
+                    at_end.add(scheme.name)
             order = math.nan
             if prev is not None and prev[0] > 0 and e_max > 0:
                 order = math.log(prev[0] / e_max) / math.log(prev[1] / h)
@@ -119,17 +131,25 @@ def convergence_table(
 
     df = pd.DataFrame(rows)
     df.attrs["quantities"] = table_quantities(mechanism, quantity)
+    ends_col = None if periodic else f"ends abs error {UNIT}"
     set_views(df, [
         ("error over the sweep", ["scheme", "formal order", "points per turn", "h [deg]",
                                   f"max abs error {UNIT}", "max rel error [-]", "observed order [-]"]),
-        ("RMS error, and the error at the check angle", ["scheme", "quantity", "points per turn",
-                                                         f"RMS abs error {UNIT}", check_col]),
+        ("RMS error, and the error at the check angle" + ("" if periodic else " and at the ends"),
+         ["scheme", "quantity", "points per turn", f"RMS abs error {UNIT}", check_col, ends_col]),
     ], row_keys=["scheme", "points per turn"])
+    ends_text = "" if periodic else (
+        " On this open grid the first and last points take one-sided end stencils: the max, RMS and relative "
+        "errors and the observed order are over the points where each scheme's own stencil applies, and the "
+        "ends' largest error is its own column"
+        + (f"; the check angle is an end point for {', '.join(sorted(at_end))}, whose error there is the end "
+           "stencil's" if at_end else "") + "."
+    )
     return set_caption(
         df,
         f"Convergence: {mechanism.name}, {quantity}, input speed {w:g} rad/s; error of each scheme "
         "against the analytic solution over the sweep; observed order from successive grids. Absolute errors "
         f"in {lab['unit1']} ({lab['name1']}, first-derivative schemes) or {lab['unit2']} ({lab['name2']}, "
-        "second-derivative schemes).",
+        "second-derivative schemes)." + ends_text,
         grid_positions(mechanism, {n: data[n][0] for n in grid_list}, check_angle),
     )

@@ -409,6 +409,23 @@ def exact_derivatives(sweep: Sweep, quiet: bool = True, *, fresh: bool = False) 
     return _shared(("exact", id(sweep)), lambda: analytic.derivatives(sweep), quiet, keep=(sweep,), fresh=fresh)
 
 
+def stencil_points(scheme, n_points: int, periodic: bool) -> slice:
+    """The points of a sweep where `scheme`'s own stencil applies: one period of a periodic grid (its
+    last point repeats the first); on an open grid all but the first and last points its reach leaves
+    outside, where one-sided end stencils stand in (:attr:`numkin.schemes.Scheme.reach`).
+
+    Examples
+    --------
+    >>> from numkin.schemes import SCHEMES
+    >>> stencil_points(SCHEMES["five_point"], 181, False), stencil_points(SCHEMES["forward"], 181, False)
+    (slice(2, 179, None), slice(0, 180, None))
+    """
+    if periodic:
+        return slice(0, n_points - 1)
+    left, right = scheme.reach
+    return slice(left, n_points - right)
+
+
 def order_text(scheme) -> str:
     return "spectral" if scheme.order == 0 else str(scheme.order)
 
