@@ -74,7 +74,7 @@ def format_result(result) -> str:
         lines.append(f"  {mech.name}; {motion}")
         lines.append(
             f"  Newton: max {int(sweep.iterations.max())} iterations, max residual "
-            f"{float(sweep.residual.max()):.1e}, max condition number {float(sweep.cond.max()):.3g}"
+            f"{float(sweep.residual.max()):.1e}, largest condition number of a loop's block {float(sweep.cond.max()):.3g}"
         )
         for event in sweep.events:
             lines.append(f"  {event.kind} at {name} = {math.degrees(event.input_value):.3f}°: {event.message}")

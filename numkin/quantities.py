@@ -19,8 +19,8 @@ point ``P``   ``x_P``, ``y_P``  ``vx_P``, ``vy_P``   ``ax_P``, ``ay_P``
 ============  ================  ===================  =====================
 
 Derivatives with respect to the input angle ``theta`` are named
-``dq/dtheta`` and ``d2q/dtheta2`` (``dbeta/dtheta`` [rad/rad],
-``d2x/dtheta2`` [mm/rad^2]).
+``dq/dtheta`` and ``d2q/dtheta^2`` (``dbeta/dtheta`` [rad/rad],
+``d2x/dtheta^2`` [mm/rad^2]).
 
 Examples
 --------
@@ -133,8 +133,8 @@ class Quantity:
         """The quantity's name, without its source (``"omega_beta"``, ``"vx_P"``, ``"dbeta/dtheta"``)."""
         base = f"{self.axis}_{self.of}" if self.is_point else self.of
         if self.wrt == "input" and self.order:
-            d = "d" if self.order == 1 else "d2"
-            return f"{d}{base}/d{self.input_name}{'' if self.order == 1 else '2'}"
+            # d2x/dtheta2^2, not d2x/dtheta22: an input named with a digit keeps its name
+            return f"d{base}/d{self.input_name}" if self.order == 1 else f"d2{base}/d{self.input_name}^2"
         if self.is_point:
             return f"{_POINT_PREFIX[self.order]}{base}"
         return _PREFIX.get((self.dimension, self.order), "") + self.of

@@ -343,7 +343,8 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
         One row per case: ``case``, ``expected``, ``outcome`` (``ok``,
         ``ok, with warning``, the name of the error raised, or ``WRONG: ...``
         if a completed sweep fails its checks), ``as expected``, ``what
-        happened``, ``points``, ``max cond [-]``, ``Newton iterations
+        happened``, ``points``, ``max cond [-]`` (the largest condition
+        number of a loop's block of the scaled Jacobian), ``Newton iterations
         (max)`` (blank, NaN, if nothing was solved), ``analytic vs complex
         step [-]`` (max relative difference of dq/dtheta, at up to
         ``CHECK_POINTS`` points spread evenly over the sweep), ``sharpest
@@ -394,7 +395,8 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
     df = pd.DataFrame(list(rows.values()))
     df.attrs["caption"] = (
         "Stability suite: each case through the solver and every finite-difference scheme; errors of d/dtheta "
-        "relative to the peak exact value; expected errors are outcomes. Sharpest turn: the input range over "
+        "relative to the peak exact value; expected errors are outcomes. Max cond: the largest 2-norm condition "
+        "number of a loop's own block of the scaled Jacobian over the sweep. Sharpest turn: the input range over "
         "which the output turns (jump of dq/dtheta over max |d2q/dtheta2|), blank where wider than 3 grid steps. "
         "Errors need not grow with the stiffness: a first-derivative error peaks when the turn is about one grid "
         "step wide and falls when the turn becomes a corner between grid points (nearly aligned, delta = 1e-4 "

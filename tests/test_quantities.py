@@ -59,7 +59,7 @@ def test_hand_written_names_and_labels():
     p = Quantity("P", 2, "length", length_unit="m", axis="y")
     assert (p.name, p.unit, p.symbol) == ("ay_P", "m/s^2", r"\ddot{y}_{P}")
     d = Quantity("theta4", 2, "angle", wrt="input", input_name="theta2")
-    assert (d.name, d.unit) == ("d2theta4/dtheta22", "rad/rad^2")
+    assert (d.name, d.unit) == ("d2theta4/dtheta2^2", "rad/rad^2")
     assert d.symbol == r"\frac{d^2\theta_{4}}{d\theta_{2}^2}"
 
 

@@ -278,6 +278,9 @@ def scene_report(scene, *, repeat: int | None = None) -> dict:
             raise
     if per_unit:
         for table in tables.values():
+            rates = (table.attrs.get("quantities") or {}).values()
+            if not any(q.order and q.wrt == "time" for q in rates):
+                continue  # no velocity or acceleration in this table (Newton, Jacobian, round-off)
             table.attrs["caption"] = (
                 f"{table.attrs.get('caption', '')} The scene gives no input speed: velocities and accelerations "
                 "are per rad/s of input speed (d/dtheta and d2/dtheta2)."

@@ -127,7 +127,7 @@ def table_quantities(mechanism, quantity: str) -> dict:
     --------
     >>> from numkin import linkages
     >>> q = table_quantities(linkages.slider_crank(80, 200), "x")
-    >>> q["v_x [mm/s]"].unit, q["d2x/dtheta2 [mm/rad^2]"].order
+    >>> q["v_x [mm/s]"].unit, q["d2x/dtheta^2 [mm/rad^2]"].order
     ('mm/s', 2)
     """
     return {q.label: q for q in _rates(mechanism, quantity).values()}
@@ -445,15 +445,18 @@ def set_views(df, views: Sequence, row_keys: Sequence | None = None) -> object:
     table of its own in Markdown, LaTeX and on the terminal
     (:mod:`~numkin.report.writers`; columns no view names make a last
     part); CSV keeps every column in one table. Columns not in `df` are
-    dropped from a view; empty views are left out. `row_keys` (``attrs["row_keys"]``) are the columns that name a row;
-    the terminal repeats them in each part of a view too wide for one screen.
+    dropped from a view; a view left with nothing but the columns that name
+    a row (a table of run times, not timed) is left out. `row_keys`
+    (``attrs["row_keys"]``) are the columns that name a row; the terminal
+    repeats them in each part of a view too wide for one screen.
     """
+    keys = [str(c) for c in (row_keys or ()) if c in df.columns]
     if row_keys is not None:
-        df.attrs["row_keys"] = [str(c) for c in row_keys if c in df.columns]
+        df.attrs["row_keys"] = keys
     out = []
     for title, cols in views:
         cols = [c for c in cols if c in df.columns]
-        if cols:
+        if any(str(c) not in keys for c in cols):
             out.append([str(title), list(cols)])
     df.attrs["views"] = out
     return df

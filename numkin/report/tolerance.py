@@ -225,9 +225,9 @@ def tolerance_table(
     pandas.DataFrame
         Rows: the analytic reference, then the five solves. Columns
         ``rule`` (a short name), ``stopping rule`` (in full), ``tol`` (in the rule's own terms), ``Newton iterations per point
-        (mean)``, ``max |F| [length unit]``, ``position error estimate
-        max|J^-1 F| [unit]`` (of the quantity, the size of the Newton step
-        still missing), the velocity and acceleration at the check angle
+        (mean)``, ``max |F| [length unit]``, ``<quantity> error estimate
+        max|J^-1 F| [unit]`` (the studied unknown's Newton step still
+        missing), the velocity and acceleration at the check angle
         with their relative errors [%] (blank where the exact value is 0),
         their largest relative errors over
         the sweep [%] (over ``max |exact|``) and where the acceleration error is
@@ -279,7 +279,7 @@ def tolerance_table(
             "tol": math.nan,
             "Newton iterations per point (mean)": math.nan,
             f"max |F| [{lu}]": math.nan,
-            f"position error estimate max|J^-1 F| [{lab['unit']}]": math.nan,
+            f"{quantity} error estimate max|J^-1 F| [{lab['unit']}]": math.nan,
             cols["w"]: float(w_ex[k]),
             cols["we"]: 0.0,
             cols["a"]: float(a_ex[k]),
@@ -347,7 +347,7 @@ def tolerance_table(
                 "tol": float(tol),
                 "Newton iterations per point (mean)": float(np.mean(s.iterations)),
                 f"max |F| [{lu}]": float(np.max(np.abs(f))),
-                f"position error estimate max|J^-1 F| [{lab['unit']}]": float(np.max(np.abs(step[j]))),
+                f"{quantity} error estimate max|J^-1 F| [{lab['unit']}]": float(np.max(np.abs(step[j]))),
                 cols["w"]: float(d1[k]),
                 cols["we"]: _percent(d1[k], w_ex[k], w_ex),
                 cols["a"]: float(d2[k]),
@@ -365,7 +365,7 @@ def tolerance_table(
     set_views(df, [
         ("the stopping rules", ["rule", "stopping rule", "tol"]),
         ("what each leaves in the positions", ["rule", "Newton iterations per point (mean)", f"max |F| [{lu}]",
-                                               f"position error estimate max|J^-1 F| [{lab['unit']}]", "note"]),
+                                               f"{quantity} error estimate max|J^-1 F| [{lab['unit']}]", "note"]),
         (f"velocity and acceleration {at}", ["rule", cols["w"], cols["we"], cols["a"], cols["ae"]]),
         ("largest errors over the sweep", ["rule", cols["wm"], cols["am"], cols["where"]]),
     ], row_keys=["rule"])

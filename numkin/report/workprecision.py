@@ -225,7 +225,9 @@ def work_precision_table(
         df,
         f"Work and precision: {mechanism.name}, {quantity}, input speed {w:g} rad/s; work = point evaluations of "
         "the compiled loop equations (sweep, analytic and complex-step derivatives) plus stencil evaluations "
-        f"(finite differences), exact and the same in every run{timing}; beside the max error over the sweep.",
+        f"(finite differences), exact and the same in every run{timing}; beside the max error over the sweep, "
+        "against the analytic solution, the analytic rows' against the complex step (the two rows show their "
+        "difference, both exact to round-off).",
         grid_positions(mechanism, {n: per_grid[n][1] for n in grid_list}, None),
     )
 
