@@ -25,7 +25,7 @@ import numbers
 import re
 from typing import Mapping
 
-from .errors import NumkinError
+from .errors import InputError, NumkinError
 from .schema import Scene, SceneError, SceneReader, nearest
 from .units import UnitError, convert_length
 
@@ -102,6 +102,7 @@ def read_mechanism(r: SceneReader, scene: Scene, mech: dict) -> None:
         loops.append({"name": name, "unknowns": unknowns, "vectors": vectors, "equations": equations})
     points = r.table(mech.get("points", {}), "[mechanism.points]")
     for p, xy in points.items():
+        _identifier(r, p, f"[mechanism.points] {p}")  # a name figures write as a symbol
         if not isinstance(xy, list) or len(xy) != 2:
             r.fail(f"[mechanism.points] {p}", f"must be a pair [x, y] of expressions, got {xy!r}")
     links = mech.get("links", [])
@@ -248,7 +249,9 @@ def _build_linkage(scene: Scene):
         kwargs["branch"] = scene.branch
     try:
         return linkages.spec(scene.linkage).build(**kwargs, length_unit=scene.unit)
-    except NumkinError:
+    except InputError as error:  # a dimension the builder refuses: said where the scene gives it
+        scene.fail("[mechanism]", str(error))
+    except NumkinError:  # cannot assemble, ...: already said in the linkage's terms
         raise
     except ValueError as error:
         scene.fail("[mechanism]", str(error))

@@ -208,7 +208,9 @@ def _sharpest_turn(mech, sweep, j, samples: int = 801) -> float:
             left = mech.sweep(fine[: (samples + 1) // 2][::-1], sweep.values[:, k])
             dq_r, d2q_r = analytic.derivatives(local)
             dq_l, d2q_l = analytic.derivatives(left)
-    except NumkinError:
+    except InputError:
+        raise
+    except NumkinError:  # the local sweep could not be solved: no width to give
         return math.nan
     dq = np.concatenate([dq_l[j], dq_r[j]])
     d2q = np.concatenate([d2q_l[j], d2q_r[j]])

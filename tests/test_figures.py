@@ -320,6 +320,33 @@ def test_newton_residuals_per_jacobian(tables):
         assert np.log10(r[3]) / np.log10(r[2]) > 1.6
 
 
+def test_table_figures_read_what_a_table_carries_not_its_text(tables):
+    """The Newton figure takes its Jacobian and check angle from the table's attrs, the round-off figure
+    the step of each error column: neither is parsed from a caption or a header."""
+    newton = tables["newton_forward"].copy()
+    newton.attrs = {**newton.attrs, "caption": ""}
+    fig = figures.newton_residuals(newton)
+    ax = fig.axes[0]
+    assert line(ax, "forward Jacobian")[1][-1] < 1e-12
+    assert ax.get_title() == "Newton: residual per iteration at $\\theta$ = 100°"
+    plt.close(fig)
+
+    ro = tables["roundoff"].copy()
+    steps = dict(ro.attrs["steps"])
+    renamed = {column: f"error at step {k}" for k, column in enumerate(steps)}
+    ro = ro.rename(columns=renamed)
+    ro.attrs = {**tables["roundoff"].attrs, "steps": {renamed[c]: h for c, h in steps.items()}}
+    plain = figures.roundoff(tables["roundoff"])
+    fig = figures.roundoff(ro)
+    assert [list(ln.get_xdata()) for ln in fig.axes[0].get_lines()] == \
+        [list(ln.get_xdata()) for ln in plain.axes[0].get_lines()]
+    plt.close(fig)
+    plt.close(plain)
+    ro.attrs = {k: v for k, v in ro.attrs.items() if k != "steps"}
+    with pytest.raises(ValueError, match=r"attrs\['steps'\]"):
+        figures.roundoff(ro)
+
+
 def _pareto_points(x, y):
     """Points (x, y) that no other point beats in one coordinate without losing in the other."""
     pts = list(zip(x, y))

@@ -565,3 +565,33 @@ def test_a_zero_length_declared_positive_is_refused():
     loop = Loop.from_vectors([(r2, t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4], name="O2-A-B-O4")
     with pytest.raises(ValueError, match="length r2 is zero"):
         Mechanism([loop], t2, {r1: 4, r2: 0, r3: 3, r4: 3})
+
+
+# ------------------------------------------------------------ values no library below numkin checks
+@pytest.mark.parametrize("angle", ["nan", "-nan", "Infinity", "inf"])
+def test_a_mechanism_figure_at_an_angle_that_is_not_finite_is_refused(capsys, tmp_path, angle):
+    path = loops_scene(tmp_path, step=10, output=f'figures = ["mechanism:{angle}"]')
+    code, out, err = run(capsys, "run", path, "--out", str(tmp_path / "out"))
+    assert code == 2 and "the angle must be a finite number of degrees" in one_line_error(err)
+
+
+def test_a_point_name_that_is_not_a_symbol_is_refused(capsys, tmp_path):
+    path = loops_scene(tmp_path, step=10, edits=[("[input]", '[mechanism.points]\n"$B^$" = ["r1", "0"]\n[input]')])
+    code, out, err = run(capsys, "run", path)
+    assert code == 2 and "[mechanism.points] $B^$: '$B^$' is not a usable symbol name" in one_line_error(err)
+
+
+def test_a_dimension_a_ready_made_linkage_refuses_is_said_where_the_scene_gives_it(capsys, tmp_path):
+    path = tmp_path / "huge.toml"
+    path.write_text('[scene]\ndescription = "d"\n[mechanism]\nlinkage = "four_bar"\n[mechanism.dimensions]\n'
+                    'ground = 4\ncrank = 1e200\ncoupler = 3\nrocker = 3\n')
+    code, out, err = run(capsys, "run", str(path))
+    assert code == 2 and "huge.toml: [mechanism]: crank = 1e+200 is outside" in one_line_error(err)
+
+
+def test_a_report_grid_too_coarse_for_a_part_turn_gets_no_advice_about_the_check_angle(capsys, tmp_path):
+    path = loops_scene(tmp_path, stop=90, step=5, speed="10 rad/s", output='quantities = ["position", "velocity"]',
+                       edits=[("[guess]", "[report]\npoints_per_turn = 7\n[guess]")])
+    code, out, err = run(capsys, "report", path)
+    line = one_line_error(err)
+    assert code == 2 and "fewer than" in line and "check angle" not in line

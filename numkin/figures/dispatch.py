@@ -115,9 +115,12 @@ def parse_spec(spec: str) -> tuple[str, str | None]:
         raise InputError(f"figure {spec!r}: '{kind}' takes no ':' argument")
     if arg is not None and kind == "mechanism":
         try:
-            float(arg)
+            angle = float(arg)
         except ValueError:
             raise InputError(f"figure {spec!r}: 'mechanism:<angle in degrees>', got {arg!r}") from None
+        if not math.isfinite(angle) or abs(angle) > 1e6:
+            raise InputError(f"figure {spec!r}: the angle must be a finite number of degrees (at most 1e6), "
+                             f"got {arg!r}")
     return kind, arg
 
 

@@ -265,13 +265,14 @@ def scene_report(scene, *, repeat: int | None = None) -> dict:
         options["repeat"] = repeat
     from ..pipeline import in_scene_terms
 
-    from ..errors import NumkinError
+    from ..errors import InputError, NumkinError
 
     with in_scene_terms(scene, mech, tables=True):
         try:
             tables = full_report(mech, **options)
         except NumkinError as error:
-            if "span" in options and error.args and isinstance(error.args[0], str):  # less than a turn
+            solving = not isinstance(error, InputError)  # a solve that failed, not a value refused
+            if solving and "span" in options and error.args and isinstance(error.args[0], str):  # less than a turn
                 error.args = (f"{error.args[0]}; the round-off and Newton tables solve from 20° before to 11.5° "
                               "after the check angle ([report] check_deg), inside the linkage's range",
                               *error.args[1:])
