@@ -492,6 +492,8 @@ def parse_expression(scene: Scene, text, names: Mapping, where: str):
                 f"{text!r} uses '{sym.name}', which is not the input, a dimension or an unknown"
                 f"{nearest(sym.name, names)}; known names: {', '.join(names)}",
             )
+    if expr.has(sp.zoo, sp.oo, -sp.oo, sp.nan):
+        scene.fail(where, f"{text!r} is infinite or undefined ({expr}): a division by zero?")
     return expr
 
 

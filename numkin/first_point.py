@@ -173,7 +173,11 @@ def never_closes(mech):
         for length, _ in lp.vectors:
             if not {str(s) for s in length.free_symbols} <= set(values):
                 break  # a length that moves (a slider): the polygon has no fixed sides
-            sizes.append((abs(float(length.subs({s: values[str(s)] for s in length.free_symbols}))), length))
+            value = complex(length.subs({s: values[str(s)] for s in length.free_symbols}))
+            if value.imag != 0 or not math.isfinite(value.real):  # e.g. sqrt of a negative dimension
+                return lp.name, (f"loop '{lp.name}' cannot close: its vector length {length} = {value:g} is not a "
+                                 "finite real number; check the dimensions in it")
+            sizes.append((abs(value.real), length))
         else:
             if len(sizes) < 2:
                 continue

@@ -54,6 +54,9 @@ __all__ = [
 #: Folder of the built-in scene files (package data).
 SCENES_DIR = Path(__file__).with_name("scenes")
 
+#: Most points per turn of a report's grids (each is solved and differenced several times).
+_REPORT_POINTS = 100_000
+
 #: Built-in scenes listed first, in this order.
 _BUILTIN_ORDER = ("homework", "quick-return", "six-bar", "slider-crank", "stability")
 
@@ -448,16 +451,24 @@ def _validate(data: dict, *, name: str, source: str) -> Scene:
                     names.append(get_scheme(name).name)
                 except ValueError:
                     r.fail("[report] schemes", f"unknown scheme '{name}'{nearest(name, SCHEMES)}; schemes: {', '.join(SCHEMES)}")
+            if not names:
+                r.fail("[report] schemes", "is empty: name at least one scheme, or leave the key out for all")
             report["schemes"] = tuple(names)
         if "grids" in rep:
             grids = rep["grids"]
             if not isinstance(grids, list) or not grids or not all(is_int(v, 4) for v in grids):
                 r.fail("[report] grids", f"must be a list of points per turn (integers >= 4), got {grids!r}")
+            if len(set(grids)) != len(grids):
+                r.fail("[report] grids", f"names a grid twice ({grids!r}): the observed order needs distinct steps")
+            if max(grids) > _REPORT_POINTS:
+                r.fail("[report] grids", f"at most {_REPORT_POINTS:,} points per turn, got {max(grids):,}")
             report["grids"] = tuple(grids)
-        for key, least in (("points_per_turn", 4), ("repeat", 1)):
+        for key, least, most in (("points_per_turn", 4, _REPORT_POINTS), ("repeat", 1, 1000)):
             if key in rep:
                 if not is_int(rep[key], least):
                     r.fail(f"[report] {key}", f"must be an integer >= {least}, got {rep[key]!r}")
+                if rep[key] > most:
+                    r.fail(f"[report] {key}", f"at most {most:,}, got {rep[key]:,}")
                 report[key] = rep[key]
         scene.report = report  # without [input] speed the report is per rad/s (numkin.report.scene_report)
     if "animation" in data:

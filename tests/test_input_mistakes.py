@@ -595,3 +595,25 @@ def test_a_report_grid_too_coarse_for_a_part_turn_gets_no_advice_about_the_check
     code, out, err = run(capsys, "report", path)
     line = one_line_error(err)
     assert code == 2 and "fewer than" in line and "check angle" not in line
+
+
+@pytest.mark.parametrize("edit, words", [
+    ('["-r1", "0"]', '["-r1/0", "0"]'),
+    ('["r2", "theta2"]', '["sqrt(-r2)", "theta2"]'),
+])
+def test_a_vector_length_that_is_infinite_or_not_real_is_one_line(capsys, tmp_path, edit, words):
+    code, out, err = run(capsys, "run", loops_scene(tmp_path, step=10, edits=[(edit, words)]))
+    line = one_line_error(err)
+    assert code == 2 and ("is infinite or undefined" in line or "is not a finite real number" in line)
+
+
+@pytest.mark.parametrize("report_keys, words", [
+    ("schemes = []", "[report] schemes: is empty"),
+    ("grids = [36, 36]", "[report] grids: names a grid twice"),
+    ("points_per_turn = 1000000000", "[report] points_per_turn: at most 100,000"),
+    ("grids = [36, 1000000000]", "[report] grids: at most 100,000 points per turn"),
+])
+def test_report_keys_that_cannot_make_a_table_are_refused(capsys, tmp_path, report_keys, words):
+    path = loops_scene(tmp_path, step=10, speed="10 rad/s", edits=[("[guess]", f"[report]\n{report_keys}\n[guess]")])
+    code, out, err = run(capsys, "report", path)
+    assert code == 2 and words in one_line_error(err)

@@ -24,7 +24,7 @@ from typing import Callable
 from ..units import finite
 from ..errors import InputError
 
-__all__ = ["Dimension", "LinkageSpec", "DIMENSION_KINDS", "length", "finite", "finish", "build"]
+__all__ = ["Dimension", "LinkageSpec", "DIMENSION_KINDS", "length", "pair", "finite", "finish", "build"]
 
 #: Kinds of dimension: a positive length, a signed length (a coordinate), a point (x, y), an angle.
 DIMENSION_KINDS = ("length", "signed", "pair", "angle")
@@ -165,6 +165,25 @@ def length(name: str, value) -> float:
     return v
 
 
+
+
+def pair(name: str, value) -> tuple[float, float]:
+    """A point ``(x, y)`` given as two finite numbers, or an InputError naming it.
+
+    Examples
+    --------
+    >>> pair("o4", [3.7, -2])
+    (3.7, -2.0)
+    >>> pair("o4", (1,))
+    Traceback (most recent call last):
+    ...
+    numkin.errors.InputError: o4 must be a pair (x, y) of numbers, got (1,)
+    """
+    try:
+        x, y = value
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a pair (x, y) of numbers, got {value!r}") from None
+    return finite(f"{name}[0]", x), finite(f"{name}[1]", y)
 
 
 def build(spec: LinkageSpec, model: Callable, values, **options):

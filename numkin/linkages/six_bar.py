@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from .base import Dimension, LinkageSpec, build, finite, length
+from .base import Dimension, LinkageSpec, build, finite, length, pair
 from ..errors import InputError
 
 __all__ = ["six_bar", "SPEC"]
@@ -42,7 +42,7 @@ def six_bar(
     """
     l2, l3 = length("crank", crank), length("coupler", coupler)
     l41, l42, l43, l5 = length("o4b", o4b), length("bc", bc), length("o4c", o4c), length("rod", rod)
-    ox, oy = finite("o4[0]", o4[0]), finite("o4[1]", o4[1])
+    ox, oy = pair("o4", o4)
     yd = finite("slider_y", slider_y)
     cos_b = (l41**2 + l42**2 - l43**2) / (2 * l41 * l42)
     if not -1 < cos_b < 1:

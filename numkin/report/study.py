@@ -144,6 +144,8 @@ def scheme_list(names, periodic: bool | None = None) -> list:
     if isinstance(names, str):
         names = [names]
     out = [get_scheme(n) for n in names]
+    if not out:
+        raise InputError("schemes is empty: name at least one scheme, or pass None for all")
     if periodic is False:
         bad = [s.name for s in out if s.periodic_only]
         if bad:
@@ -178,6 +180,8 @@ def grid_list(grids) -> list:
     out = [int(g) for g in grids]
     if not out:
         raise InputError("grids must name at least one grid (points per turn)")
+    if len(set(out)) != len(out):
+        raise InputError(f"grids names a grid twice ({out}): the observed order needs distinct steps")
     return out
 
 
