@@ -79,11 +79,11 @@ from .conditioning import (
     lost_digits,
     warn_lost_digits,
 )
+from .errors import InputError, warn
 from .quantities import input_quantity, point_quantities, unknown_quantities
 from .units import input_rates
 from .complex_solve import COMPLEX_STEP, complex_positions, complex_step, complex_tangent
 from .sweep import COND_MAX, SingularityWarning, check_sweep, record_evaluations
-from .errors import InputError, warn
 
 __all__ = [
     "derivatives",

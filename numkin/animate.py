@@ -34,13 +34,13 @@ from pathlib import Path
 
 import numpy as np
 
+from .errors import InputError
 from .figures.drawing import (
     arrow_scale, arrow_vectors, block_corners, block_directions, bounds, draw_ground, guided_points, link_colors,
     scale_text, slider_points, tip_offset,
 )
 from .figures.labels import deg_text, input_name, length_unit, mechanism_title, sym
 from .figures.style import close, style
-from .errors import InputError
 
 __all__ = ["animate", "frame_indices", "full_turn"]
 

@@ -47,9 +47,9 @@ import numpy as np
 
 from . import derivatives as _d
 from .analytic import check_sweep, derivatives, input_rates, point_derivatives
+from .errors import InputError
 from .kinematics import PARTNER, prepare_rows, scheme_for, sweep_grid
 from .quantities import Quantity, catalogue, input_quantity
-from .errors import InputError
 
 __all__ = ["Comparison", "compare", "quantities", "DEFAULT_SCHEMES"]
 

@@ -17,10 +17,10 @@ import numbers
 
 import numpy as np
 
+from .errors import InputError, warn
 from .march import deg_text
 from .newton import iterate
 from .sweep import COND_MAX, SingularityWarning, check_sweep, record_evaluations
-from .errors import InputError, warn
 
 __all__ = ["complex_step", "complex_positions", "complex_tangent", "COMPLEX_STEP"]
 

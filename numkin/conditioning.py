@@ -19,9 +19,9 @@ import math
 
 import numpy as np
 
+from .errors import InputError, warn
 from .quantities import catalogue
 from .sweep import COND_MAX, SingularityWarning
-from .errors import InputError, warn
 
 __all__ = [
     "DIGITS_RTOL",

@@ -68,8 +68,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import stencils as _st
-from .schemes import BUILT_IN, SCHEMES, Scheme, get_scheme
 from .errors import InputError
+from .schemes import BUILT_IN, SCHEMES, Scheme, get_scheme
 
 __all__ = [
     "Scheme",

@@ -50,9 +50,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import derivatives as _d
+from . import schemes as _schemes
 from .analytic import check_sweep, input_rates, kinematics_frame
 from .conditioning import DIGITS_RTOL, rounding_error, warn_rounding
-from . import schemes as _schemes
 from .errors import InputError, warn
 
 __all__ = ["finite_difference", "rounding_error", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "PARTNER"]

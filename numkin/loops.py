@@ -8,10 +8,11 @@ given directly as sympy residual expressions.
 """
 
 from __future__ import annotations
-from .errors import InputError
 
 from collections.abc import Mapping
 from typing import Callable, Iterable, Sequence
+
+from .errors import InputError
 
 __all__ = ["Loop", "as_symbol", "SymbolName", "LazyPoints", "describe", "check_lengths", "check_symbols",
            "default_length_scale"]

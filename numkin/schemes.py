@@ -47,8 +47,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Callable
 
-from .stencils import Rule, Stencil
 from .errors import InputError
+from .stencils import Rule, Stencil
 
 __all__ = [
     "Scheme",

@@ -35,8 +35,9 @@ from fractions import Fraction
 from functools import cached_property, lru_cache, reduce
 
 import numpy as np
-from .errors import InputError
 from numpy.typing import ArrayLike, NDArray
+
+from .errors import InputError
 
 __all__ = ["Stencil", "Rule", "weights", "apply_rule", "check_step", "validated"]
 

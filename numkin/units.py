@@ -25,8 +25,9 @@ import numbers
 import re
 
 import numpy as np
-from .errors import InputError
 from numpy.typing import ArrayLike, NDArray
+
+from .errors import InputError
 
 __all__ = [
     "finite",

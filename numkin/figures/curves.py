@@ -7,13 +7,13 @@ from typing import Iterable, Mapping, Sequence
 
 import numpy as np
 
+from ..errors import InputError
 from .labels import (
     check_points, check_unknown, deg_text, degree_ticks, frame_column, frame_input, input_label, input_name,
     is_angle, length_unit, mechanism_title, quantity_labels, rate_columns, sig5, sym, tex, uniform_step, unit_of,
 )
 from .ends import END_LABEL, end_mask, frame_ends, scheme_reach
 from .style import CYCLE, SOURCE_STYLE, new_figure, shared_doc, source_label, source_style, style
-from ..errors import InputError
 
 __all__ = ["acceleration_comparison", "derivative", "difference", "kinematics", "position", "slider"]
 

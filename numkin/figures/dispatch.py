@@ -9,12 +9,12 @@ from typing import Sequence
 
 import numpy as np
 
+from ..errors import InputError, warn
 from .curves import acceleration_comparison, derivative, difference, kinematics, position, slider
 from .drawing import mechanism
 from .error_plots import convergence, jacobian_of, newton_residuals, roundoff, work_precision
 from .labels import check_unknown, input_name, is_angle, rate_columns, table_column
 from .style import METADATA, gc_paused, save
-from ..errors import InputError, warn
 
 __all__ = ["CAPTIONS", "FIGURES", "FigureSkipped", "caption", "parse_spec", "render"]
 

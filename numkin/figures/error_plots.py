@@ -7,10 +7,10 @@ import re
 
 import numpy as np
 
+from ..errors import InputError
 from .labels import sym, table_column, tex
 from .registries import is_second_derivative
 from .style import CYCLE, marker_style, new_figure, shared_doc, source_label, source_style, style
-from ..errors import InputError
 
 __all__ = ["convergence", "jacobian_of", "newton_residuals", "on_curve", "quantity_of", "roundoff", "table_caption",
            "work_precision"]

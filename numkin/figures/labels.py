@@ -16,6 +16,7 @@ import math
 import re
 
 import numpy as np
+
 from ..errors import InputError
 from ..quantities import GREEK, tex
 

@@ -22,8 +22,8 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Sequence
 
-from .registries import family_of
 from ..errors import InputError
+from .registries import family_of
 
 __all__ = [
     "DOC_PARTS",

@@ -40,13 +40,13 @@ import importlib
 import pkgutil
 import types
 
+from ..errors import InputError
 from .base import Dimension, LinkageSpec
 from .chained_four_bars import chained_four_bars
 from .four_bar import four_bar, grashof
 from .quick_return import quick_return
 from .six_bar import six_bar
 from .slider_crank import slider_crank
-from ..errors import InputError
 
 __all__ = [
     "four_bar", "slider_crank", "quick_return", "six_bar", "chained_four_bars", "grashof",

@@ -21,8 +21,8 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 from typing import Callable
 
-from ..units import finite
 from ..errors import InputError
+from ..units import finite
 
 __all__ = ["Dimension", "LinkageSpec", "DIMENSION_KINDS", "length", "pair", "finite", "finish", "build"]
 

@@ -6,8 +6,8 @@ import math
 
 import numpy as np
 
-from .base import Dimension, LinkageSpec, build, length
 from ..errors import InputError
+from .base import Dimension, LinkageSpec, build, length
 
 __all__ = ["four_bar", "grashof", "SPEC"]
 

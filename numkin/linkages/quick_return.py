@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import math
 
-from .base import Dimension, LinkageSpec, build, length
 from ..errors import InputError
+from .base import Dimension, LinkageSpec, build, length
 
 __all__ = ["quick_return", "SPEC"]
 

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import math
 
-from .base import Dimension, LinkageSpec, build, finite, length, pair
 from ..errors import InputError
+from .base import Dimension, LinkageSpec, build, finite, length, pair
 
 __all__ = ["six_bar", "SPEC"]
 

@@ -263,9 +263,8 @@ def scene_report(scene, *, repeat: int | None = None) -> dict:
         options["omega"] = 1.0
     if repeat:
         options["repeat"] = repeat
-    from ..pipeline import in_scene_terms
-
     from ..errors import InputError, NumkinError
+    from ..pipeline import in_scene_terms
 
     with in_scene_terms(scene, mech, tables=True):
         try:

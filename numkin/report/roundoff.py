@@ -9,12 +9,12 @@ import numpy as np
 
 from .. import analytic
 from ..derivatives import get_scheme
+from ..errors import InputError
 from ..schemes import point_stencil
 from .study import (
     EPS, UNIT, branch_point, deg_text, exact_derivatives, order_text, position_record, quantity_labels, set_caption,
     set_views, silenced, solve_points, table_quantities, unknown_index,
 )
-from ..errors import InputError
 
 __all__ = [
     "ROUNDOFF_SCHEMES",

@@ -37,8 +37,8 @@ import numpy as np
 
 from .. import analytic, kinematics, units
 from ..derivatives import SCHEMES, get_scheme
-from ..sweep import Sweep
 from ..errors import InputError
+from ..sweep import Sweep
 
 __all__ = [
     "EPS",

@@ -8,12 +8,12 @@ from typing import Iterable, Sequence
 import numpy as np
 
 from .. import analytic
+from ..errors import InputError
 from .counting import count_evaluations, stencil_evaluations, sweep_evaluations
 from .study import (
     DEFAULT_GRIDS, TURN, UNIT, VARIES, differenced, exact_derivatives, grid_inputs, grid_positions, grid_study,
     median_time, set_caption, set_views, silenced, solve_sweep, table_quantities, timing_repeats,
 )
-from ..errors import InputError
 
 __all__ = [
     "work_precision_table",

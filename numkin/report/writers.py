@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Mapping, Sequence
 
 import numpy as np
+
 from ..errors import InputError
 
 __all__ = [
