@@ -50,6 +50,7 @@ from .analytic import check_sweep, derivatives, input_rates, point_derivatives
 from .errors import InputError
 from .kinematics import PARTNER, prepare_rows, scheme_for, sweep_grid
 from .quantities import Quantity, catalogue, input_quantity
+from .schemes import own_stencil_points
 
 __all__ = ["Comparison", "compare", "quantities", "DEFAULT_SCHEMES"]
 
@@ -252,17 +253,12 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
         else:
             value = w**2 * rows.apply(s)[0] + a * rows.apply(_d.get_scheme(PARTNER[s.name]))[0]
         # the rows where the scheme's own stencil applies: on an open grid its ends take one-sided stencils
-        keep = np.ones(t.size, dtype=bool)
-        if rows.periodic:
-            keep[-1] = False  # the last row repeats the first
-        else:
-            before, after = s.reach
-            if order == 2 and np.any(a != 0):  # alpha also differences the first derivative
-                b2, a2 = _d.get_scheme(PARTNER[s.name]).reach
-                before, after = max(before, b2), max(after, a2)
-            keep[:before] = False
-            keep[t.size - after:] = False
-            ends_of[s.name] = (int(before), int(after))
+        used = [s, _d.get_scheme(PARTNER[s.name])] if order == 2 and np.any(a != 0) else [s]  # alpha: dq too
+        own = own_stencil_points(used, t.size, rows.periodic)
+        keep = np.zeros(t.size, dtype=bool)
+        keep[own] = True
+        if not rows.periodic:
+            ends_of[s.name] = (int(own.start), int(t.size - own.stop))
         if not keep.any():
             keep[:] = True
         err = np.abs(value - exact)

@@ -64,6 +64,7 @@ __all__ = [
     "get_scheme",
     "lookup",
     "point_stencil",
+    "own_stencil_points",
 ]
 
 
@@ -346,6 +347,31 @@ def unregister(name: str) -> None:
         raise InputError(f"{name!r} is a built-in scheme and cannot be removed")
     if _load().pop(name, None) is None:
         raise InputError(f"no scheme {name!r} was registered")
+
+
+def own_stencil_points(schemes, n_points: int, periodic: bool) -> slice:
+    """The points of a sweep where every one of `schemes` applies its own (interior) stencil.
+
+    One period of a periodic grid (its last point repeats the first); on
+    an open grid all but the first and last points the schemes' largest
+    :attr:`Scheme.reach` leaves out, where one-sided end stencils stand in.
+    The one rule of :mod:`numkin.compare`, :mod:`numkin.report` and the
+    figures for telling end values apart.
+
+    Examples
+    --------
+    >>> own_stencil_points([get_scheme("five_point")], 181, periodic=False)
+    slice(2, 179, None)
+    >>> own_stencil_points([get_scheme("forward"), get_scheme("second_difference")], 181, periodic=False)
+    slice(1, 180, None)
+    >>> own_stencil_points([get_scheme("centred")], 361, periodic=True)
+    slice(0, 360, None)
+    """
+    if periodic:
+        return slice(0, n_points - 1)
+    before = max((s.reach[0] for s in schemes), default=0)
+    after = max((s.reach[1] for s in schemes), default=0)
+    return slice(before, n_points - after)
 
 
 def lookup(name: str) -> Scheme:

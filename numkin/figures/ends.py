@@ -32,13 +32,10 @@ def scheme_reach(names: Iterable[str]) -> tuple[int, int]:
     >>> scheme_reach(["second_difference"]), scheme_reach(["forward"]), scheme_reach(["richardson"])
     ((1, 1), (0, 1), (2, 2))
     """
-    from ..derivatives import get_scheme
+    from ..schemes import get_scheme, own_stencil_points
 
-    before = after = 0
-    for name in names:
-        b, a = get_scheme(name).reach
-        before, after = max(before, b), max(after, a)
-    return before, after
+    own = own_stencil_points([get_scheme(name) for name in names], 0, periodic=False)
+    return own.start, -own.stop
 
 
 def frame_ends(key: str, frame, derivative: int) -> tuple[int, int]:

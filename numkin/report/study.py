@@ -38,6 +38,7 @@ import numpy as np
 from .. import analytic, kinematics, units
 from ..derivatives import SCHEMES, get_scheme
 from ..errors import InputError
+from ..schemes import own_stencil_points
 from ..sweep import Sweep
 
 __all__ = [
@@ -414,20 +415,8 @@ def exact_derivatives(sweep: Sweep, quiet: bool = True, *, fresh: bool = False) 
 
 
 def stencil_points(scheme, n_points: int, periodic: bool) -> slice:
-    """The points of a sweep where `scheme`'s own stencil applies: one period of a periodic grid (its
-    last point repeats the first); on an open grid all but the first and last points its reach leaves
-    outside, where one-sided end stencils stand in (:attr:`numkin.schemes.Scheme.reach`).
-
-    Examples
-    --------
-    >>> from numkin.schemes import SCHEMES
-    >>> stencil_points(SCHEMES["five_point"], 181, False), stencil_points(SCHEMES["forward"], 181, False)
-    (slice(2, 179, None), slice(0, 180, None))
-    """
-    if periodic:
-        return slice(0, n_points - 1)
-    left, right = scheme.reach
-    return slice(left, n_points - right)
+    """Where `scheme`'s own stencil applies (:func:`numkin.schemes.own_stencil_points` of one scheme)."""
+    return own_stencil_points([scheme], n_points, periodic)
 
 
 def order_text(scheme) -> str:
