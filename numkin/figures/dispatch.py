@@ -211,22 +211,15 @@ def _scheme_columns(table, inp: str, unit) -> list:
     """``(column, scheme)`` of a comparison table's scheme estimates.
 
     From ``table.attrs["quantities"]`` (column -> Quantity, whose source is
-    the scheme); only a table without them is read by its headers
-    ``"<scheme> [<unit>]"``.
+    the scheme), as :func:`numkin.compare.compare` sets them; a table without
+    them gives none (its headers are never parsed back into schemes).
     """
     from ..quantities import Quantity
 
     known = table.attrs.get("quantities") or {}
-    if known:
-        return [(c, q.source) for c, q in known.items()
-                if isinstance(q, Quantity) and c in table.columns and q.source not in (inp, "analytic", "solved")
-                and (unit is None or q.unit == unit)]
-    out = []
-    for c in table.columns:
-        m = re.fullmatch(r"(.+?) \[(.*)\]", str(c))
-        if m and m.group(1) not in (inp, "analytic") and " " not in m.group(1) and (unit is None or m.group(2) == unit):
-            out.append((c, m.group(1)))
-    return out
+    return [(c, q.source) for c, q in known.items()
+            if isinstance(q, Quantity) and c in table.columns and q.source not in (inp, "analytic", "solved")
+            and (unit is None or q.unit == unit)]
 
 
 def _frames_from_comparisons(comparisons, sweep) -> dict:

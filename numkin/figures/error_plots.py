@@ -8,7 +8,7 @@ import re
 import numpy as np
 
 from ..errors import InputError
-from .labels import sym, table_column, tex
+from .labels import sym, table_column
 from .registries import is_second_derivative
 from .style import CYCLE, marker_style, new_figure, shared_doc, source_label, source_style, style
 
@@ -152,7 +152,7 @@ def convergence(table, *, error: str = "max abs error"):
     hcol = table_column(table, "h [", what)
     ecol = table_column(table, error, what)
     scol = table_column(table, "scheme", what)
-    h_unit = str(hcol)[3:-1]
+    h_unit = (table.attrs.get("units") or {}).get(hcol)
     groups = _groups(table)
     orders = {1, 2, 4}
     if "formal order" in table.columns:
@@ -189,7 +189,7 @@ def convergence(table, *, error: str = "max abs error"):
             log_scale(ax, "xy")
             ax.set_ylim(ylo, yhi)
             ax.set_xlim(hmin / 1.6, hmax * 1.3)
-            ax.set_xlabel(f"step $h$ [{h_unit}]")
+            ax.set_xlabel(f"step $h$ [{h_unit}]" if h_unit else "step $h$")
             ax.set_ylabel(f"{error} [{unit}]")
             ax.set_title(f"{qtext}" if qtext else "error against step")
             ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.17), ncols=2, fontsize=7.5)
@@ -261,8 +261,8 @@ def work_precision(table, *, work: str = "work", time: str | None = None, error:
     what = "work-precision table"
     if time is not None:
         xcol = table_column(table, time, what)
-        unit = re.search(r"\[(.*?)\]", str(xcol))
-        xlabel = f"{time} [{unit.group(1) if unit else 's'}] (varies between runs)"
+        unit = (table.attrs.get("units") or {}).get(xcol)  # as the table says it, never read from the header
+        xlabel = f"{time}{f' [{unit}]' if unit else ''} (varies between runs)"
         title = "error against run time, each method from coarse to fine grid (times vary between runs)"
     else:
         xcol = table_column(table, work, what, required=False)

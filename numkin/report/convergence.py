@@ -131,6 +131,7 @@ def convergence_table(
 
     df = pd.DataFrame(rows)
     df.attrs["quantities"] = table_quantities(mechanism, quantity)
+    df.attrs["units"] = {"h [deg]": "deg"}  # what a figure writes on its axis
     ends_col = None if periodic else f"ends abs error {UNIT}"
     set_views(df, [
         ("error over the sweep", ["scheme", "formal order", "points per turn", "h [deg]",

@@ -208,6 +208,7 @@ def work_precision_table(
                 rows.append(row)
     df = pd.DataFrame(rows)
     df.attrs["quantities"] = table_quantities(mechanism, quantity)
+    df.attrs["units"] = {c: "ms" for c in df.columns if " time [ms] " in c} | {"h [deg]": "deg"}
     if repeat:
         df[f"Pareto front {VARIES}"] = _pareto(df, f"sweep + derivative time [ms] {VARIES}")
     df[_PARETO_WORK] = _pareto(df, _WORK)
