@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from .march import COND_TANGENT, MAX_CORRECTION, Continuation, deg_text
-from .predictors import QUINTIC_MIN_POINTS, hermite, node_curvatures
+from .predictors import QUINTIC_MIN_POINTS, free_curvatures, hermite, node_curvatures
 from .newton import COND_MAX, COND_WARN, colmax as _colmax, is_singular, residual_floor
 from .sweep import SweepEvent, SingularityWarning
 from .errors import warn
@@ -33,6 +33,10 @@ def nodes_of(t: np.ndarray, max_step: float) -> np.ndarray:
     return idx
 
 
+
+#: Whether segments of fewer than QUINTIC_MIN_POINTS points are predicted by the quintic on
+#: :func:`numkin.predictors.free_curvatures` (else by the cubic).
+FREE_CURVATURES = True
 
 #: Grid points solved together in one Newton batch: the batch's temporaries stay this
 #: many columns wide however long the sweep.
@@ -63,8 +67,10 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
     ok = np.empty(N, dtype=bool)
     residual = np.empty(N)
     jac = None
-    # few points per segment: the curvatures would cost more than the iteration they save
-    D2n = node_curvatures(ctx, t, X, D, nodes) if N >= QUINTIC_MIN_POINTS * nodes.size else None
+    # many points per segment: curvatures from the tangent field (a few kernel calls on the nodes);
+    # fewer: from the nodes' values and tangents alone
+    D2n = (node_curvatures(ctx, t, X, D, nodes) if N >= QUINTIC_MIN_POINTS * nodes.size
+           else free_curvatures(t, X, D, nodes) if FREE_CURVATURES else None)
     for c0 in range(0, N, CHUNK):
         c = slice(c0, min(N, c0 + CHUNK))
         fm, kc, tc = fine_mask[c], k[c], t[c]
