@@ -52,9 +52,11 @@ CROSSING_STEP = 1e-5
 CORRECTOR_ITERATIONS = 12
 #: Trial steps allowed for one march between nodes (accepted or refused).
 MAX_TRIALS = 100_000
-#: A batch iteration goes on with its active columns alone once they are at most this fraction of
-#: the batch (:func:`numkin.unrolled.unrolled_newton_batch`; the same floats as at full width).
-GATHER = 0.25
+#: Fraction of a written-out batch's columns at or below which its iteration goes on with the active
+#: columns alone (:func:`numkin.unrolled.unrolled_newton_batch`; the same floats as at full width), or
+#: None: never. None, since a batch written out has under 2000 columns (``COMPACT_MIN``), where every
+#: array operation costs about the same whatever its width and the gathering costs what it saves.
+GATHER = None
 #: Default largest input step (rad) between the sequentially solved nodes of a sweep.
 DEFAULT_MAX_STEP = math.radians(30.0)
 #: A step that shrinks to nothing where the condition number exceeds this (or has grown
