@@ -292,8 +292,9 @@ class Continuation:
                                                self.tol, floor, has_converged, gather=GATHER)
                 if out is not None:
                     converged, _, iterations, v, evaluations = out
-                    self.nfev += evaluations
-                    self.njev += evaluations
+                    points = evaluations * N if GATHER is None else evaluations  # calls, or points when gathering
+                    self.nfev += points
+                    self.njev += points
                     return x, converged, iterations, stack_rows(v[: self.n], N), v[self.n :]
 
             def evaluate(z, idx):

@@ -414,11 +414,13 @@ def hermite(tc, t, X, D, D2n, nodes, k, terms=None):
     Quintic (values, first and second derivatives at both nodes: error of
     order h^6) on a segment whose nodes both have a curvature in ``D2n``
     (n, nodes; NaN where unknown), cubic (values and tangents: order h^4)
-    on the others (on every segment where ``D2n`` is None); ``terms``: the
-    quintic's :func:`quintic_terms`, if known (``D2n`` is then not read).
-    ``k`` is the left node of every input (its index in ``nodes``), ``t``
-    the sweep's inputs. All rows at once where they are few, else row by
-    row, so that few temporaries are alive at once.
+    on the others (on every segment where ``D2n`` is None). ``terms``: the
+    quintic as the cubic plus :func:`quintic_terms` ``(alpha, beta)``
+    instead (``D2n`` is then not read; the same polynomials, fewer array
+    operations). ``k`` is the left node of every input (its index in
+    ``nodes``), ``t`` the sweep's inputs. All rows at once where they are
+    few (:data:`HERMITE_BLOCK`), else row by row, so that few temporaries
+    are alive at once.
 
     Examples
     --------
@@ -430,8 +432,6 @@ def hermite(tc, t, X, D, D2n, nodes, k, terms=None):
     >>> hermite(t, t, X, D, np.full((1, 2), np.nan), nodes, np.array([0, 0, 0, 1])).tolist()
     [[0.0, 0.125, 1.0, 8.0]]
     """
-    if terms is None and D2n is not None:
-        terms = quintic_terms(t, X, D, D2n, nodes)
     kb = np.minimum(k + 1, nodes.size - 1)
     a = nodes.take(k)
     b = nodes.take(kb)
@@ -442,14 +442,34 @@ def hermite(tc, t, X, D, D2n, nodes, k, terms=None):
     s /= delta
     del ta
     u = 1.0 - s
-    h01, h10, h11 = cubic_bases(s, u)
-    h10 *= delta
-    h11 *= delta
-    del delta
-    w = None
-    if terms is not None:
+    quintic = None  # cubic everywhere
+    if D2n is not None and terms is None:
+        known = np.isfinite(D2n).all(axis=0)
+        quintic = known.take(k) & known.take(kb)
+    if quintic is not None and quintic.all():
+        h01, h10, h11 = quintic_bases(s, u)
+        c = 0.5 * delta * delta
+        D2 = D2n
+    else:
+        h01, h10, h11 = cubic_bases(s, u)
+        c = None
+        if quintic is not None and quintic.any():
+            q = quintic
+            h01[q], h10[q], h11[q] = quintic_bases(s[q], u[q])
+            c = np.where(q, 0.5 * delta * delta, 0.0)
+            D2 = np.nan_to_num(D2n, nan=0.0)
+    h20 = h21 = w = None
+    if c is not None:
+        s2 = s * s
+        h20 = s2 * u * u * u * c  # s^2 (1 - s)^3 / 2, times delta^2
+        h21 = s2 * s * u * u * c  # s^3 (1 - s)^2 / 2, times delta^2
+        del s2
+    elif terms is not None:
         w = s * u
         w *= w  # s^2 (1 - s)^2
+    h10 *= delta
+    h11 *= delta
+    del delta, u
     n = X.shape[0]
     out = np.empty((n, tc.size))
     for rows in [slice(0, n)] if n * tc.size <= HERMITE_BLOCK else [slice(i, i + 1) for i in range(n)]:
@@ -466,7 +486,14 @@ def hermite(tc, t, X, D, D2n, nodes, k, terms=None):
         D[rows].take(b, axis=1, out=dd)
         dd *= h11
         row += dd
-        if w is not None:
+        if h20 is not None:
+            D2[rows].take(k, axis=1, out=dd)
+            dd *= h20
+            row += dd
+            D2[rows].take(kb, axis=1, out=dd)
+            dd *= h21
+            row += dd
+        elif w is not None:  # s^2 (1 - s)^2 (alpha + beta s)
             terms[1][rows].take(k, axis=1, out=dd)
             dd *= s
             part = terms[0][rows].take(k, axis=1)
