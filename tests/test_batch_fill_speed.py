@@ -22,14 +22,13 @@ from numkin.predictors import free_curvatures, free_quintic, hermite, quintic_pa
 
 
 def _four_bar_closed_form(t2, r1, r2, r3, r4):
-    """Open-branch angles of coupler and rocker by circle intersection (an independent reference)."""
-    ax, ay = r2 * np.cos(t2), r2 * np.sin(t2)
-    dx, dy = r1 - ax, -ay
-    d = np.hypot(dx, dy)
-    gamma = np.arccos((r3**2 + d**2 - r4**2) / (2 * r3 * d))
-    t3 = np.arctan2(dy, dx) + gamma
-    t4 = np.arctan2(ay + r3 * np.sin(t3), ax + r3 * np.cos(t3) - r1)
-    return t3, t4
+    """Open-branch angles of coupler and rocker by circle intersection, in complex numbers (an independent
+    reference): crank pin A, rocker pivot O4 = r1, the coupler turned from A->O4 by the triangle's angle."""
+    a = r2 * np.exp(1j * t2)
+    to_o4 = r1 - a
+    d = np.abs(to_o4)
+    t3 = np.angle(to_o4) + np.arccos((r3 * r3 + d * d - r4 * r4) / (2.0 * r3 * d))
+    return t3, np.angle(a + r3 * np.exp(1j * t3) - r1)
 
 
 def _wrapped(a, b):
@@ -83,11 +82,9 @@ def test_stopping_rule_on_some_columns_is_the_rule_masked():
 
 
 def _quintic(t):
-    c = [0.3, -0.2, 0.1, 0.05, -0.02, 0.004]
-    x = sum(ck * t**k for k, ck in enumerate(c))
-    d = sum(k * ck * t ** (k - 1) for k, ck in enumerate(c) if k)
-    d2 = sum(k * (k - 1) * ck * t ** (k - 2) for k, ck in enumerate(c) if k > 1)
-    return x, d, d2
+    """A quintic's values, first and second derivatives at ``t``."""
+    p = np.polynomial.Polynomial([0.7, 0.1, -0.3, 0.2, 0.03, -0.011])
+    return p(t), p.deriv()(t), p.deriv(2)(t)
 
 
 def test_free_curvatures_are_exact_for_a_quintic_on_uneven_nodes():
