@@ -18,7 +18,7 @@ if TYPE_CHECKING:  # pragma: no cover - for annotations only
     from .march import Continuation
 
 __all__ = ["predict", "unrolled_predict", "hermite", "node_curvatures", "free_curvatures", "cubic_bases", "quintic_bases", "MAX_PREDICTION",
-           "SANE_DISTANCE", "QUINTIC_MIN_POINTS", "HERMITE_BLOCK", "QUINTIC_GAIN_LIMIT", "quintic_pays", "quintic_terms", "free_quintic", "FREE_QUINTIC_NODES"]
+           "SANE_DISTANCE", "QUINTIC_MIN_POINTS", "HERMITE_BLOCK", "QUINTIC_GAIN_FLOOR", "QUINTIC_GAIN_LIMIT", "quintic_pays", "quintic_terms", "free_quintic", "FREE_QUINTIC_NODES"]
 
 #: Largest predicted change of an unknown in one step (scaled), 1.0: with the largest accepted
 #: correction (:data:`numkin.march.MAX_CORRECTION`, 0.3) well below pi, an accepted point is never a
@@ -31,11 +31,12 @@ SANE_DISTANCE = 0.2
 #: nodes' curvatures cost a few kernel calls on the nodes; a prediction error of order h^6 instead of
 #: h^4 saves a Newton iteration on every point once the segments hold this many).
 QUINTIC_MIN_POINTS = 100
-#: Largest scaled difference of the quintic and cubic predictions at the middle of a segment
-#: (an estimate of the cubic's error, rad) at which the quintic on free curvatures is used:
-#: 1e-3, where the quintic's own error is left small enough for Newton to need one iteration
-#: fewer (a four-bar at 30 degree nodes: 2.6e-4; the chained homework, 3.7e-3, keeps stragglers
-#: either way).
+#: The band of the largest scaled difference of the quintic and cubic predictions at the middle of a
+#: segment (an estimate of the cubic's error, rad) in which the quintic on free curvatures is used:
+#: below 2e-4 the cubic leaves Newton no third iteration either, above 1e-3 the quintic's own error
+#: still leaves one (on the built-in linkages at 30 degree nodes: a slider-crank 1.5e-4 to 1.8e-4, the
+#: four-bars and the six-bar 2.3e-4 to 3.5e-4, the chained homework and the quick-return 1.1e-3 and more).
+QUINTIC_GAIN_FLOOR = 2e-4
 QUINTIC_GAIN_LIMIT = 1e-3
 #: Entries (unknowns times inputs) up to which :func:`hermite` builds all rows at once (fewer array
 #: calls), above which row by row (fewer temporaries alive).
@@ -291,27 +292,32 @@ def quintic_terms(t, X, D, D2n, nodes):
     return alpha, beta
 
 
-def quintic_pays(gap, inv_xs, limit=None):
+def quintic_pays(gap, inv_xs, floor=None, limit=None):
     """Whether the quintic predictor is expected to save the batch a Newton iteration over the cubic:
-    where the two differ by at most ``limit`` (scaled; default :data:`QUINTIC_GAIN_LIMIT`) at the
-    middle of every segment; ``gap`` (n, nodes) is 16 times that difference, ``alpha + beta / 2``
+    where the two differ by more than ``floor`` and at most ``limit`` (scaled; defaults
+    :data:`QUINTIC_GAIN_FLOOR`, :data:`QUINTIC_GAIN_LIMIT`) at the middle of the segments (the largest
+    difference); ``gap`` (n, nodes) is 16 times that difference, ``alpha + beta / 2``
     (:func:`quintic_terms`, :func:`free_quintic`).
 
-    The difference estimates the cubic's error; where it is small the
-    quintic's is smaller still and the last iteration goes, where it is
-    large the quintic's own error still leaves one (and the quintic costs
-    more than it saves). NaN counts as small (a segment predicted by the cubic).
+    The difference estimates the cubic's error: where it is small the cubic
+    needs no more iterations than the quintic; in between, the quintic's
+    error is small enough for the last iteration to go; where it is large
+    the quintic's own error still leaves one (and the quintic costs more than
+    it saves). NaN counts as nothing (a segment predicted by the cubic).
 
     Examples
     --------
     >>> import numpy as np
-    >>> quintic_pays(np.array([[1e-3, -2e-3, np.nan]]), [1.0]), quintic_pays(np.array([[0.5, 0.0]]), [1.0])
-    (True, False)
+    >>> [quintic_pays(np.array([[g, -g / 2, np.nan]]), [1.0]) for g in (1e-3, 8e-3, 0.5)]
+    [False, True, False]
     """
     gap = np.abs(gap)
     if any(w != 1.0 for w in inv_xs):
         gap *= np.asarray(inv_xs)[:, None]
-    return not (gap > 16.0 * (QUINTIC_GAIN_LIMIT if limit is None else limit)).any()
+    largest = float(gap.max()) / 16.0
+    if largest != largest:  # NaN somewhere: the largest of the others
+        largest = float(np.nanmax(gap)) / 16.0 if np.isfinite(gap).any() else 0.0
+    return (QUINTIC_GAIN_FLOOR if floor is None else floor) < largest <= (QUINTIC_GAIN_LIMIT if limit is None else limit)
 
 
 def free_quintic(t, X, D, nodes):

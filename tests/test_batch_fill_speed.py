@@ -154,8 +154,11 @@ def test_quintic_is_chosen_where_it_saves_an_iteration():
     t3, t4 = _four_bar_closed_form(t, 4, 1, 3, 3)
     assert max(_wrapped(sweep["theta3"], t3).max(), _wrapped(sweep["theta4"], t4).max()) < 1e-13
     assert sweep.iterations[fine].max() == 2  # the cubic leaves some points a third iteration
-    # the choice: the four-bar's quintic changes the prediction by 3e-4 rad at most, the chained homework's by 4e-3
-    for build, pays in ((lambda: mech, True), (linkages.chained_four_bars, False)):
+    # the choice: the four-bar's quintic changes the prediction by 3e-4 rad at most (its cubic leaves 30 points a
+    # third iteration), the chained homework's by 4e-3 (a third iteration either way), a slider-crank's by 1.5e-4
+    # (none either way)
+    for build, pays in ((lambda: mech, True), (linkages.chained_four_bars, False),
+                        (lambda: linkages.slider_crank(1.0, 3.0, 0.5), False)):
         s = build().sweep(t)
         D = np.full_like(s.values, np.nan)
         ctx = Continuation(build(), "symbolic", 1e-12, math.radians(30.0), "raise")
