@@ -25,12 +25,10 @@ def nodes_of(t: np.ndarray, max_step: float) -> np.ndarray:
     """Grid indices marched sequentially: at most ``max_step`` apart where the grid allows."""
     if t.size <= 2:
         return np.arange(t.size)
-    h = np.abs(np.diff(t)).max()
+    h = float(np.abs(t[1:] - t[:-1]).max())
     every = max(1, int(max_step / h * (1.0 + 1e-9))) if h > 0 else 1
-    idx = np.arange(0, t.size, every)
-    if idx[-1] != t.size - 1:
-        idx = np.append(idx, t.size - 1)
-    return idx
+    last = t.size - 1
+    return np.arange(0, t.size, every) if last % every == 0 else np.array([*range(0, last, every), last])
 
 
 
