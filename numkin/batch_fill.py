@@ -1,8 +1,9 @@
 """The grid points between a sweep's nodes, solved in one Newton batch, and the sweep's singular points.
 
 A Hermite predictor from the nodes' values, tangents and curvatures (quintic;
-cubic next to a node whose curvature is unknown), then Newton on all points
-at once; points that fail the acceptance tests, and every
+cubic next to a node whose curvature is unknown; with few points per node,
+curvatures from the neighbouring nodes, used where they save an iteration),
+then Newton on all points at once; points that fail the acceptance tests, and every
 segment where batch points land on another turn, are marched point by point.
 """
 

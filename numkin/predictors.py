@@ -4,7 +4,9 @@ Sequential steps (:func:`predict`): the tangent line, plus the cubic through
 the previous point and its tangent, bounded so that no prediction can blow
 up. The batch between nodes (:func:`hermite`): Hermite polynomials through
 the nodes' values and tangents (cubic), and their curvatures where known
-(quintic, from :func:`node_curvatures`).
+(quintic, from :func:`node_curvatures`, or, with few points per node, from
+the neighbouring nodes: :func:`free_curvatures`, :func:`free_quintic`, chosen
+by :func:`quintic_pays`).
 """
 
 from __future__ import annotations
