@@ -1,8 +1,9 @@
 """The grid points between a sweep's nodes, solved in one Newton batch, and the sweep's singular points.
 
 A Hermite predictor from the nodes' values, tangents and curvatures (quintic;
-cubic next to a node whose curvature is unknown), then Newton on all points
-at once; points that fail the acceptance tests, and every
+cubic next to a node whose curvature is unknown; with few points per node,
+curvatures from the neighbouring nodes, used where they save an iteration),
+then Newton on all points at once; points that fail the acceptance tests, and every
 segment where batch points land on another turn, are marched point by point.
 """
 
@@ -13,7 +14,7 @@ import math
 import numpy as np
 
 from .march import COND_TANGENT, MAX_CORRECTION, Continuation, deg_text
-from .predictors import QUINTIC_MIN_POINTS, hermite, node_curvatures
+from .predictors import QUINTIC_MIN_POINTS, free_quintic, hermite, node_curvatures, quintic_pays
 from .newton import COND_MAX, COND_WARN, colmax as _colmax, is_singular, residual_floor
 from .sweep import SweepEvent, SingularityWarning
 from .errors import warn
@@ -25,14 +26,16 @@ def nodes_of(t: np.ndarray, max_step: float) -> np.ndarray:
     """Grid indices marched sequentially: at most ``max_step`` apart where the grid allows."""
     if t.size <= 2:
         return np.arange(t.size)
-    h = np.abs(np.diff(t)).max()
+    h = float(np.abs(t[1:] - t[:-1]).max())
     every = max(1, int(max_step / h * (1.0 + 1e-9))) if h > 0 else 1
-    idx = np.arange(0, t.size, every)
-    if idx[-1] != t.size - 1:
-        idx = np.append(idx, t.size - 1)
-    return idx
+    last = t.size - 1
+    return np.arange(0, t.size, every) if last % every == 0 else np.array([*range(0, last, every), last])
 
 
+
+#: Whether segments of fewer than QUINTIC_MIN_POINTS points are predicted by the quintic on
+#: :func:`numkin.predictors.free_curvatures` (else by the cubic).
+FREE_CURVATURES = True
 
 #: Grid points solved together in one Newton batch: the batch's temporaries stay this
 #: many columns wide however long the sweep.
@@ -63,12 +66,18 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
     ok = np.empty(N, dtype=bool)
     residual = np.empty(N)
     jac = None
-    # few points per segment: the curvatures would cost more than the iteration they save
-    D2n = node_curvatures(ctx, t, X, D, nodes) if N >= QUINTIC_MIN_POINTS * nodes.size else None
+    # many points per segment: curvatures from the tangent field (a few kernel calls on the nodes);
+    # fewer: from the nodes' values and tangents alone
+    terms = D2n = None
+    if N >= QUINTIC_MIN_POINTS * nodes.size:
+        D2n = node_curvatures(ctx, t, X, D, nodes)
+    elif FREE_CURVATURES and nodes.size >= 3:
+        alpha, beta, gap = free_quintic(t, X, D, nodes)
+        terms = (alpha, beta) if quintic_pays(gap, ctx.inv_xs) else None
     for c0 in range(0, N, CHUNK):
         c = slice(c0, min(N, c0 + CHUNK))
         fm, kc, tc = fine_mask[c], k[c], t[c]
-        x_pred = hermite(tc, t, X, D, D2n, nodes, kc)
+        x_pred = hermite(tc, t, X, D, D2n, nodes, kc, terms)
         x, converged, it, f, jac_c = ctx.newton_batch(x_pred.copy(), tc, fm, overwrite=True)
         # accept a point if Newton converged on the turn of its prediction, the correction is
         # small and no loop changed orientation

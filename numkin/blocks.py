@@ -275,7 +275,8 @@ class BlockStructure:
                 size = b - a
                 if size == 2:
                     i0 = a * n + a
-                    p, q, r, s = (np.real(J[i]) for i in (i0, i0 + 1, i0 + n, i0 + n + 1))
+                    p, q, r, s = (J[i] if isinstance(J[i], np.ndarray) and J[i].dtype.kind == "f" else np.real(J[i])
+                                  for i in (i0, i0 + 1, i0 + n, i0 + n + 1))
                     ca, cb = self._col[a], self._col[a + 1]
                     if self._extreme:  # entries of order one whatever the length scale: no overflow in the squares
                         p, q, r, s = p * ca, q * cb, r * ca, s * cb
@@ -285,11 +286,13 @@ class BlockStructure:
                     fro = p * p + q * q + r * r + s * s
                     sg = np.copysign(1.0, det)
                     u, w = p - sg * s, q + sg * r
-                    ad = np.abs(det)
-                    c = np.maximum((fro + np.sqrt((u * u + w * w) * (fro + 2 * ad))) / (2 * ad), 1.0)
-                    out[k] = c  # c < 1 only by rounding at cond 1
+                    ad2 = 2 * np.abs(det)
+                    c = np.sqrt((u * u + w * w) * (fro + ad2))
+                    c += fro
+                    c /= ad2
+                    out[k] = np.maximum(c, 1.0)  # c < 1 only by rounding at cond 1
                     nan = np.isnan(out[k])  # a zero or non-finite block: singular
-                    if nan.any():
+                    if np.count_nonzero(nan):
                         out[k, nan] = np.inf
                 elif size == 1:
                     e = np.real(J[a * n + a])

@@ -30,7 +30,9 @@ Algorithm
    the two points, is zero.
 3. Fill the grid points between nodes in one batch: a Hermite predictor from
    the nodes' values and tangents (cubic), and, where the segments hold many
-   points, their curvatures too (quintic), then Newton on all points at once.
+   points, their curvatures too (quintic); with fewer points, the quintic on
+   curvatures found from the neighbouring nodes where it is expected to save a
+   Newton iteration; then Newton on all points at once.
    A point that fails the same acceptance tests (converged, small
    correction, the orientation of its nodes) is re-solved sequentially from
    its neighbour; a segment between two nodes where neighbouring batch

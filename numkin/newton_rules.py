@@ -70,7 +70,7 @@ COND_WARN = 1e8
 TOL_MIN = 4.0 * EPS
 
 
-def has_converged(res, step, prev_step, tol, floor=0.0):
+def has_converged(res, step, prev_step, tol, floor=0.0, where=None):
     """The stopping rule of the module docstring, for floats or arrays.
 
     ``res`` is the scaled residual after a step, ``step`` the scaled step
@@ -78,7 +78,15 @@ def has_converged(res, step, prev_step, tol, floor=0.0):
     ``floor`` is the round-off floor of the residual where it exceeds ``tol``
     (angles of many turns evaluate their sines to ``eps * |angle|``): a
     residual at the floor whose steps have stopped shrinking has converged
-    as far as float64 allows.
+    as far as float64 allows. ``where`` (arrays): the columns to test (the
+    others are False), e.g. those a step has just moved.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> has_converged(np.array([1e-13, 1e-13, 1e-9]), np.array([1e-9, 1e-13, 1e-13]), np.array([1e-3, 1e-7, 1e-7]),
+    ...               1e-12, where=np.array([True, False, True])).tolist()
+    [True, False, False]
     """
     if isinstance(res, float):  # one point (the continuation's scalar kernel): plain logic, no arrays
         stuck = step >= 0.9 * prev_step
@@ -86,15 +94,22 @@ def has_converged(res, step, prev_step, tol, floor=0.0):
             return step <= tol or (step <= tol ** (2.0 / 3.0) and step <= 0.25 * prev_step) or stuck
         return stuck and res <= floor
     low = res <= tol
+    if where is not None:
+        low &= where
     no_floor = isinstance(floor, float) and floor <= tol  # the floor clause adds nothing then
-    if no_floor and not low.any():
+    if no_floor and not np.count_nonzero(low):
         return low
-    superlinear = (step <= tol ** (2.0 / 3.0)) & (step <= 0.25 * prev_step)
+    superlinear = step <= tol ** (2.0 / 3.0)
+    superlinear &= step <= 0.25 * prev_step
     stuck = step >= 0.9 * prev_step
-    done = low & ((step <= tol) | superlinear | stuck)
+    done = step <= tol
+    done |= superlinear
+    done |= stuck
+    done &= low
     if no_floor:
         return done
-    return done | ((res <= floor) & stuck)
+    done |= (res <= floor) & stuck if where is None else (res <= floor) & stuck & where
+    return done
 
 
 def residual_floor(x, t=0.0):

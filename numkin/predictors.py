@@ -4,7 +4,9 @@ Sequential steps (:func:`predict`): the tangent line, plus the cubic through
 the previous point and its tangent, bounded so that no prediction can blow
 up. The batch between nodes (:func:`hermite`): Hermite polynomials through
 the nodes' values and tangents (cubic), and their curvatures where known
-(quintic, from :func:`node_curvatures`).
+(quintic, from :func:`node_curvatures`, or, with few points per node, from
+the neighbouring nodes: :func:`free_curvatures`, :func:`free_quintic`, chosen
+by :func:`quintic_pays`).
 """
 
 from __future__ import annotations
@@ -17,8 +19,8 @@ import numpy as np
 if TYPE_CHECKING:  # pragma: no cover - for annotations only
     from .march import Continuation
 
-__all__ = ["predict", "unrolled_predict", "hermite", "node_curvatures", "cubic_bases", "quintic_bases", "MAX_PREDICTION",
-           "SANE_DISTANCE", "QUINTIC_MIN_POINTS"]
+__all__ = ["predict", "unrolled_predict", "hermite", "node_curvatures", "free_curvatures", "cubic_bases", "quintic_bases", "MAX_PREDICTION",
+           "SANE_DISTANCE", "QUINTIC_MIN_POINTS", "HERMITE_BLOCK", "QUINTIC_GAIN_FLOOR", "QUINTIC_GAIN_LIMIT", "quintic_pays", "quintic_terms", "free_quintic", "FREE_QUINTIC_NODES"]
 
 #: Largest predicted change of an unknown in one step (scaled), 1.0: with the largest accepted
 #: correction (:data:`numkin.march.MAX_CORRECTION`, 0.3) well below pi, an accepted point is never a
@@ -31,6 +33,16 @@ SANE_DISTANCE = 0.2
 #: nodes' curvatures cost a few kernel calls on the nodes; a prediction error of order h^6 instead of
 #: h^4 saves a Newton iteration on every point once the segments hold this many).
 QUINTIC_MIN_POINTS = 100
+#: The band of the largest scaled difference of the quintic and cubic predictions at the middle of a
+#: segment (an estimate of the cubic's error, rad) in which the quintic on free curvatures is used:
+#: below 2e-4 the cubic leaves Newton no third iteration either, above 1e-3 the quintic's own error
+#: still leaves one (on the built-in linkages at 30 degree nodes: a slider-crank 1.5e-4 to 1.8e-4, the
+#: four-bars and the six-bar 2.3e-4 to 3.5e-4, the chained homework and the quick-return 1.1e-3 and more).
+QUINTIC_GAIN_FLOOR = 2e-4
+QUINTIC_GAIN_LIMIT = 1e-3
+#: Entries (unknowns times inputs) up to which :func:`hermite` builds all rows at once (fewer array
+#: calls), above which row by row (fewer temporaries alive).
+HERMITE_BLOCK = 8192
 
 
 def predict(t, x, d, t_prev, x_prev, t_new, inv_xs, rate, d_prev=None):
@@ -187,16 +199,236 @@ def node_curvatures(ctx: Continuation, t, X, D, nodes) -> np.ndarray:
     return (tangent[:, :m] - tangent[:, m:]) / (2.0 * e)
 
 
-def hermite(tc, t, X, D, D2n, nodes, k):
+def free_curvatures(t, X, D, nodes):
+    """d2q/dt2 at the nodes (n, nodes) from the nodes' values and tangents alone: no kernel call.
+
+    At every node, the second derivative of the quintic through the values
+    and tangents of three neighbouring nodes (the node and its neighbours;
+    at the first and last node, the two nodes next to it on one side): an
+    error of order h^4 in the spacing h of the nodes, so that the quintic
+    Hermite predictor built on these curvatures errs by order h^6 like the
+    one on exact curvatures (:func:`node_curvatures`), with a larger
+    constant. With uniform spacing h, the middle formula is
+    ``2 (x[k+1] - 2 x[k] + x[k-1]) / h^2 - (d[k+1] - d[k-1]) / (2 h)``.
+    NaN where a tangent used is unknown; None with fewer than three nodes.
+
+    Examples
+    --------
+    A quintic is reproduced exactly: ``q(t) = t^5`` at t = 0, 1, 3, 4 (``q'' = 20 t^3``):
+
+    >>> import numpy as np
+    >>> t = np.array([0.0, 1.0, 3.0, 4.0]); nodes = np.arange(4)
+    >>> d2 = free_curvatures(t, (t ** 5)[None, :], (5 * t ** 4)[None, :], nodes)
+    >>> np.allclose(d2, 20 * t ** 3, rtol=1e-12, atol=1e-9)
+    True
+    """
+    m = nodes.size
+    if m < 3:
+        return None
+    dt = np.diff(t.take(nodes)).tolist()
+    # weights of x(j-1), x(j), x(j+1), d(j-1), d(j), d(j+1) for node k, j = k clipped to [1, m - 2]
+    w = np.empty((6, m))
+    w[:, 0] = _curvature_weights(dt[0], dt[1], 0)
+    inner = dt[:-1]
+    h = inner[0]
+    if m > 3 and max(inner) - min(inner) <= 1e-12 * abs(h):  # evenly spaced but for the last segment
+        w[:, 1:-2] = np.array(_curvature_weights(h, h, 1))[:, None]
+    else:
+        for j in range(1, m - 2):
+            w[:, j] = _curvature_weights(dt[j - 1], dt[j], 1)
+    w[:, -2] = _curvature_weights(dt[-2], dt[-1], 1)
+    w[:, -1] = _curvature_weights(dt[-2], dt[-1], 2)
+    idx = nodes.take(_stencils(m))
+    out = (X.take(idx, axis=1) * w[:3]).sum(axis=1)
+    out += (D.take(idx, axis=1) * w[3:]).sum(axis=1)
+    return out
+
+
+def quintic_terms(t, X, D, D2n, nodes):
+    """What the quintic Hermite predictor adds to the cubic on every segment: ``(alpha, beta)`` (n, nodes).
+
+    On the segment from node j (``s = 0``) to node j + 1 (``s = 1``), of
+    length h, the quintic through the nodes' values, tangents and
+    curvatures ``D2n`` is the cubic through their values and tangents plus
+    ``s^2 (1 - s)^2 (alpha_j + beta_j s)``, with ``alpha = C0 / 2 - 3 e + f``
+    and ``beta = (C1 - C0) / 2 + 6 e - 3 f``: ``e = x1 - x0 - h d0``,
+    ``f = h (d1 - d0)``, ``C = h^2 D2`` at either node. Zero (the cubic) on a
+    segment where a curvature is unknown (NaN) and in the last column
+    (the last node alone).
+
+    Examples
+    --------
+    ``q(t) = t^5`` from nodes at t = 0 and 1: at s = 1/2 the cubic gives -1/8, the quintic 1/32 (exact), 5/32 more:
+
+    >>> import numpy as np
+    >>> t = np.array([0.0, 1.0]); nodes = np.array([0, 1])
+    >>> alpha, beta = quintic_terms(t, (t ** 5)[None, :], (5 * t ** 4)[None, :], (20 * t ** 3)[None, :], nodes)
+    >>> float((alpha[0, 0] + 0.5 * beta[0, 0]) / 16)
+    0.15625
+    """
+    h = np.diff(t.take(nodes))
+    Y, Dn = X.take(nodes, axis=1), D.take(nodes, axis=1)
+    hh = h * h
+    m0 = Dn[:, :-1] * h
+    f = Dn[:, 1:] * h
+    f -= m0
+    e = np.diff(Y, axis=1)
+    e -= m0
+    e *= 3.0
+    c0 = D2n[:, :-1] * (0.5 * hh)
+    alpha = np.zeros(Y.shape)
+    beta = np.zeros(Y.shape)
+    a = alpha[:, :-1]
+    np.subtract(c0, e, out=a)
+    a += f
+    bt = beta[:, :-1]
+    np.multiply(D2n[:, 1:], 0.5 * hh, out=bt)
+    bt -= c0
+    bt += 2.0 * e
+    f *= 3.0
+    bt -= f
+    if not np.isfinite(a.sum() + bt.sum()):  # a curvature unknown: the cubic on its segments
+        bad = ~(np.isfinite(a) & np.isfinite(bt)).all(axis=0)
+        a[:, bad] = 0.0
+        bt[:, bad] = 0.0
+    return alpha, beta
+
+
+def quintic_pays(gap, inv_xs, floor=None, limit=None):
+    """Whether the quintic predictor is expected to save the batch a Newton iteration over the cubic:
+    where the two differ by more than ``floor`` and at most ``limit`` (scaled; defaults
+    :data:`QUINTIC_GAIN_FLOOR`, :data:`QUINTIC_GAIN_LIMIT`) at the middle of the segments (the largest
+    difference); ``gap`` (n, nodes) is 16 times that difference, ``alpha + beta / 2``
+    (:func:`quintic_terms`, :func:`free_quintic`).
+
+    The difference estimates the cubic's error: where it is small the cubic
+    needs no more iterations than the quintic; in between, the quintic's
+    error is small enough for the last iteration to go; where it is large
+    the quintic's own error still leaves one (and the quintic costs more than
+    it saves). NaN counts as nothing (a segment predicted by the cubic).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> [quintic_pays(np.array([[g, -g / 2, np.nan]]), [1.0]) for g in (1e-3, 8e-3, 0.5)]
+    [False, True, False]
+    """
+    gap = np.abs(gap)
+    if any(w != 1.0 for w in inv_xs):
+        gap *= np.asarray(inv_xs)[:, None]
+    largest = float(gap.max()) / 16.0
+    if largest != largest:  # NaN somewhere: the largest of the others
+        largest = float(np.nanmax(gap)) / 16.0 if np.isfinite(gap).any() else 0.0
+    return (QUINTIC_GAIN_FLOOR if floor is None else floor) < largest <= (QUINTIC_GAIN_LIMIT if limit is None else limit)
+
+
+def free_quintic(t, X, D, nodes):
+    """:func:`quintic_terms` on :func:`free_curvatures`, and the quintic's change of the prediction at
+    the middle of every segment, ``(alpha, beta, gap)`` (n, nodes each); None with fewer than three
+    nodes.
+
+    All three are linear in the nodes' values and tangents, with weights that depend on the nodes'
+    inputs alone: for a few nodes (at most :data:`FREE_QUINTIC_NODES`, every value and tangent
+    finite) the weights are kept for the grid and the terms are two small matrix products;
+    otherwise they are computed as the two functions do.
+
+    Examples
+    --------
+    A quintic is predicted exactly (its curvatures are found exactly):
+
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 3.0, 31); nodes = np.array([0, 10, 20, 30]); k = np.repeat([0, 1, 2, 3], [10, 10, 10, 1])
+    >>> X, D = (t ** 5 - t ** 2)[None, :], (5 * t ** 4 - 2 * t)[None, :]
+    >>> alpha, beta, gap = free_quintic(t, X, D, nodes)
+    >>> bool(np.abs(hermite(t, t, X, D, None, nodes, k, (alpha, beta)) - X).max() < 1e-12)
+    True
+    """
+    m = nodes.size
+    if m < 3:
+        return None
+    Y, Dn = X.take(nodes, axis=1), D.take(nodes, axis=1)
+    if m > FREE_QUINTIC_NODES or not np.isfinite(Dn.sum() + Y.sum()):
+        alpha, beta = quintic_terms(t, X, D, free_curvatures(t, X, D, nodes), nodes)
+        gap = 0.5 * beta
+        gap += alpha
+        return alpha, beta, gap
+    wy, wd = _free_quintic_weights(tuple(np.diff(t.take(nodes)).tolist()))
+    out = Y @ wy
+    out += Dn @ wd
+    return out[:, :m], out[:, m : 2 * m], out[:, 2 * m :]
+
+
+#: Most nodes for which :func:`free_quintic` keeps its weights (three m x m matrices of each kind).
+FREE_QUINTIC_NODES = 64
+
+
+@lru_cache(maxsize=16)
+def _free_quintic_weights(dt):
+    """Weights (m, 3 m) of the nodes' values and of their tangents in ``[alpha | beta | gap]`` of
+    :func:`free_quintic`, for nodes spaced ``dt`` (a tuple)."""
+    m = len(dt) + 1
+    # the curvature at node k, from nodes j - 1, j, j + 1 (j = k clipped to [1, m - 2])
+    ay, ad = np.zeros((m, m)), np.zeros((m, m))
+    for k in range(m):
+        j = min(max(k, 1), m - 2)
+        w = _curvature_weights(dt[j - 1], dt[j], 0 if k == 0 else 2 if k == m - 1 else 1)
+        ay[j - 1 : j + 2, k] = w[:3]
+        ad[j - 1 : j + 2, k] = w[3:]
+    h = np.array(dt)
+    seg = np.arange(m - 1)
+    ey, ed, fd = np.zeros((m, m)), np.zeros((m, m)), np.zeros((m, m))
+    s0, s1 = np.zeros((m, m)), np.zeros((m, m))
+    ey[seg + 1, seg], ey[seg, seg] = 1.0, -1.0  # e = x1 - x0 - h d0
+    ed[seg, seg] = -h
+    fd[seg + 1, seg], fd[seg, seg] = h, -h  # f = h (d1 - d0)
+    s0[seg, seg] = 0.5 * h * h  # C0 h^2 / 2 from the curvatures
+    s1[seg + 1, seg] = 0.5 * h * h
+    alpha_y, alpha_d = ay @ s0 - 3.0 * ey, ad @ s0 - 3.0 * ed + fd
+    beta_y, beta_d = ay @ (s1 - s0) + 6.0 * ey, ad @ (s1 - s0) + 6.0 * ed - 3.0 * fd
+    wy = np.hstack([alpha_y, beta_y, alpha_y + 0.5 * beta_y])
+    wd = np.hstack([alpha_d, beta_d, alpha_d + 0.5 * beta_d])
+    wy.flags.writeable = wd.flags.writeable = False
+    return wy, wd
+
+
+@lru_cache(maxsize=64)
+def _stencils(m):
+    """Node indices (3, m) of the three nodes whose quintic gives node k's curvature."""
+    j = np.clip(np.arange(m), 1, m - 2)
+    return np.vstack([j - 1, j, j + 1])
+
+
+def _curvature_weights(a, b, at):
+    """Weights of x0, x1, x2, d0, d1, d2 (values and tangents at -a, 0 and b) in the second derivative
+    of the quintic through them, at -a (``at`` 0), 0 (1) or b (2)."""
+    s = a + b
+    if at == 1:
+        c2 = 2.0 * a * a * (3.0 * a + 5.0 * b) / (b * b * s ** 3)
+        c0 = 2.0 * b * b * (5.0 * a + 3.0 * b) / (a * a * s ** 3)
+        return (c0, -c0 - c2, c2, 2.0 * b * b / (a * s * s), -4.0 * (a - b) / (a * b), -2.0 * a * a / (b * s * s))
+    if at == 0:
+        c2 = 2.0 * a * a * (2.0 * a + 5.0 * b) / (b ** 3 * s * s)
+        c1 = -2.0 * s * s * (2.0 * a - 3.0 * b) / (a * a * b ** 3)
+        return (-c1 - c2, c1, c2, -4.0 * (2.0 * a + b) / (a * s), -2.0 * s * s / (a * b * b), -2.0 * a * a / (b * b * s))
+    c0 = 2.0 * b * b * (5.0 * a + 2.0 * b) / (a ** 3 * s * s)
+    c1 = 2.0 * s * s * (3.0 * a - 2.0 * b) / (a ** 3 * b * b)
+    return (c0, c1, -c0 - c1, 2.0 * b * b / (a * a * s), 2.0 * s * s / (a * a * b), 4.0 * (a + 2.0 * b) / (b * s))
+
+
+def hermite(tc, t, X, D, D2n, nodes, k, terms=None):
     """The Hermite predictor at the inputs ``tc`` from their nodes' values, tangents and curvatures: an
     array (n, M), n unknowns by the M inputs of ``tc``.
 
     Quintic (values, first and second derivatives at both nodes: error of
     order h^6) on a segment whose nodes both have a curvature in ``D2n``
     (n, nodes; NaN where unknown), cubic (values and tangents: order h^4)
-    on the others (on every segment where ``D2n`` is None). ``k`` is the left node of every input (its index in
-    ``nodes``), ``t`` the sweep's inputs; built row by row, so that few
-    temporaries are alive at once.
+    on the others (on every segment where ``D2n`` is None). ``terms``: the
+    quintic as the cubic plus :func:`quintic_terms` ``(alpha, beta)``
+    instead (``D2n`` is then not read; the same polynomials, fewer array
+    operations). ``k`` is the left node of every input (its index in
+    ``nodes``), ``t`` the sweep's inputs. All rows at once where they are
+    few (:data:`HERMITE_BLOCK`), else row by row, so that few temporaries
+    are alive at once.
 
     Examples
     --------
@@ -219,7 +451,7 @@ def hermite(tc, t, X, D, D2n, nodes, k):
     del ta
     u = 1.0 - s
     quintic = None  # cubic everywhere
-    if D2n is not None:
+    if D2n is not None and terms is None:
         known = np.isfinite(D2n).all(axis=0)
         quintic = known.take(k) & known.take(kb)
     if quintic is not None and quintic.all():
@@ -234,38 +466,48 @@ def hermite(tc, t, X, D, D2n, nodes, k):
             h01[q], h10[q], h11[q] = quintic_bases(s[q], u[q])
             c = np.where(q, 0.5 * delta * delta, 0.0)
             D2 = np.nan_to_num(D2n, nan=0.0)
-    h20 = h21 = None
+    h20 = h21 = w = None
     if c is not None:
         s2 = s * s
         h20 = s2 * u * u * u * c  # s^2 (1 - s)^3 / 2, times delta^2
         h21 = s2 * s * u * u * c  # s^3 (1 - s)^2 / 2, times delta^2
         del s2
-    del s, u
+    elif terms is not None:
+        w = s * u
+        w *= w  # s^2 (1 - s)^2
     h10 *= delta
     h11 *= delta
-    del delta
-    out = np.empty((X.shape[0], tc.size))
-    for i in range(X.shape[0]):
-        xa = X[i].take(a)
-        row = X[i].take(b)
+    del delta, u
+    n = X.shape[0]
+    out = np.empty((n, tc.size))
+    for rows in [slice(0, n)] if n * tc.size <= HERMITE_BLOCK else [slice(i, i + 1) for i in range(n)]:
+        xa = X[rows].take(a, axis=1)
+        row = out[rows]
+        X[rows].take(b, axis=1, out=row)
         row -= xa
         row *= h01
         row += xa
         del xa
-        dd = D[i].take(a)
+        dd = D[rows].take(a, axis=1)
         dd *= h10
         row += dd
-        D[i].take(b, out=dd)
+        D[rows].take(b, axis=1, out=dd)
         dd *= h11
         row += dd
         if h20 is not None:
-            D2[i].take(k, out=dd)
+            D2[rows].take(k, axis=1, out=dd)
             dd *= h20
             row += dd
-            D2[i].take(kb, out=dd)
+            D2[rows].take(kb, axis=1, out=dd)
             dd *= h21
             row += dd
-        out[i] = row
+        elif w is not None:  # s^2 (1 - s)^2 (alpha + beta s)
+            terms[1][rows].take(k, axis=1, out=dd)
+            dd *= s
+            part = terms[0][rows].take(k, axis=1)
+            part += dd
+            part *= w
+            row += part
     return out
 
 
