@@ -13,11 +13,12 @@ import math
 
 import numpy as np
 
-from .march import COND_TANGENT, MAX_CORRECTION, Continuation, deg_text
-from .predictors import QUINTIC_MIN_POINTS, free_quintic, hermite, node_curvatures, quintic_pays
-from .newton import COND_MAX, COND_WARN, colmax as _colmax, is_singular, residual_floor
-from .sweep import SweepEvent, SingularityWarning
 from .errors import warn
+from .march import COND_TANGENT, MAX_CORRECTION, Continuation, deg_text
+from .newton import COND_MAX, COND_WARN, is_singular, residual_floor
+from .newton import colmax as _colmax
+from .predictors import QUINTIC_MIN_POINTS, free_quintic, hermite, node_curvatures, quintic_pays
+from .sweep import SingularityWarning, SweepEvent
 
 __all__ = ["nodes_of", "fill", "report_near_singular", "CHUNK"]
 

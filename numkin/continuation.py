@@ -66,8 +66,7 @@ import numpy as np
 from .batch_fill import fill, nodes_of, report_near_singular
 from .errors import DegreesWarning, InputError, warn
 from .first_point import solve_start
-from .march import (CROSSING_STEP, DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_TANGENT_TURN, TREND_REACH,
-                    Continuation)
+from .march import CROSSING_STEP, DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_TANGENT_TURN, TREND_REACH, Continuation
 from .newton import JACOBIANS, check_tol
 from .predictors import MAX_PREDICTION
 from .sweep import Sweep, record_evaluations

@@ -26,11 +26,11 @@ from .newton import (
     solve_batch,
 )
 from .predictors import MAX_PREDICTION, unrolled_predict
+from .sweep import SingularityWarning, SweepEvent
 from .unrolled import scaled_distance
-from .sweep import SweepEvent, SingularityWarning
 
 __all__ = ["Continuation", "deg_text", "MAX_CORRECTION", "CORRECTOR_ITERATIONS",
-           "DEFAULT_MAX_STEP", "GATHER", "FAR", "TWO_PI", "MAX_TANGENT_TURN", "TREND_REACH", "CROSSING_STEP", "COND_TANGENT"]
+           "DEFAULT_MAX_STEP", "FAR", "TWO_PI", "MAX_TANGENT_TURN", "TREND_REACH", "CROSSING_STEP", "COND_TANGENT"]
 
 #: Correction (scaled: rad, or lengths / length_scale) above which a continuation step is refused.
 MAX_CORRECTION = 0.3
@@ -52,11 +52,6 @@ CROSSING_STEP = 1e-5
 CORRECTOR_ITERATIONS = 12
 #: Trial steps allowed for one march between nodes (accepted or refused).
 MAX_TRIALS = 100_000
-#: Fraction of a written-out batch's columns at or below which its iteration goes on with the active
-#: columns alone (:func:`numkin.unrolled.unrolled_newton_batch`; the same floats as at full width), or
-#: None: never. None, since a batch written out has under 2000 columns (``COMPACT_MIN``), where every
-#: array operation costs about the same whatever its width and the gathering costs what it saves.
-GATHER = None
 #: Default largest input step (rad) between the sequentially solved nodes of a sweep.
 DEFAULT_MAX_STEP = math.radians(30.0)
 #: A step that shrinks to nothing where the condition number exceeds this (or has grown
@@ -289,12 +284,11 @@ class Continuation:
                     x = np.array(x, dtype=float, order="C")
                 act = np.ones(N, dtype=bool) if active is None else np.asarray(active, dtype=bool)
                 out = self.blocks.newton_batch(comp.FJ_kernel, x, t, (*fixed_all, *self.pt), act, maxiter, self.fscale,
-                                               self.tol, floor, has_converged, gather=GATHER)
+                                               self.tol, floor, has_converged)
                 if out is not None:
                     converged, _, iterations, v, evaluations = out
-                    points = evaluations * N if GATHER is None else evaluations  # calls, or points when gathering
-                    self.nfev += points
-                    self.njev += points
+                    self.nfev += evaluations * N
+                    self.njev += evaluations * N
                     return x, converged, iterations, stack_rows(v[: self.n], N), v[self.n :]
 
             def evaluate(z, idx):

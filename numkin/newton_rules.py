@@ -51,6 +51,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
 from .errors import InputError
 
 __all__ = [

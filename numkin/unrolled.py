@@ -30,7 +30,7 @@ from functools import lru_cache
 import numpy as np
 
 __all__ = ["cond2", "step_lines", "scaled_max", "unrolled_update", "unrolled_newton", "unrolled_newton_batch",
-           "gathered_newton", "GATHER_MIN", "unrolled_solve", "unrolled_local", "scaled_distance"]
+           "unrolled_solve", "unrolled_local", "scaled_distance"]
 
 
 def cond2(p, q, r, s):
@@ -177,29 +177,23 @@ def unrolled_newton(n, blocks, zeros, inv_xscale, col):
 
 
 def unrolled_newton_batch(n, blocks, zeros, inv_xscale):
-    """Generate ``newton_batch(K, x, t, kargs, active, maxiter, fscale, tol, floor, converged, rows=None,
-    prev=None, gather=None)``: Newton-Raphson on whole arrays with every update written out.
+    """Generate ``newton_batch(K, x, t, kargs, active, maxiter, fscale, tol, floor, converged)``:
+    Newton-Raphson on whole arrays with every update written out.
 
-    The iteration of ``numkin.newton.solve_batch`` without histories:
-    ``K(*x, t, *kargs)`` is the fused kernel (residual rows, then Jacobian
-    rows), ``x`` (n, N) is iterated in place, ``converged`` the stopping rule
-    (:func:`numkin.newton_rules.has_converged`, called with the columns just
-    moved as ``where``). Every column is computed at
-    every iteration (the inactive ones are not moved) until, with ``gather``
-    (a fraction), after a step at most that fraction of the columns is
-    still active: those are then gathered (with their inputs, ``kargs``,
-    kernel rows and last step) and iterated on their own by the same
-    function, and scattered back. Every operation is per column, so the
-    gathered iteration gives the same floats as the full-width one.
-    ``rows`` and ``prev``: the kernel's rows at ``x`` and the last scaled
-    step of every column, when the iteration goes on from earlier steps.
+    The iteration of ``numkin.newton.solve_batch`` without compaction and
+    without histories: ``K(*x, t, *kargs)`` is the fused kernel (residual
+    rows, then Jacobian rows), ``x`` (n, N) is iterated in place,
+    ``converged`` the stopping rule (:func:`numkin.newton_rules.has_converged`,
+    called with the columns just moved as ``where``). Every column is
+    computed at every iteration (the inactive ones are not moved): below
+    ``COMPACT_MIN`` columns every array operation costs about the same
+    whatever its width, so gathering the last active columns would cost
+    what it saves.
 
     Returns ``(converged, singular, iterations, rows, evaluations)``,
     ``rows`` the kernel's rows at the returned ``x`` and ``evaluations``
-    the kernel's calls (with ``gather``: the points evaluated, a call
-    counting its columns); or None, before any step, if a residual row is
-    not an (N,) array (a constant residual: the caller's general loop
-    takes it).
+    the kernel's calls; or None, before any step, if a residual row is not
+    an (N,) array (a constant residual: the caller's general loop takes it).
     """
     xs = ", ".join(f"x{i}" for i in range(n))
     call = f"K({xs}, t, *kargs)"
@@ -212,33 +206,23 @@ def unrolled_newton_batch(n, blocks, zeros, inv_xscale):
     temporaries = ", ".join(["v", *(f"r{i}" for i in range(n)), *(f"d{i}" for i in range(n))]
                             + (["a00", "a01", "a10", "a11", "inv"] if any(b - a == 2 for a, b in blocks) else []))
     lines = [
-        "def newton_batch(K, x, t, kargs, active, maxiter, fscale, tol, floor, converged, rows=None, prev=None,",
-        "                 gather=None):",
+        "def newton_batch(K, x, t, kargs, active, maxiter, fscale, tol, floor, converged):",
         "    N = x.shape[1]",
-        "    v = rows",
         *[f"    x{i} = x[{i}]" for i in range(n)],
-        "    per_call = 1 if gather is None else N",
-        "    evaluations = 0",
-        "    if v is None:",
-        f"        v = {call}",
-        f"        if not all(type(v[i]) is NDARRAY and v[i].shape == (N,) for i in range({n})):",
-        "            return None",
-        "        evaluations = per_call",
+        f"    v = {call}",
+        f"    if not all(type(v[i]) is NDARRAY and v[i].shape == (N,) for i in range({n})):",
+        "        return None",
+        "    evaluations = 1",
         f"    fmax = {fmax}",
         "    done_all = ZEROS(N, dtype=bool)",
         "    singular = ZEROS(N, dtype=bool)",
         "    iterations = ZEROS(N, dtype=int)",
         "    act = active & ISFINITE(fmax)",
-        "    if prev is None:",
-        "        prev = FULL(N, INF)",
-        "    for it in range(maxiter):",
+        "    prev = FULL(N, INF)",
+        "    for _ in range(maxiter):",
         "        left = COUNT(act)",
         "        if not left:",
         "            break",
-        "        if it and gather is not None and left <= gather * N and N - left >= GATHER_MIN:",
-        "            evaluations += GATHERED(newton_batch, K, x, t, kargs, act, maxiter - it, fscale, tol, floor,",
-        "                                    converged, v, prev, gather, done_all, singular, iterations)",
-        "            return done_all, singular, iterations, v, evaluations",
         *step_lines(n, blocks, zeros, None, indent="        "),
         f"        finite = ISFINITE({' + '.join(f'd{i}' for i in range(n))})",
         "        upd = act & finite",
@@ -254,7 +238,7 @@ def unrolled_newton_batch(n, blocks, zeros, inv_xscale):
         f"        step = {step}",
         f"        del {temporaries}  # freed before the next evaluation: one set of rows alive at a time",
         f"        v = {call}",
-        "        evaluations += per_call",
+        "        evaluations += 1",
         f"        fmax = {fmax}",
         "        iterations += upd",
         "        done = converged(fmax / fscale if fscale != 1.0 else fmax, step, prev, tol, floor, upd)",
@@ -266,65 +250,9 @@ def unrolled_newton_batch(n, blocks, zeros, inv_xscale):
     ]
     namespace = {"INF": math.inf, "ABS": np.abs, "MAX": np.maximum, "ADD": np.add, "ISFINITE": np.isfinite,
                  "WHERE": np.where, "ZEROS": np.zeros, "FULL": np.full, "NDARRAY": np.ndarray,
-                 "COUNT": np.count_nonzero, "GATHERED": gathered_newton, "GATHER_MIN": GATHER_MIN}
+                 "COUNT": np.count_nonzero}
     exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
     return namespace["newton_batch"]
-
-
-#: Fewest columns a gathered batch iteration must leave out (:func:`unrolled_newton_batch`): below
-#: that, the gathering costs more than the columns it saves.
-GATHER_MIN = 16
-
-
-def gathered_newton(newton_batch, K, x, t, kargs, act, maxiter, fscale, tol, floor, converged, rows, prev, gather,
-                    done, singular, iterations):
-    """Go on with the batch iteration ``newton_batch`` on the active columns ``act`` of ``x`` alone.
-
-    The columns, their inputs ``t``, the arrays of ``kargs``, the kernel
-    ``rows`` at ``x`` and the last steps ``prev`` are gathered; the
-    iteration goes on there for at most ``maxiter`` steps; ``x``, ``done``,
-    ``singular`` and ``iterations`` (arrays of every column) are updated
-    in place and ``rows`` (a list) gets the rows of every column at the
-    returned ``x``, new arrays where any column changed (an array of the
-    kernel's, which may be one of ``kargs``, is not written into). Returns
-    the points evaluated.
-
-    Examples
-    --------
-    ``x^2 = t`` by Newton on 40 columns, 30 of them started at the root: the 10 others go on alone.
-
-    >>> import numpy as np
-    >>> from numkin.newton_rules import has_converged
-    >>> newton = unrolled_newton_batch(1, [(0, 1)], set(), [1.0])
-    >>> K = lambda x0, t: [x0 * x0 - t, 2.0 * x0]
-    >>> t = np.linspace(1.0, 4.0, 40); x = np.sqrt(t)[None, :]; x[0, :10] *= 1.1
-    >>> out = newton(K, x, t, (), np.ones(40, dtype=bool), 12, 1.0, 1e-12, 0.0, has_converged, gather=0.5)
-    >>> bool(out[0].all()), bool(out[2][:10].max() > out[2][10:].max()), bool(np.abs(x[0] ** 2 - t).max() < 1e-14)
-    (True, True, True)
-    """
-    idx = np.flatnonzero(act)
-    sub = x.take(idx, axis=1)
-    sub_kargs = [a.take(idx) if type(a) is np.ndarray and a.ndim else a for a in kargs]
-    sub_rows = [r.take(idx) if type(r) is np.ndarray and r.ndim else r for r in rows]
-    m = idx.size
-    out = newton_batch(K, sub, t.take(idx), sub_kargs, np.ones(m, dtype=bool), maxiter, fscale, tol, floor,
-                       converged, sub_rows, prev.take(idx), gather)
-    sub_done, sub_singular, sub_iterations, sub_rows, evaluations = out
-    x[:, idx] = sub
-    done[idx] = sub_done
-    singular[idx] = sub_singular
-    iterations[idx] += sub_iterations
-    N = x.shape[1]
-    for i, (r, s) in enumerate(zip(rows, sub_rows)):
-        if type(r) is np.ndarray and r.ndim:
-            r = r.copy()
-        elif type(s) is np.ndarray and s.ndim or s != r:
-            r = np.full(N, r, dtype=float)
-        else:
-            continue
-        r[idx] = s
-        rows[i] = r
-    return evaluations
 
 
 def unrolled_solve(n, blocks, zeros=frozenset(), batch=False):

@@ -1,7 +1,7 @@
-"""The batch between a sweep's nodes: gathered Newton iterations, free node curvatures, the quintic predictor.
+"""The batch between a sweep's nodes: its Newton iteration, free node curvatures, the quintic predictor.
 
-References: the full-width iteration (the gathered one must give the same
-floats), the four-bar's closed form (circle intersection), polynomials that
+References: the sweep's own solution (the batch must reach it column by
+column), the four-bar's closed form (circle intersection), polynomials that
 the Hermite predictors reproduce exactly, and ``numpy.linalg.cond``.
 """
 
@@ -36,13 +36,13 @@ def _wrapped(a, b):
 
 
 @pytest.mark.parametrize("build", [lambda: linkages.four_bar(4, 1, 3, 3), linkages.chained_four_bars])
-def test_gathered_iteration_gives_the_full_width_floats(build):
+def test_the_written_out_batch_moves_only_active_columns_each_to_its_root(build):
     mech = build()
     ctx = Continuation(mech, "symbolic", 1e-12, math.radians(30.0), "raise")
     t = np.radians(np.arange(0.0, 361.0, 1.0))
     exact = mech.sweep(t).values
     rng = np.random.default_rng(7)
-    # most columns close to the root (two steps), a few far (more): the few are gathered
+    # most columns close to the root (two steps), a few far (more)
     active = np.ones(t.size, dtype=bool)
     active[::30] = False
     x0 = exact + rng.normal(scale=1e-6, size=exact.shape)
@@ -50,20 +50,14 @@ def test_gathered_iteration_gives_the_full_width_floats(build):
     x0[:, far] += 0.02
     comp, bs = mech.compiled, mech.block_structure
     kargs = (*comp.fixed_terms(t, ctx.p), *ctx.pt)
-    runs = {}
-    for gather in (None, 0.25):
-        x = x0.copy()
-        with np.errstate(all="ignore"):
-            runs[gather] = (x, bs.newton_batch(comp.FJ_kernel, x, t, kargs, active, 12, ctx.fscale, 1e-12, 0.0,
-                                               has_converged, gather=gather))
-    (x_full, (conv_f, sing_f, it_f, rows_f, calls)), (x_g, (conv_g, sing_g, it_g, rows_g, points)) = runs.values()
-    assert np.array_equal(x_full, x_g) and np.array_equal(it_f, it_g)
-    assert np.array_equal(conv_f, conv_g) and np.array_equal(sing_f, sing_g)
-    assert all(np.array_equal(a, b) for a, b in zip(rows_f, rows_g))
-    assert conv_f[active].all() and not it_f[~active].any() and np.array_equal(x_full[:, ~active], x0[:, ~active])
-    assert it_f[far].min() > it_f[np.setdiff1d(np.flatnonzero(active), far)].max()  # the far ones went on alone
-    assert calls == it_f.max() + 1  # full width: kernel calls
-    assert t.size * 3 < points < calls * t.size  # gathered: points evaluated, fewer than at full width
+    x_full = x0.copy()
+    with np.errstate(all="ignore"):
+        conv_f, sing_f, it_f, rows_f, calls = bs.newton_batch(comp.FJ_kernel, x_full, t, kargs, active, 12, ctx.fscale,
+                                                              1e-12, 0.0, has_converged)
+    assert conv_f[active].all() and not sing_f.any()
+    assert not it_f[~active].any() and np.array_equal(x_full[:, ~active], x0[:, ~active])  # inactive: not moved
+    assert it_f[far].min() > it_f[np.setdiff1d(np.flatnonzero(active), far)].max()  # the far ones take more steps
+    assert calls == it_f.max() + 1  # kernel calls: the first evaluation and one per step
     assert _wrapped(x_full[:, active], exact[:, active]).max() < 1e-13
 
 
