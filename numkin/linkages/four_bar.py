@@ -64,6 +64,23 @@ def closed_form(t2, r1, r2, r3, r4, sign):
     return t3, t4
 
 
+def _closed_form1(t2: float, r1, r2, r3, r4, sign) -> tuple[float, float]:
+    """:func:`closed_form` at one input, in plain floats (a sweep's default guess: no arrays to set up).
+
+    Examples
+    --------
+    >>> t2 = np.radians(73.0)
+    >>> np.allclose(_closed_form1(t2, 4, 1, 3, 3, -1.0), closed_form(t2, 4, 1, 3, 3, -1.0), rtol=0, atol=1e-15)
+    True
+    """
+    ax, ay = r2 * math.cos(t2), r2 * math.sin(t2)
+    dx, dy = r1 - ax, -ay
+    d = math.hypot(dx, dy)
+    cos_gamma = (r3**2 + d**2 - r4**2) / (2 * r3 * d) if d > 0 else 0.0
+    t3 = math.atan2(dy, dx) + sign * math.acos(min(1.0, max(-1.0, cos_gamma)))
+    return t3, math.atan2(ay + r3 * math.sin(t3), ax + r3 * math.cos(t3) - r1)
+
+
 def crank_range_check(r1, r2, r3, r4, klass, input_name="theta2"):
     """Assembly check of a four-bar loop: the crank tip must be within reach of the rocker pivot.
 
@@ -146,8 +163,8 @@ def four_bar(ground, crank, coupler, rocker, *, branch: str = "open", length_uni
     label = f"four-bar (ground {r1:g}, crank {r2:g}, coupler {r3:g}, rocker {r4:g})"
 
     def guess(theta2):
-        a, b = closed_form(theta2, r1, r2, r3, r4, sign)
-        return {"theta3": float(a), "theta4": float(b)}
+        a, b = _closed_form1(float(theta2), r1, r2, r3, r4, sign)
+        return {"theta3": a, "theta4": b}
 
     return build(
         SPEC, _model, [r1, r2, r3, r4], name=label, guess=guess, length_unit=length_unit, branch=branch,
