@@ -258,9 +258,10 @@ for scheme in ("forward", "centred", "five_point", "spectral"):
 # no more than numkin's tight sweep does (max error 0.033 % of $\max|\alpha_\beta|$ both); the
 # residual rule spoils it by 12.7 % of $\max|\alpha_\beta|$ (26.1 rad/s² at 173°, 7.5 % of its
 # range); the relative rule reproduces the homework's printed values at 100° but leaves its
-# first point, reached from the far guess, loose: $\alpha_\beta$ is off by 126 rad/s² at 1° (61 %
-# of $\max|\alpha_\beta|$) and by 251 rad/s² at 0°, where the open end's one-sided stencil
-# takes it (`numkin report homework`'s tolerance table).
+# first point, reached from the far guess, loose: $\alpha_\beta$ is off by 126 rad/s² at 1° and
+# 359° (61 % of $\max|\alpha_\beta|$), where that point is a neighbour in the stencil, and by
+# 252 rad/s² (123 %) at 0°, where it is the centre, weighted $-2$ against 1
+# (`numkin report homework`'s tolerance table; the turn is differenced as periodic).
 
 # %%
 tol = report.tolerance_table(mech, omega=OMEGA, quantity="beta", check_angle=CHECK)

@@ -126,3 +126,26 @@ def test_homework3_solution_keeps_the_centred_formula_at_the_dead_centres():
     assert float(namespace["a_0"]) == pytest.approx(float(centred(0)), rel=1e-9)
     assert float(centred(0)) == pytest.approx(-44213.897, abs=1e-3) and float(one_sided) == pytest.approx(-44237.056, abs=1e-3)
     assert a[-1] == pytest.approx(float(centred(mpmath.pi)), rel=1e-9)
+
+
+def test_lesson4_the_relative_rule_leaves_its_first_point_loose():
+    """Lesson 4 (and README): the homework's relative step rule at 1e-4 leaves alpha_beta off by 126 rad/s^2
+    at 1 and 359 deg (61 % of max |alpha_beta|) and 252 rad/s^2 (123 %) at 0 deg, and the tolerance table
+    reports that 123 % at 0 deg. The second difference is written here, periodic, on the loose sweep."""
+    from numkin import analytic, report
+
+    mech = linkages.chained_four_bars()
+    theta = np.radians(np.arange(0, 361, 1.0))
+    omega = 7.5
+    loose = report.student_sweep(mech, theta, rule="relative", tol=1e-4)
+    beta = loose["beta"][:-1]
+    h = theta[1]
+    alpha = omega**2 * (np.roll(beta, -1) - 2 * beta + np.roll(beta, 1)) / h**2
+    exact = omega**2 * analytic.derivatives(mech.sweep(theta))[1][list(mech.unknowns).index("beta"), :-1]
+    err, peak = np.abs(alpha - exact), np.abs(exact).max()
+    assert round(err[1]) == 126 and round(err[359]) == 126 and round(100 * err[1] / peak) == 61
+    assert round(err[0]) == 252 and round(100 * err[0] / peak) == 123 and int(np.argmax(err)) == 0
+    table = report.tolerance_table(mech, omega="450 rad/min", quantity="beta", check_angle=math.radians(100))
+    row = table[table["rule"] == "relative step (homework 003)"].iloc[0]
+    assert row["alpha_beta max rel error [%]"] == pytest.approx(100 * err[0] / peak, rel=1e-6)
+    assert row["alpha_beta largest error at theta [deg]"] == 0.0
