@@ -76,7 +76,10 @@ __all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION", 
 
 
 def _validate_inputs(inputs) -> np.ndarray:
-    t = np.asarray(inputs, dtype=float)
+    try:
+        t = np.asarray(inputs, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"inputs must be numbers (input values, rad), got {inputs!r:.80}") from None
     if t.ndim == 0:
         t = t.reshape(1)
     if t.ndim != 1 or t.size == 0:

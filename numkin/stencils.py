@@ -267,7 +267,10 @@ def check_step(h) -> float:
 
 
 def _check_samples(y: ArrayLike, scheme: str, minimum: int, periodic: bool) -> FloatArray:
-    samples = np.asarray(y, dtype=float)
+    try:
+        samples = np.asarray(y, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"y must be an array of numbers (samples), got {y!r:.80}") from None
     if samples.ndim == 0:
         raise InputError(f"y must be an array of samples, got the scalar {samples.item()!r}")
     if samples.shape[-1] < minimum:
