@@ -769,3 +769,17 @@ def test_an_untimed_table_has_no_view_of_run_times(slider):
     assert not any("run time" in title for title in views)
     assert all(set(cols) - keys for cols in views.values())
     assert "the analytic rows' against the complex step" in t.attrs["caption"]
+
+
+def test_an_observed_order_from_errors_at_the_round_off_floor_is_left_blank(homework):
+    """The spectral scheme reaches round-off (~1e-12 rad/s) by 180 points per turn, after which its error
+    grows with N: 'observed orders' of -1.1 from there say nothing, so they are blank and the caption says
+    why; the centred difference, far above its floor, keeps every order (2 from the Taylor series)."""
+    t = report.convergence_table(homework, omega="450 rad/min", quantity="beta", grids=(36, 72, 180, 360),
+                                 schemes=("centred", "spectral"))
+    centred, spectral = t[t.scheme == "centred"], t[t.scheme == "spectral"]
+    assert np.allclose(centred["observed order [-]"].iloc[1:], 2.0, atol=0.05)
+    assert spectral["max abs error [unit of quantity]"].iloc[2] < 1e-11
+    assert spectral["observed order [-]"].iloc[1] > 8  # 36 -> 72: spectral convergence, above the floor
+    assert spectral["observed order [-]"].iloc[2:].isna().all()
+    assert "round-off floor" in t.attrs["caption"] and "spectral" in t.attrs["caption"].split("round-off floor")[1]

@@ -8,13 +8,18 @@ from typing import Iterable, Sequence
 import numpy as np
 
 from .study import (
-    DEFAULT_GRIDS, TURN, UNIT, check_index, deg_text, differenced, exact_derivatives, grid_inputs, grid_positions,
+    DEFAULT_GRIDS, EPS, TURN, UNIT, check_index, deg_text, differenced, exact_derivatives, grid_inputs, grid_positions,
     grid_study, order_text, set_caption, set_views, solve_sweep, stencil_points, table_quantities,
 )
 
 __all__ = [
     "convergence_table",
+    "ROUNDOFF_UNITS",
 ]
+
+#: Errors at most this many units of ``eps max|q| / h^n`` are at the round-off floor of an n-th
+#: derivative by differences of samples known to ``eps |q|``: no observed order is given from them.
+ROUNDOFF_UNITS = 16.0
 
 
 def convergence_table(
@@ -88,6 +93,7 @@ def convergence_table(
         data[n] = (s, dq[j], d2q[j])
     rows = []
     at_end = set()  # schemes whose error at the check angle is their end stencil's
+    floored = set()  # schemes whose error reached the round-off floor on some grid
     for scheme in scheme_list:
         scale = w if scheme.derivative == 1 else w * w
         prev = None
@@ -121,11 +127,16 @@ def convergence_table(
                 row[check_col] = float(err[k]) if k is not None else math.nan
                 if k is not None and not periodic and not keep.start <= k < keep.stop:
                     at_end.add(scheme.name)
+            # the rounding error of differencing samples known to eps |q|: about eps max|q| / h^n
+            floor = ROUNDOFF_UNITS * EPS * float(np.max(np.abs(s.values[j]))) * scale / h**scheme.derivative
+            at_floor = e_max <= floor
             order = math.nan
-            if prev is not None and prev[0] > 0 and e_max > 0:
+            if prev is not None and prev[0] > 0 and e_max > 0 and not (at_floor or prev[2]):
                 order = math.log(prev[0] / e_max) / math.log(prev[1] / h)
             row["observed order [-]"] = order
-            prev = (e_max, h)
+            if at_floor:
+                floored.add(scheme.name)
+            prev = (e_max, h, at_floor)
             rows.append(row)
     import pandas as pd
 
@@ -146,11 +157,15 @@ def convergence_table(
         + (f"; the check angle is an end point for {', '.join(sorted(at_end))}, whose error there is the end "
            "stencil's" if at_end else "") + "."
     )
+    floor_text = "" if not floored else (
+        f" An observed order is left blank where either grid's error is at the round-off floor "
+        f"({ROUNDOFF_UNITS:g} eps max|q| / h^n for an n-th derivative): {', '.join(sorted(floored))}."
+    )
     return set_caption(
         df,
         f"Convergence: {mechanism.name}, {quantity}, input speed {w:g} rad/s; error of each scheme "
         "against the analytic solution over the sweep; observed order from successive grids. Absolute errors "
         f"in {lab['unit1']} ({lab['name1']}, first-derivative schemes) or {lab['unit2']} ({lab['name2']}, "
-        "second-derivative schemes)." + ends_text,
+        "second-derivative schemes)." + ends_text + floor_text,
         grid_positions(mechanism, {n: data[n][0] for n in grid_list}, check_angle),
     )
