@@ -71,7 +71,8 @@ def convergence_table(
         the first and last points); the abs error at the check angle, and
         ``observed order [-]``
         ``log(e_prev / e) / log(h_prev / h)`` from the max error of the row
-        above (same scheme).
+        above (same scheme); NaN where either error is at the round-off
+        floor (:data:`ROUNDOFF_UNITS` ``* eps * max|q| / h^n``).
 
     Examples
     --------
