@@ -783,3 +783,22 @@ def test_an_observed_order_from_errors_at_the_round_off_floor_is_left_blank(home
     assert spectral["observed order [-]"].iloc[1] > 8  # 36 -> 72: spectral convergence, above the floor
     assert spectral["observed order [-]"].iloc[2:].isna().all()
     assert "round-off floor" in t.attrs["caption"] and "spectral" in t.attrs["caption"].split("round-off floor")[1]
+
+
+def test_methods_exact_to_round_off_are_tied_on_the_pareto_front():
+    """The analytic rows of every grid are exact to round-off: the cheapest of them is on the front by work,
+    a finer grid's is not (its error is smaller only in the last digits), and no front row of one quantity
+    is beaten by more than round-off by a cheaper one."""
+    from numkin.report.workprecision import ROUNDOFF_TIE
+
+    wp = report.work_precision_table(linkages.chained_four_bars(), omega="450 rad/min", quantity="beta",
+                                     grids=(36, 360, 3600), schemes=("centred",))
+    work = [c for c in wp.columns if c.startswith("work [")][0]
+    for _, rows in wp.groupby("quantity"):
+        analytic = rows[rows.method == "analytic"].sort_values(work)
+        assert (analytic["max rel error [-]"] < 1e-14).all()
+        assert list(analytic["Pareto front by work"]) == [True, False, False]
+        front = rows[rows["Pareto front by work"]]
+        for _, row in front.iterrows():
+            cheaper = rows[rows[work] < row[work]]
+            assert not (cheaper["max rel error [-]"] < row["max rel error [-]"] - ROUNDOFF_TIE).any()

@@ -11,13 +11,14 @@ from .. import analytic
 from ..errors import InputError
 from .counting import count_evaluations, stencil_evaluations, sweep_evaluations
 from .study import (
-    DEFAULT_GRIDS, TURN, UNIT, VARIES, differenced, exact_derivatives, grid_inputs, grid_positions, grid_study,
+    DEFAULT_GRIDS, EPS, TURN, UNIT, VARIES, differenced, exact_derivatives, grid_inputs, grid_positions, grid_study,
     median_time, set_caption, set_views, silenced, solve_sweep, table_quantities, timing_repeats,
 )
 
 __all__ = [
     "work_precision_table",
     "cheapest_table",
+    "ROUNDOFF_TIE",
 ]
 
 #: Work columns of :func:`work_precision_table` (exact counts; see its docstring).
@@ -233,12 +234,18 @@ def work_precision_table(
     )
 
 
+#: Relative errors closer than this are equal on a Pareto front: differences of round-off.
+ROUNDOFF_TIE = 64 * EPS
+
+
 def _pareto(df, cost: str) -> list:
     """Rows on the Pareto front (`cost` column, max rel error) within their quantity.
 
     A row is on the front if no other row of its quantity costs no more and
-    is no less accurate, and is strictly better in one of the two; rows
-    without a finite cost and error are not on it.
+    is no less accurate, and is strictly better in one of the two; relative
+    errors that differ by less than :data:`ROUNDOFF_TIE` are equal (two
+    methods exact to round-off are not told apart by the last digits of
+    their errors). Rows without a finite cost and error are not on it.
     """
     t = df[cost].to_numpy(dtype=float)
     e = df["max rel error [-]"].to_numpy(dtype=float)
@@ -250,7 +257,8 @@ def _pareto(df, cost: str) -> list:
             out.append(False)
             continue
         same = (q == q[k]) & ok
-        dominated = same & (t <= t[k]) & (e <= e[k]) & ((t < t[k]) | (e < e[k]))
+        no_worse, better = e <= e[k] + ROUNDOFF_TIE, e < e[k] - ROUNDOFF_TIE
+        dominated = same & (t <= t[k]) & no_worse & ((t < t[k]) | better)
         out.append(not bool(dominated.any()))
     return out
 
