@@ -246,9 +246,20 @@ class Rule:
         return min(s.order for s in (self.interior, *self.left, *self.right))
 
     def min_samples(self, periodic: bool) -> int:
+        """Fewest samples the rule differentiates: on an open grid, every end stencil must fit inside
+        the data from its own sample (the j-th from the right reaches ``j - min(offsets)`` back).
+
+        Examples
+        --------
+        >>> rule = Rule.build(Stencil.from_offsets((0, 1, 2), 2), "mirror")   # forward of forward
+        >>> rule.min_samples(periodic=False), rule.min_samples(periodic=True)
+        (4, 3)
+        """
         if periodic:
             return self.interior.width
-        return max(s.width for s in (self.interior, *self.left, *self.right))
+        need = max(self.interior.width, len(self.left) + len(self.right))
+        need = max([need] + [j + max(s.offsets) + 1 for j, s in enumerate(self.left)])
+        return max([need] + [j - min(s.offsets) + 1 for j, s in enumerate(self.right)])
 
     def end_formulas(self) -> list[str]:
         """One line per end sample: ``y'[0] ~ (...)``."""
@@ -305,6 +316,8 @@ def _check_offset(period_offset: ArrayLike, periodic: bool, samples: FloatArray)
 
 def validated(scheme: str, y, h, periodic: bool, period_offset, minimum: int):
     """(samples, h, period offset shaped to broadcast along the last axis), or a ValueError."""
+    if not isinstance(periodic, (bool, np.bool_)):
+        raise InputError(f"periodic must be True or False, got {periodic!r}")
     step = check_step(h)
     samples = _check_samples(y, scheme, minimum, periodic)
     return samples, step, _check_offset(period_offset, periodic, samples)

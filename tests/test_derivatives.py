@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 import pytest
@@ -443,7 +444,7 @@ def test_bad_step(name, h):
         ("richardson", False, 5),
         ("second_difference", False, 4),
         ("second_difference", True, 3),
-        ("forward_of_forward", False, 3),
+        ("forward_of_forward", False, 4),  # its mirrored right end at N-2 reaches back to N-4
         ("centred_of_centred", False, 5),
         ("five_point_second", False, 6),
         ("five_point_second", True, 5),
@@ -456,6 +457,31 @@ def test_too_few_samples(name, periodic, minimum):
     call(name, y, 0.1, periodic=periodic)
     with pytest.raises(ValueError, match=rf"{name}.*\b{minimum}\b"):
         call(name, y[:-1], 0.1, periodic=periodic)
+
+
+@pytest.mark.parametrize("name", ["forward", "backward", "second_difference", "forward_of_forward",
+                                  "centred_of_centred", "five_point", "five_point_second", "richardson"])
+def test_at_its_fewest_samples_a_scheme_is_exact_on_a_polynomial_of_its_degree(name):
+    """A stencil scheme of order p differentiates a polynomial of degree p (p + 1 for a second
+    derivative) exactly, end stencils included, down to its fewest samples (no end stencil wraps)."""
+    scheme = fd.SCHEMES[name]
+    n = scheme.derivative
+    degree = scheme.order + n - 1
+    for size in range(1, 12):
+        try:
+            call(name, np.zeros(size), 1.0, periodic=False)
+        except ValueError:
+            continue
+        x = np.arange(float(size)) * 0.5
+        y = (x - 0.3) ** degree
+        exact = math.factorial(degree) / math.factorial(degree - n) * (x - 0.3) ** (degree - n)
+        np.testing.assert_allclose(call(name, y, 0.5, periodic=False), exact, atol=1e-9)
+        break
+
+
+def test_periodic_must_be_a_bool():
+    with pytest.raises(ValueError, match="periodic must be True or False, got 'no'"):
+        fd.backward(np.arange(5.0), 0.1, periodic="no")
 
 
 def test_scalar_input_is_rejected():
