@@ -18,8 +18,17 @@ __all__ = ["Loop", "as_symbol", "SymbolName", "LazyPoints", "describe", "check_l
            "default_length_scale"]
 
 
-def as_symbol(name):
-    """A sympy symbol from a symbol or its name (real-valued)."""
+def as_symbol(name, among=()):
+    """A sympy symbol from a symbol or its name: the symbol of that name in `among` (the symbols of the
+    equations, whatever their assumptions), else a new real-valued one.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> plain = sp.Symbol("theta2")                     # as sp.symbols("theta2") makes it
+    >>> as_symbol("theta2", [plain]) is plain, as_symbol("theta2").is_real
+    (True, True)
+    """
     import sympy as sp
 
     if isinstance(name, SymbolName):
@@ -27,6 +36,9 @@ def as_symbol(name):
     if isinstance(name, sp.Symbol):
         return name
     if isinstance(name, str) and name.isidentifier():
+        for sym in among:
+            if getattr(sym, "name", None) == name:
+                return sym
         return sp.Symbol(name, real=True)
     raise InputError(f"{name!r} is not a symbol name (use an identifier such as 'theta3')")
 
@@ -83,7 +95,8 @@ class Loop:
         import sympy as sp
 
         self.residuals = [sp.sympify(r) for r in residuals]
-        self.unknowns = [as_symbol(u) for u in unknowns]
+        free = set().union(*(r.free_symbols for r in self.residuals))
+        self.unknowns = [as_symbol(u, free) for u in unknowns]
         self.name = name or "-".join(str(u) for u in self.unknowns)
         if not self.unknowns:
             raise InputError(f"loop '{self.name}' has no unknowns")
@@ -94,14 +107,13 @@ class Loop:
                 f"loop '{self.name}' has {len(self.residuals)} equations for "
                 f"{len(self.unknowns)} unknowns; it must have as many of each"
             )
-        free = set().union(*(r.free_symbols for r in self.residuals))
         missing = [str(u) for u in self.unknowns if u not in free]
         if missing:
             raise InputError(f"loop '{self.name}': unknown(s) {', '.join(missing)} appear in no equation")
         if angles is None:
             self.angles = _angle_unknowns(self.residuals, self.unknowns)
         else:
-            self.angles = {as_symbol(a) for a in angles}
+            self.angles = {as_symbol(a, self.unknowns) for a in angles}
             stray = self.angles - set(self.unknowns)
             if stray:
                 raise InputError(f"loop '{self.name}': angles {sorted(map(str, stray))} are not unknowns of it")
@@ -130,7 +142,8 @@ class Loop:
             raise InputError(f"loop '{name}' needs at least two vectors")
         re = sum(length * sp.cos(angle) for length, angle in pairs)
         im = sum(length * sp.sin(angle) for length, angle in pairs)
-        unknown_syms = [as_symbol(u) for u in unknowns]
+        unknown_syms = [as_symbol(u, set().union(*(length.free_symbols | angle.free_symbols for length, angle in pairs)))
+                        for u in unknowns]
         angle_syms = set().union(*(a.free_symbols for _, a in pairs)) & set(unknown_syms)
         loop = cls([re, im], unknown_syms, name=name, angles=angle_syms)
         loop.length_symbols = set().union(*(length.free_symbols for length, _ in pairs)) - set(unknown_syms)

@@ -112,10 +112,11 @@ class Mechanism:
         if not self.loops or not all(isinstance(lp, Loop) for lp in self.loops):
             raise InputError("`loops` must be a non-empty sequence of numkin.Loop")
         self.name = name
-        self.input_symbol = as_symbol(input)
+        named = set().union(*(r.free_symbols for lp in self.loops for r in lp.residuals))  # a name means these
+        self.input_symbol = as_symbol(input, named)
         self.parameters = {}
         for key, value in (parameters or {}).items():
-            sym = as_symbol(key)
+            sym = as_symbol(key, named)
             value = finite(f"parameter {sym}", value)
             if value < 0 and (sym.is_positive or sym.is_nonnegative):
                 raise InputError(f"parameter {sym} = {value:g} is negative, but {sym} is declared non-negative")

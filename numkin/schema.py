@@ -257,9 +257,12 @@ class Scene:
         span = self.stop_deg - self.start_deg  # the report sweeps a turn at most, the scene's sweep if less
         if check_deg is None and self.checks:
             check_deg = self.checks[0]["at_deg"]
-        elif check_deg is None:  # the start, or on less than a turn the grid point nearest the middle
-            check_deg = self.start_deg if span >= 360.0 else self.start_deg + self.step_deg * round(
-                0.5 * span / self.step_deg)
+        elif check_deg is None:  # the start; on less than a turn, the coarsest report grid's point nearest the
+            # middle (on the finer grids too where they are its multiples)
+            from .report.study import DEFAULT_GRIDS
+
+            coarse = 360.0 / min(options.get("grids", DEFAULT_GRIDS))
+            check_deg = self.start_deg if span >= 360.0 else self.start_deg + coarse * round(0.5 * span / coarse)
         return {
             "omega": self.speed, "quantity": quantity, "check_angle": math.radians(check_deg),
             "start": math.radians(self.start_deg), "guess": self.guess_values(mech),

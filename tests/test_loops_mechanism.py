@@ -263,3 +263,28 @@ def test_polish_reaches_the_circle_intersection_to_round_off():
     np.testing.assert_allclose(x[:, 0], exact, rtol=0, atol=4e-15)
     with pytest.raises(ConvergenceError, match="round-off"):
         m.polish(np.array([[0.5], [0.5]]), np.radians([90.0]), maxiter=1)
+
+
+def test_names_given_as_strings_are_the_equations_own_symbols():
+    """README's loops use plain sp.symbols (no assumptions); the unknowns, the input and the parameters
+    may be named by strings all the same (theta4 against the four-bar's circle intersection)."""
+    import math
+
+    import numpy as np
+    import sympy as sp
+
+    from numkin import Loop, Mechanism
+
+    t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    r1, r2, r3, r4 = sp.symbols("r1 r2 r3 r4")
+    loop = Loop.from_vectors([(r2, t2), (r3, t3), (-r4, t4), (-r1, 0)], ["theta3", "theta4"], name="O2-A-B-O4")
+    assert loop.unknowns == [t3, t4]
+    mech = Mechanism([loop], "theta2", {"r1": 4, "r2": 1, "r3": 3, "r4": 3}, guess={"theta3": 0.5, "theta4": 2.0})
+    assert mech.input_symbol is t2 and set(mech.parameters) == {r1, r2, r3, r4}
+    # at theta2 = 90 deg: A = (0, 1), O4 = (4, 0); B at 3 from both, above the line A-O4
+    ax, ay, ox = 0.0, 1.0, 4.0
+    d = math.hypot(ox - ax, -ay)
+    along = d / 2  # equal coupler and rocker: B over the middle of A-O4
+    h = math.sqrt(9.0 - along**2)
+    bx, by = ax + along * (ox - ax) / d + h * ay / d, ay + along * (-ay) / d + h * (ox - ax) / d
+    assert mech.sweep(np.radians([0.0, 90.0]))["theta4"][1] == pytest.approx(math.atan2(by, bx - ox), abs=1e-12)

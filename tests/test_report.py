@@ -239,9 +239,12 @@ def test_a_loosely_solved_full_turn_is_differenced_as_periodic():
 
 
 def test_check_angle_off_the_grid_is_blank(slider):
-    t = report.convergence_table(slider, omega=1.0, quantity="x", check_angle=math.radians(7), grids=(36,),
+    t = report.convergence_table(slider, omega=1.0, quantity="x", check_angle=math.radians(7), grids=(36, 360),
                                  schemes=("centred",))
-    assert np.isnan(t["abs error at theta = 7 deg [unit of quantity]"].iloc[0])
+    column = t["abs error at theta = 7 deg [unit of quantity]"]
+    assert np.isnan(column.iloc[0]) and column.iloc[1] > 0  # 7 deg: not on the 10 deg grid, on the 1 deg one
+    with pytest.raises(ValueError, match="check_angle 5729.58 deg is on none of the grids"):  # 100 given in degrees
+        report.convergence_table(slider, omega=1.0, quantity="x", check_angle=100.0, grids=(36,), schemes=("centred",))
 
 
 def test_open_grid_and_spectral_refusal(slider):

@@ -177,12 +177,12 @@ def pair(name: str, value) -> tuple[float, float]:
     >>> pair("o4", (1,))
     Traceback (most recent call last):
     ...
-    numkin.errors.InputError: o4 must be a pair (x, y) of numbers, got (1,)
+    numkin.errors.InputError: o4 must be a pair of numbers, got (1,)
     """
     try:
         x, y = value
     except (TypeError, ValueError):
-        raise InputError(f"{name} must be a pair (x, y) of numbers, got {value!r}") from None
+        raise InputError(f"{name} must be a pair of numbers, got {value!r}") from None
     return finite(f"{name}[0]", x), finite(f"{name}[1]", y)
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from .base import Dimension, LinkageSpec, build, finite, length
+from .base import Dimension, LinkageSpec, build, finite, length, pair
 
 __all__ = ["chained_four_bars", "SPEC"]
 
@@ -52,7 +52,7 @@ def chained_four_bars(
     vals = [fixed1, input1, coupler1, output1, fixed2, input2, coupler2, output2]
     f1, i1, c1, o1, f2, i2, c2, o2 = (length(n, v) for n, v in zip(names, vals))
     off = finite("offset", offset)
-    g = [finite(f"guess{k}", v) for k, pair in ((1, guess1), (2, guess2)) for v in pair]
+    g = [*pair("guess1", guess1), *pair("guess2", guess2)]
     return build(
         SPEC, _model, [f1, i1, c1, o1, f2, i2, c2, o2, off],
         name="chained four-bars", guess={"phi": g[0], "psi": g[1], "beta": g[2], "gamma": g[3]},

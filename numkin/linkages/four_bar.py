@@ -26,7 +26,8 @@ def grashof(ground: float, crank: float, coupler: float, rocker: float) -> str:
     >>> grashof(4, 1, 3, 3)
     'Grashof crank-rocker'
     """
-    links = {"ground": ground, "crank": crank, "coupler": coupler, "rocker": rocker}
+    links = {name: length(name, value)
+             for name, value in (("ground", ground), ("crank", crank), ("coupler", coupler), ("rocker", rocker))}
     ordered = sorted(links.values())
     s, p, q, l = ordered
     total = s + l - (p + q)

@@ -7,6 +7,7 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
+from ..errors import InputError
 from .study import (
     DEFAULT_GRIDS, EPS, TURN, UNIT, check_index, deg_text, differenced, exact_derivatives, grid_inputs, grid_positions,
     grid_study, order_text, set_caption, set_views, solve_sweep, stencil_points, table_quantities,
@@ -87,6 +88,14 @@ def convergence_table(
     check_col = (
         f"abs error at {lab['input']} = {deg_text(check_angle)} deg {UNIT}" if check_angle is not None else None
     )
+    if check_angle is not None:
+        if not (isinstance(check_angle, (int, float, np.number)) and math.isfinite(check_angle)):
+            raise InputError(f"check_angle must be a finite angle in rad, got {check_angle!r}")
+        if all(check_index(grid_inputs(n, start, span), check_angle) is None for n in grid_list):
+            raise InputError(
+                f"check_angle {math.degrees(check_angle):.6g} deg is on none of the grids {grid_list} from "
+                f"{math.degrees(start):.6g} deg over {math.degrees(span):.6g} deg (angles in rad)"
+            )
     data = {}
     for n in grid_list:
         s = solve_sweep(mechanism, grid_inputs(n, start, span), guess, quiet=False)

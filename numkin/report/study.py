@@ -178,7 +178,13 @@ def grid_inputs(points: int, start: float, span: float) -> np.ndarray:
 def grid_list(grids) -> list:
     if isinstance(grids, (int, np.integer)):
         grids = [grids]
-    out = [int(g) for g in grids]
+    if isinstance(grids, str):
+        raise InputError(f"grids must be points per turn (integers), got {grids!r}")
+    out = []
+    for g in grids:
+        if isinstance(g, bool) or not isinstance(g, (int, np.integer, float)) or g != int(g) or g < 4:
+            raise InputError(f"grids must be points per turn (integers >= 4), got {g!r} in {list(grids)!r}")
+        out.append(int(g))
     if not out:
         raise InputError("grids must name at least one grid (points per turn)")
     if len(set(out)) != len(out):

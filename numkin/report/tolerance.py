@@ -10,6 +10,7 @@ import numpy as np
 from .. import kinematics
 from ..derivatives import get_scheme
 from ..errors import InputError, NumkinError
+from ..newton_rules import check_tol
 from ..sweep import Sweep
 from .study import (
     TURN, check_index, deg_text, differenced, exact_derivatives, full_turn, grid_inputs, input_speed, position_record,
@@ -247,6 +248,7 @@ def tolerance_table(
     w = input_speed(omega)
     j = unknown_index(mechanism, quantity)
     lab = quantity_labels(mechanism, quantity)
+    loose_tol = check_tol(loose_tol, "loose_tol")
     s1, s2 = get_scheme(method), get_scheme(second_method)
     if s1.derivative != 1 or s2.derivative != 2:
         raise InputError("method must be a first-derivative scheme and second_method a second-derivative one")
