@@ -77,6 +77,8 @@ __all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION", 
 
 def _validate_inputs(inputs) -> np.ndarray:
     try:
+        if np.iscomplexobj(inputs):
+            raise TypeError("complex")
         t = np.asarray(inputs, dtype=float)
     except (TypeError, ValueError):
         raise InputError(f"inputs must be numbers (input values, rad), got {inputs!r:.80}") from None

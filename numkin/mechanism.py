@@ -158,6 +158,9 @@ class Mechanism:
         for lp in model["loops"]:
             self.loop_slices.append(slice(start, start + len(lp["unknowns"])))
             start += len(lp["unknowns"])
+        if not (isinstance(length_unit, str) and length_unit.strip() and length_unit.strip().isprintable()
+                and not set(length_unit) & set("[]/ ")):
+            raise InputError(f"length_unit must be a unit's name such as 'mm', 'in' or 'm', got {length_unit!r}")
         self.length_unit = length_unit
         if length_scale is None:
             length_scale = default_length_scale(model, value_of)

@@ -805,3 +805,24 @@ def test_methods_exact_to_round_off_are_tied_on_the_pareto_front():
         for _, row in front.iterrows():
             cheaper = rows[rows[work] < row[work]]
             assert not (cheaper["max rel error [-]"] < row["max rel error [-]"] - ROUNDOFF_TIE).any()
+
+
+def test_work_precision_and_convergence_agree_on_an_open_grid(slider):
+    """0-180 deg: both tables give a scheme's error over the points where its own stencil applies (the
+    closed-form piston's interior errors), so the same grid gives the same number in both."""
+    kw = dict(omega="6000 rpm", quantity="x", grids=(36, 72), schemes=("five_point", "second_difference"),
+              span=math.pi)
+    wp = report.work_precision_table(slider, **kw)
+    conv = report.convergence_table(slider, **kw)
+    for scheme in ("five_point", "second_difference"):
+        a = wp[wp.method == scheme]["max abs error [unit of quantity]"].to_numpy()
+        b = conv[conv.scheme == scheme]["max abs error [unit of quantity]"].to_numpy()
+        np.testing.assert_allclose(a, b, rtol=1e-9)  # the same sweeps and stencils; exact rates to round-off
+    n = 36
+    th = np.linspace(0.0, math.pi, n // 2 + 1)
+    x, _, d2x = piston(th)
+    h = th[1]
+    inner = W_SC**2 * np.abs((x[2:] - 2 * x[1:-1] + x[:-2]) / h**2 - d2x[1:-1])
+    row = wp[(wp.method == "second_difference") & (wp["points per turn"] == n)].iloc[0]
+    assert row["max abs error [unit of quantity]"] == pytest.approx(inner.max(), rel=1e-6)
+    assert "own stencil applies" in wp.attrs["caption"]

@@ -73,7 +73,7 @@ def convergence_table(
         ``observed order [-]``
         ``log(e_prev / e) / log(h_prev / h)`` from the max error of the row
         above (same scheme); NaN where either error is at the round-off
-        floor (:data:`ROUNDOFF_UNITS` ``* eps * max|q| / h^n``).
+        floor (:data:`ROUNDOFF_UNITS` ``* eps * max|q| * |omega|^n / h^n``).
 
     Examples
     --------
@@ -138,7 +138,7 @@ def convergence_table(
                 if k is not None and not periodic and not keep.start <= k < keep.stop:
                     at_end.add(scheme.name)
             # the rounding error of differencing samples known to eps |q|: about eps max|q| / h^n
-            floor = ROUNDOFF_UNITS * EPS * float(np.max(np.abs(s.values[j]))) * scale / h**scheme.derivative
+            floor = ROUNDOFF_UNITS * EPS * float(np.max(np.abs(s.values[j]))) * abs(scale) / h**scheme.derivative
             at_floor = e_max <= floor
             order = math.nan
             if prev is not None and prev[0] > 0 and e_max > 0 and not (at_floor or prev[2]):
@@ -169,7 +169,7 @@ def convergence_table(
     )
     floor_text = "" if not floored else (
         f" An observed order is left blank where either grid's error is at the round-off floor "
-        f"({ROUNDOFF_UNITS:g} eps max|q| / h^n for an n-th derivative): {', '.join(sorted(floored))}."
+        f"({ROUNDOFF_UNITS:g} eps max|q| |omega|^n / h^n for an n-th derivative): {', '.join(sorted(floored))}."
     )
     return set_caption(
         df,

@@ -182,7 +182,8 @@ def grid_list(grids) -> list:
         raise InputError(f"grids must be points per turn (integers), got {grids!r}")
     out = []
     for g in grids:
-        if isinstance(g, bool) or not isinstance(g, (int, np.integer, float)) or g != int(g) or g < 4:
+        if isinstance(g, bool) or not isinstance(g, (int, np.integer, float)) or not math.isfinite(g) or g != int(g) \
+                or g < 4:
             raise InputError(f"grids must be points per turn (integers >= 4), got {g!r} in {list(grids)!r}")
         out.append(int(g))
     if not out:

@@ -9,6 +9,7 @@ import numpy as np
 
 from .. import analytic
 from ..errors import InputError
+from ..schemes import get_scheme, own_stencil_points
 from .counting import count_evaluations, stencil_evaluations, sweep_evaluations
 from .study import (
     DEFAULT_GRIDS, EPS, TURN, UNIT, VARIES, differenced, exact_derivatives, grid_inputs, grid_positions, grid_study,
@@ -186,9 +187,11 @@ def work_precision_table(
                     ref = exact
                 err = abs(scale) * np.abs(est - ref)  # the input may turn either way: omega < 0
                 ref_peak = float(np.max(np.abs(scale * ref)))
-                if periodic:  # the last sample repeats the first
-                    err = err[:-1]
-                e_max = float(np.max(err))
+                # one period; on an open grid the points where a scheme's own stencil applies (as the
+                # convergence table), the one-sided ends apart; every point for the exact methods
+                own = own_stencil_points([get_scheme(name)], err.size, periodic) if differences else (
+                    slice(0, err.size - 1) if periodic else slice(None))
+                e_max = float(np.max(err[own]))
                 row = {
                     "method": name,
                     "quantity": lab[order],
@@ -229,7 +232,10 @@ def work_precision_table(
         "the compiled loop equations (sweep, analytic and complex-step derivatives) plus stencil evaluations "
         f"(finite differences), exact and the same in every run{timing}; beside the max error over the sweep, "
         "against the analytic solution, the analytic rows' against the complex step (the two rows show their "
-        "difference, both exact to round-off).",
+        "difference, both exact to round-off)"
+        + ("" if periodic else "; on this open grid a scheme's error is over the points where its own stencil "
+           "applies (the one-sided end stencils at the first and last points apart, as in the convergence table)")
+        + ".",
         grid_positions(mechanism, {n: per_grid[n][1] for n in grid_list}, None),
     )
 
