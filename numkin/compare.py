@@ -216,6 +216,9 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
     quantity, order, unit, name = target.name, target.order, target.unit, target.of
     grid = sweep_grid(sweep, periodic)
     w, a = input_rates(omega, alpha, t.size)
+    if not (np.any(w != 0) or (order == 2 and np.any(a != 0))):
+        raise InputError(f"omega = 0{' and alpha = 0' if order == 2 else ''}: the input is at rest and every "
+                         f"{target.kind} is 0, so no scheme's error can be compared; give the input's speed")
 
     # the signal and its exact theta-derivatives
     if not target.is_point:

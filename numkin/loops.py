@@ -15,7 +15,7 @@ from typing import Callable, Iterable, Sequence
 from .errors import InputError
 
 __all__ = ["Loop", "as_symbol", "SymbolName", "LazyPoints", "describe", "check_lengths", "check_symbols",
-           "default_length_scale"]
+           "default_length_scale", "read_parameters"]
 
 
 def as_symbol(name, among=()):
@@ -137,7 +137,16 @@ class Loop:
                 length, angle = v
             except (TypeError, ValueError):
                 raise InputError(f"vector {k} of loop '{name}' must be a (length, angle) pair, got {v!r}") from None
-            pairs.append((sp.sympify(length), sp.sympify(angle)))
+            try:
+                pair = (sp.sympify(length), sp.sympify(angle))
+            except (sp.SympifyError, TypeError):
+                raise InputError(f"vector {k} of loop '{name}': {v!r} is not a (length, angle) pair of "
+                                 "expressions") from None
+            for what, expr in zip(("length", "angle"), pair):
+                if expr.has(sp.zoo, sp.oo, -sp.oo, sp.nan) or expr.has(sp.I):
+                    raise InputError(f"vector {k} of loop '{name}': its {what} {expr} is not a finite real "
+                                     "expression")
+            pairs.append(pair)
         if len(pairs) < 2:
             raise InputError(f"loop '{name}' needs at least two vectors")
         re = sum(length * sp.cos(angle) for length, angle in pairs)
@@ -274,6 +283,34 @@ def describe(loops, input_symbol, parameters, points) -> dict:
                                     for s in length - set(lp.unknowns)})} for lp in loops],
         "points": [str(k) for k in (points or {})],
     }
+
+
+def read_parameters(parameters, input_symbol, named=()) -> dict:
+    """A mechanism's parameters as ``{symbol: float}``: keys are symbols or names (of the symbols in
+    `named`, the loops' own), values finite numbers, non-negative where the symbol is declared so, and
+    the input is none of them.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> r, t = sp.symbols("r t")
+    >>> read_parameters({"r": 2}, t, {r, t})
+    {r: 2.0}
+    """
+    from .units import finite
+
+    if not hasattr(parameters or {}, "items"):
+        raise InputError(f"parameters must map symbols (or names) to values, got {parameters!r:.80}")
+    out = {}
+    for key, value in (parameters or {}).items():
+        sym = as_symbol(key, named)
+        if sym == input_symbol:
+            raise InputError(f"{sym} is the input; it cannot also be a parameter with a value")
+        value = finite(f"parameter {sym}", value)
+        if value < 0 and (sym.is_positive or sym.is_nonnegative):
+            raise InputError(f"parameter {sym} = {value:g} is negative, but {sym} is declared non-negative")
+        out[sym] = value
+    return out
 
 
 def check_lengths(model: dict, value_of: dict, every_link: bool = False) -> None:

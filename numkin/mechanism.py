@@ -18,7 +18,7 @@ import numpy as np
 from .compiled import BlockStructure, CompiledMechanism, KernelNotKept, compiled_once, export_function, import_function
 from .errors import AssemblyError, ConvergenceError, InputError
 from .loops import (LazyPoints, Loop, SymbolName, as_symbol, check_lengths, check_symbols, default_length_scale,
-                    describe)
+                    describe, read_parameters)
 from .newton import JACOBIANS, TOL_MIN, NewtonResult, check_tol, iterate, residual_floor, scaled_cond
 from .units import finite
 
@@ -114,13 +114,7 @@ class Mechanism:
         self.name = name
         named = set().union(*(r.free_symbols for lp in self.loops for r in lp.residuals))  # a name means these
         self.input_symbol = as_symbol(input, named)
-        self.parameters = {}
-        for key, value in (parameters or {}).items():
-            sym = as_symbol(key, named)
-            value = finite(f"parameter {sym}", value)
-            if value < 0 and (sym.is_positive or sym.is_nonnegative):
-                raise InputError(f"parameter {sym} = {value:g} is negative, but {sym} is declared non-negative")
-            self.parameters[sym] = value
+        self.parameters = read_parameters(parameters, self.input_symbol, named)
         check_symbols(self.loops, self.input_symbol, self.parameters)
         self.unknown_symbols = [u for lp in self.loops for u in lp.unknowns]
         self._setup(describe(self.loops, self.input_symbol, self.parameters, points), list(self.parameters.values()), name=name, guess=guess,

@@ -617,3 +617,27 @@ def test_report_keys_that_cannot_make_a_table_are_refused(capsys, tmp_path, repo
     path = loops_scene(tmp_path, step=10, speed="10 rad/s", edits=[("[guess]", f"[report]\n{report_keys}\n[guess]")])
     code, out, err = run(capsys, "report", path)
     assert code == 2 and words in one_line_error(err)
+
+
+# ------------------------------------------------------------ the Python API
+def test_vectors_and_parameters_a_mechanism_cannot_use_are_named():
+    t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    r1, r2, r3, r4 = sp.symbols("r1 r2 r3 r4")
+    for length, words in ((r2 * sp.I, "I\\*r2"), (sp.nan, "nan"), (r2 / 0, "zoo\\*r2")):
+        with pytest.raises(ValueError, match=rf"vector 0 of loop 'L': its length {words} is not a finite real"):
+            Loop.from_vectors([(length, t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4], name="L")
+    loop = Loop.from_vectors([(r2, t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4], name="L")
+    with pytest.raises(ValueError, match="theta2 is the input; it cannot also be a parameter"):
+        Mechanism([loop], t2, {r1: 4, r2: 1, r3: 3, r4: 3, t2: 1.0})
+    with pytest.raises(ValueError, match="parameters must map symbols"):
+        Mechanism([loop], t2, [4, 1, 3, 3])
+
+
+def test_rates_of_an_input_at_rest_are_not_compared():
+    from numkin import compare, linkages, report
+
+    mech = linkages.four_bar(4, 1, 3, 3)
+    with pytest.raises(ValueError, match="omega = 0: the input is at rest"):
+        compare.compare(mech.sweep(np.linspace(0, 2 * np.pi, 37)), 0.0, "omega_theta4")
+    with pytest.raises(ValueError, match="omega = 0: the input is at rest"):
+        report.convergence_table(mech, omega=0, quantity="theta4", grids=(36,))

@@ -85,8 +85,12 @@ VARIES = "(varies)"
 
 
 def input_speed(omega) -> float:
-    """Input speed in rad/s from a number or a string with units (:func:`numkin.units.input_rate`)."""
-    return units.input_rate(omega, "speed")
+    """Input speed in rad/s from a number or a string with units (:func:`numkin.units.input_rate`); not 0,
+    for the tables compare rates (a scene without a speed is reported per rad/s)."""
+    w = units.input_rate(omega, "speed")
+    if w == 0:
+        raise InputError("omega = 0: the input is at rest and every rate is 0; give the input's speed (rad/s)")
+    return w
 
 
 def unknown_index(mechanism, quantity: str) -> int:
