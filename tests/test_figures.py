@@ -712,3 +712,12 @@ def test_scene_figures_are_never_timed_and_start_where_the_scene_starts(tmp_path
     assert not any("time" in str(c) for c in result.report["work_precision"].columns)
     for name in ("roundoff_table", "newton_table"):
         assert calls[name] and all(kw["start"] == pytest.approx(math.radians(-90)) for kw in calls[name]), name
+
+
+def test_a_check_angle_outside_the_sweep_is_refused_not_dropped():
+    """figures.kinematics(check_angles=[100]) (degrees by mistake: 5729.58 deg) said nothing and drew no check."""
+    from numkin import analytic, linkages
+
+    sweep = linkages.four_bar(4, 1, 3, 3).sweep(np.radians(np.arange(0.0, 361.0, 5.0)))
+    with pytest.raises(ValueError, match=r"check_angles 5729.58 deg lie outside the sweep, 0 to 360 deg"):
+        figures.kinematics(sweep, "theta4", analytic=analytic.kinematics(sweep, 1.0), check_angles=[100.0])

@@ -13,7 +13,7 @@ from ..errors import InputError, warn
 from .curves import acceleration_comparison, derivative, difference, kinematics, position, slider
 from .drawing import mechanism
 from .error_plots import convergence, jacobian_of, newton_residuals, roundoff, work_precision
-from .labels import check_unknown, input_name, is_angle, rate_columns, table_column
+from .labels import check_points, check_unknown, input_name, is_angle, rate_columns, table_column
 from .style import METADATA, gc_paused, save
 
 __all__ = ["CAPTIONS", "FIGURES", "FigureSkipped", "caption", "parse_spec", "render"]
@@ -276,7 +276,8 @@ def _build(kind: str, arg, d: _Data):
         if not any(vcol in f.columns or acol in f.columns for f in frames):
             raise _Missing(f"no velocity or acceleration of {name!r} in the result (ask for them in the scene)")
         fn = kinematics if kind == "kinematics" else slider
-        return fn(sweep, name, analytic=d.analytic, finite=d.finite, check_angles=d.check_angles), f"{kind}-{name}"
+        checks = check_points(d.check_angles, sweep.inputs, strict=False)  # a scene's checks on the turn drawn
+        return fn(sweep, name, analytic=d.analytic, finite=d.finite, check_angles=checks), f"{kind}-{name}"
     if kind == "acceleration":
         sweep = d.need_sweep()
         name = d.unknown(arg, "length")

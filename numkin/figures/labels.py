@@ -207,15 +207,22 @@ def frame_column(frame, column: str, what: str) -> np.ndarray:
     return np.asarray(frame[column], dtype=float)
 
 
-def check_points(check_angles, inputs) -> list[float]:
-    """The check angles (rad) that lie within the range of the inputs."""
+def check_points(check_angles, inputs, strict: bool = True) -> list[float]:
+    """The check angles (rad) within the range of the inputs; an angle outside it is refused (named in
+    degrees: perhaps given in degrees), or with ``strict=False`` left out (a scene's checks on a figure
+    that draws one turn of a longer sweep)."""
     if check_angles is None:
         return []
     if np.ndim(check_angles) == 0:
         check_angles = [check_angles]
     lo, hi = float(np.min(inputs)), float(np.max(inputs))
     tol = 1e-9 * max(1.0, abs(hi))
-    return [float(a) for a in check_angles if lo - tol <= float(a) <= hi + tol]
+    inside = [float(a) for a in check_angles if lo - tol <= float(a) <= hi + tol]
+    if strict and len(inside) != len(list(check_angles)):
+        outside = [f"{math.degrees(float(a)):.6g}" for a in check_angles if not lo - tol <= float(a) <= hi + tol]
+        raise InputError(f"check_angles {', '.join(outside)} deg lie outside the sweep, {math.degrees(lo):.6g} to "
+                         f"{math.degrees(hi):.6g} deg (check angles are in rad)")
+    return inside
 
 
 def table_column(table, prefix: str, what: str, required: bool = True):
