@@ -389,6 +389,8 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
     if not mech.points or not mech.links:
         raise InputError(f"{mech.name} has no named points and links to draw")
     at = float(sweep.inputs[0]) if at is None else float(at)
+    if not math.isfinite(at):
+        raise InputError(f"at must be a finite input angle in rad, got {at!r}")
     k = sweep.index(at)
     q = sweep.values[:, k]
     if abs(sweep.inputs[k] - at) > 1e-12 * max(1.0, abs(at)):

@@ -391,6 +391,8 @@ def branch_point(mechanism, angle: float, guess=None, start: float = 0.0) -> Swe
     it to the last digits, the first point of a sweep included.
     """
     a, s0 = float(angle), float(start)
+    if not (math.isfinite(a) and math.isfinite(s0)):
+        raise InputError(f"the check angle and the start must be finite angles in rad, got {angle!r} and {start!r}")
     count = max(2, int(math.ceil(abs(a - s0) / math.radians(1.0))) + 1)
     inputs = np.array([s0]) if a == s0 else np.linspace(s0, a, count)
     s = solve_sweep(mechanism, inputs, guess)
