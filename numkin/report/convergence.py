@@ -8,9 +8,10 @@ from typing import Iterable, Sequence
 import numpy as np
 
 from ..errors import InputError
+from ..schemes import own_stencil_points
 from .study import (
     DEFAULT_GRIDS, EPS, TURN, UNIT, check_index, deg_text, differenced, exact_derivatives, grid_inputs, grid_positions,
-    grid_study, order_text, set_caption, set_views, solve_sweep, stencil_points, table_quantities,
+    grid_study, order_text, set_caption, set_views, solve_sweep, table_quantities,
 )
 
 __all__ = [
@@ -114,7 +115,7 @@ def convergence_table(
             err = np.abs(est - exact)
             # statistics where the scheme's own stencil applies: one period of a periodic grid; on an
             # open grid the first and last points (one-sided end stencils) have their own column
-            keep = stencil_points(scheme, err.size, periodic)
+            keep = own_stencil_points([scheme], err.size, periodic)
             inner = err[keep]
             e_max = float(np.max(inner))
             h = TURN / n

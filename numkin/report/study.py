@@ -38,7 +38,6 @@ import numpy as np
 from .. import analytic, kinematics, units
 from ..derivatives import SCHEMES, get_scheme
 from ..errors import InputError
-from ..schemes import own_stencil_points
 from ..sweep import Sweep
 
 __all__ = [
@@ -425,11 +424,6 @@ def exact_derivatives(sweep: Sweep, quiet: bool = True, *, fresh: bool = False) 
     evaluations are counted or timed) computed anew, and kept.
     """
     return _shared(("exact", id(sweep)), lambda: analytic.derivatives(sweep), quiet, keep=(sweep,), fresh=fresh)
-
-
-def stencil_points(scheme, n_points: int, periodic: bool) -> slice:
-    """Where `scheme`'s own stencil applies (:func:`numkin.schemes.own_stencil_points` of one scheme)."""
-    return own_stencil_points([scheme], n_points, periodic)
 
 
 def order_text(scheme) -> str:

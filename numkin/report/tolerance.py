@@ -11,10 +11,10 @@ from .. import kinematics
 from ..derivatives import get_scheme
 from ..errors import InputError, NumkinError
 from ..newton_rules import check_tol
+from ..schemes import own_stencil_points
 from ..sweep import Sweep
 from .study import (
     TURN, check_index, deg_text, differenced, exact_derivatives, full_turn, grid_inputs, input_speed, position_record,
-    stencil_points,
     quantity_labels, set_caption, set_views, solve_sweep, table_quantities, unknown_index,
 )
 
@@ -306,7 +306,7 @@ def tolerance_table(
     angle_rows = np.array([u in mechanism.angles for u in mechanism.unknowns])
     # the largest errors where each scheme's own stencil applies (one period; an open grid's ends apart)
     periodic = full_turn(span)
-    keep1, keep2 = (stencil_points(s, inputs.size, periodic) for s in (s1, s2))
+    keep1, keep2 = (own_stencil_points([s], inputs.size, periodic) for s in (s1, s2))
     ends = [] if periodic else [s.name for s, keep in ((s1, keep1), (s2, keep2)) if not keep.start <= k < keep.stop]
     positions = []
     for short, label, tol, solve in solves:
