@@ -17,7 +17,7 @@ from .errors import warn
 from .march import COND_TANGENT, MAX_CORRECTION, Continuation, deg_text
 from .newton import COND_MAX, COND_WARN, is_singular, residual_floor
 from .newton import colmax as _colmax
-from .predictors import QUINTIC_MIN_POINTS, free_quintic, hermite, node_curvatures, quintic_pays
+from .predictors import QUINTIC_MIN_POINTS, free_quintic, hermite, node_curvatures, quintic_pays, quintic_terms
 from .sweep import SingularityWarning, SweepEvent
 
 __all__ = ["nodes_of", "fill", "report_near_singular", "CHUNK"]
@@ -69,16 +69,16 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
     jac = None
     # many points per segment: curvatures from the tangent field (a few kernel calls on the nodes);
     # fewer: from the nodes' values and tangents alone
-    terms = D2n = None
+    terms = None  # the quintic predictor's terms over the cubic, once for every chunk
     if N >= QUINTIC_MIN_POINTS * nodes.size:
-        D2n = node_curvatures(ctx, t, X, D, nodes)
+        terms = quintic_terms(t, X, D, node_curvatures(ctx, t, X, D, nodes), nodes)
     elif FREE_CURVATURES and nodes.size >= 3:
         alpha, beta, gap = free_quintic(t, X, D, nodes)
         terms = (alpha, beta) if quintic_pays(gap, ctx.inv_xs) else None
     for c0 in range(0, N, CHUNK):
         c = slice(c0, min(N, c0 + CHUNK))
         fm, kc, tc = fine_mask[c], k[c], t[c]
-        x_pred = hermite(tc, t, X, D, D2n, nodes, kc, terms)
+        x_pred = hermite(tc, t, X, D, None, nodes, kc, terms)
         x, converged, it, f, jac_c = ctx.newton_batch(x_pred.copy(), tc, fm, overwrite=True)
         # accept a point if Newton converged on the turn of its prediction, the correction is
         # small and no loop changed orientation

@@ -19,7 +19,7 @@ import numpy as np
 if TYPE_CHECKING:  # pragma: no cover - for annotations only
     from .march import Continuation
 
-__all__ = ["predict", "unrolled_predict", "hermite", "node_curvatures", "free_curvatures", "cubic_bases", "quintic_bases", "MAX_PREDICTION",
+__all__ = ["predict", "unrolled_predict", "hermite", "node_curvatures", "free_curvatures", "cubic_bases", "MAX_PREDICTION",
            "SANE_DISTANCE", "QUINTIC_MIN_POINTS", "HERMITE_BLOCK", "QUINTIC_GAIN_FLOOR", "QUINTIC_GAIN_LIMIT", "quintic_pays", "quintic_terms", "free_quintic", "FREE_QUINTIC_NODES"]
 
 #: Largest predicted change of an unknown in one step (scaled), 1.0: with the largest accepted
@@ -422,10 +422,9 @@ def hermite(tc, t, X, D, D2n, nodes, k, terms=None):
     Quintic (values, first and second derivatives at both nodes: error of
     order h^6) on a segment whose nodes both have a curvature in ``D2n``
     (n, nodes; NaN where unknown), cubic (values and tangents: order h^4)
-    on the others (on every segment where ``D2n`` is None). ``terms``: the
-    quintic as the cubic plus :func:`quintic_terms` ``(alpha, beta)``
-    instead (``D2n`` is then not read; the same polynomials, fewer array
-    operations). ``k`` is the left node of every input (its index in
+    on the others (on every segment where ``D2n`` is None): the quintic is
+    the cubic plus :func:`quintic_terms` ``(alpha, beta)``, given as
+    ``terms`` or computed from ``D2n``. ``k`` is the left node of every input (its index in
     ``nodes``), ``t`` the sweep's inputs. All rows at once where they are
     few (:data:`HERMITE_BLOCK`), else row by row, so that few temporaries
     are alive at once.
@@ -450,29 +449,11 @@ def hermite(tc, t, X, D, D2n, nodes, k, terms=None):
     s /= delta
     del ta
     u = 1.0 - s
-    quintic = None  # cubic everywhere
-    if D2n is not None and terms is None:
-        known = np.isfinite(D2n).all(axis=0)
-        quintic = known.take(k) & known.take(kb)
-    if quintic is not None and quintic.all():
-        h01, h10, h11 = quintic_bases(s, u)
-        c = 0.5 * delta * delta
-        D2 = D2n
-    else:
-        h01, h10, h11 = cubic_bases(s, u)
-        c = None
-        if quintic is not None and quintic.any():
-            q = quintic
-            h01[q], h10[q], h11[q] = quintic_bases(s[q], u[q])
-            c = np.where(q, 0.5 * delta * delta, 0.0)
-            D2 = np.nan_to_num(D2n, nan=0.0)
-    h20 = h21 = w = None
-    if c is not None:
-        s2 = s * s
-        h20 = s2 * u * u * u * c  # s^2 (1 - s)^3 / 2, times delta^2
-        h21 = s2 * s * u * u * c  # s^3 (1 - s)^2 / 2, times delta^2
-        del s2
-    elif terms is not None:
+    if terms is None and D2n is not None and np.isfinite(D2n).any():
+        terms = quintic_terms(t, X, D, D2n, nodes)  # zero (the cubic) where a curvature is unknown
+    h01, h10, h11 = cubic_bases(s, u)
+    w = None
+    if terms is not None:
         w = s * u
         w *= w  # s^2 (1 - s)^2
     h10 *= delta
@@ -494,14 +475,7 @@ def hermite(tc, t, X, D, D2n, nodes, k, terms=None):
         D[rows].take(b, axis=1, out=dd)
         dd *= h11
         row += dd
-        if h20 is not None:
-            D2[rows].take(k, axis=1, out=dd)
-            dd *= h20
-            row += dd
-            D2[rows].take(kb, axis=1, out=dd)
-            dd *= h21
-            row += dd
-        elif w is not None:  # s^2 (1 - s)^2 (alpha + beta s)
+        if w is not None:  # s^2 (1 - s)^2 (alpha + beta s)
             terms[1][rows].take(k, axis=1, out=dd)
             dd *= s
             part = terms[0][rows].take(k, axis=1)
@@ -522,15 +496,3 @@ def cubic_bases(s, u):
     s2 = s * s
     return s2 * (3.0 - 2.0 * s), s * u * u, -s2 * u  # 3 s^2 - 2 s^3, s (1 - s)^2, s^2 (s - 1)
 
-
-def quintic_bases(s, u):
-    """Quintic Hermite bases of the right node's value and of both tangents at ``s`` (``u = 1 - s``).
-
-    Examples
-    --------
-    >>> quintic_bases(0.5, 0.5)
-    (0.5, 0.15625, -0.15625)
-    """
-    s3 = s * s * s
-    # s^3 (6 s^2 - 15 s + 10), s (1 - s)^3 (3 s + 1), s^3 (1 - s) (3 s - 4)
-    return s3 * (s * (6.0 * s - 15.0) + 10.0), s * u * u * u * (3.0 * s + 1.0), s3 * u * (3.0 * s - 4.0)
