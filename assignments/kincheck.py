@@ -118,10 +118,13 @@ def _grid_text(grid) -> str:
     return f"θ = {start:g}°, {start + step:g}°, …, {stop:g}°"
 
 
-def array(x, name: str, grid=FULL_TURN) -> np.ndarray:
+def array(x, name: str, grid=FULL_TURN, *, forward: bool = False) -> np.ndarray:
     """``x`` as a 1-D float array with one value per grid angle.
 
     A grid that stops one step short (0°, 1°, …, 359°) is accepted too.
+    ``forward``: the values of a forward formula (the forward difference
+    applied twice), which are undefined at the last angles only: a short
+    array is read from 0°, and NaN is allowed at the last two angles.
     """
     values = floats(x, name)
     values = np.atleast_1d(np.squeeze(values))
@@ -133,9 +136,12 @@ def array(x, name: str, grid=FULL_TURN) -> np.ndarray:
         )
     if values.size == count - 1:  # stops one step short (np.diff, or 0°…359°): read from the start
         values = np.append(values, np.nan)
+    elif values.size == count - 2 and forward:  # np.diff(y, 2): from 0° to 358°
+        values = np.append(values, [np.nan, np.nan])
     elif values.size == count - 2:  # interior points only, e.g. (y[2:] - y[:-2]) / (2h)
         values = np.concatenate([[np.nan], values, [np.nan]])
-    bad = np.flatnonzero(~np.isfinite(values[1:-1])) + 1
+    last = -2 if forward else -1
+    bad = np.flatnonzero(~np.isfinite(values[1:last])) + 1
     if bad.size:  # NaN at the two ends is allowed: the checks compare interior angles
         where = _grid_angles(grid)[bad[0]]
         raise AssertionError(
@@ -373,6 +379,7 @@ def series(
     suspects=("deg", "rad/min"),
     small_hint: str | None = NEWTON_HINT,
     step_rad: float | None = None,
+    forward: bool = False,
 ) -> None:
     """Compare an array over the grid with reference values at some angles.
 
@@ -383,8 +390,9 @@ def series(
     miss from it is ``ALTERNATIVE_CLOSER`` times smaller than from ``ref``), then a unit
     factor (see :func:`explain_factor`; ``step_rad`` is the step h of a
     difference quotient), then the largest difference is reported.
+    ``forward``: read ``x`` as the values of a forward formula (see :func:`array`).
     """
-    values = array(x, name, grid)
+    values = array(x, name, grid, forward=forward)
     _current[0] = name
     degs, got, want = _pick(values, ref, grid)
     if _close(got, want, rtol, atol).all():

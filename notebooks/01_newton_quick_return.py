@@ -339,8 +339,11 @@ plt.show()
 # 1. The hand solution needs the sign of $\cos\theta_2$ to pick $\theta_3$ (the report splits
 #    $\theta_2 \in [-\pi/2, \pi/2]$ and $[\pi/2, 3\pi/2]$). Why does `atan2` make that split
 #    unnecessary? What would Newton need instead to stay on the physical root?
-# 2. The chord method's residual ratio is roughly constant. Estimate it from
-#    $\lVert I - J_0^{-1} J(\mathbf q^*)\rVert$ (compute both matrices) and compare with the table.
+# 2. The chord method's residual ratio is roughly constant. Estimate it from the spectral
+#    radius of $I - J_0^{-1} J(\mathbf q^*)$, its largest eigenvalue in magnitude (compute both
+#    matrices), and compare with the table. Why does a norm of the same matrix
+#    (`np.linalg.norm`) give a much larger number, and which of the two governs the ratio after
+#    many iterations?
 # 3. Modify section 4 so that each angle starts from the previous angle's solution (still with
 #    `qr.solve`). How many angles now land on the wrong root, and how many Newton iterations
 #    does each angle take compared with the fixed guess?

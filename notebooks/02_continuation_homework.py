@@ -332,10 +332,13 @@ except numkin.AssemblyError as err:
 # %% [markdown]
 # ## Questions
 #
-# 1. Repeat section 2 with steps of 10°, 30° and 60° (previous solution as the guess, no
-#    predictor). At what step size does the hand-made continuation first jump to the other
-#    assembly, and where? Does `mech.sweep` on the same coarse grid jump? (Read the
-#    `max_step` argument of `Mechanism.sweep`.)
+# 1. Repeat section 2 with steps of 10°, 30°, 60° and 120° (previous solution as the guess,
+#    no predictor). Does the hand-made continuation stay on the homework's assembly at every
+#    step? Check the sign that tells the two assemblies apart rather than the look of the
+#    curve. Why is the previous solution so safe a guess for this linkage: how far is the
+#    other assembly from it, compared with how far the solution moves in one step? What does
+#    `mech.sweep` do between the points of a coarse grid? (Read the `max_step` argument of
+#    `Mechanism.sweep`.)
 # 2. The homework reduced every angle `% 360`. Give one reason that is harmless for a plot of
 #    $\phi$ and one reason it is harmful for the finite differences of Lesson 3.
 # 3. For the parallelogram linkage, which assembly would a sweep from $\theta_2 = 10^\circ$ to

@@ -43,8 +43,8 @@ _NAMES = {
 }
 #: Submodules reachable as attributes of the package without importing them first.
 _SUBMODULES = (
-    "analytic", "animate", "bench", "cli", "compare", "compiled", "derivatives", "figures", "kinematics",
-    "linkages", "loops", "mechanism", "newton", "outputs", "pipeline", "quantities", "report", "scene",
+    "analytic", "animate", "bench", "cli", "compare", "compiled", "derived", "derivatives", "expressions", "figures",
+    "kinematics", "linkages", "loops", "mechanism", "newton", "outputs", "pipeline", "quantities", "report", "scene",
     "schema", "schemes", "stability", "sweep", "units",
 )
 

@@ -63,7 +63,6 @@ Examples
 from __future__ import annotations
 
 import math
-import weakref
 
 import numpy as np
 
@@ -80,7 +79,7 @@ from .conditioning import (
     warn_lost_digits,
 )
 from .errors import InputError, warn
-from .quantities import input_quantity, point_quantities, unknown_quantities
+from .quantities import input_quantity, unknown_quantities
 from .units import input_rates
 from .complex_solve import COMPLEX_STEP, complex_positions, complex_step, complex_tangent
 from .sweep import COND_MAX, SingularityWarning, check_sweep, record_evaluations
@@ -92,6 +91,9 @@ __all__ = [
     "rates",
     "point_derivatives",
     "point_kinematics",
+    "derived_values",
+    "derived_derivatives",
+    "derived_kinematics",
     "complex_step",
     "complex_positions",
     "complex_tangent",
@@ -100,6 +102,8 @@ __all__ = [
     "column_units",
     "check_sweep",
     "kinematics_frame",
+    "label_frame",
+    "scalar_attr",
     "LostDigitsWarning",
     "lost_digits",
     "DIGITS_RTOL",
@@ -399,7 +403,7 @@ def rates(sweep, omega, alpha=0.0, *, at_change_point="nan") -> tuple[np.ndarray
     return dq, d2q
 
 
-def _scalar_attr(values: np.ndarray):
+def scalar_attr(values: np.ndarray):
     """A rate for ``DataFrame.attrs``: a float when constant, else a tuple (never an array)."""
     values = np.asarray(values, dtype=float)
     return float(values[0]) if values.size and np.all(values == values[0]) else tuple(values.tolist())
@@ -414,7 +418,7 @@ def kinematics_frame(mech, t, first, second, attrs, source="analytic", second_so
     """
     import pandas as pd
 
-    attrs = {k: _scalar_attr(v) if k in ("omega", "alpha") else v for k, v in attrs.items()}
+    attrs = {k: scalar_attr(v) if k in ("omega", "alpha") else v for k, v in attrs.items()}
     quantities = _unknown_columns(mech, source, second_source)
     n = len(mech.unknowns)
     table = np.empty((t.size, 1 + 2 * n))  # one float block: the frame is built without a copy per column
@@ -422,141 +426,24 @@ def kinematics_frame(mech, t, first, second, attrs, source="analytic", second_so
     table[:, 1::2] = np.asarray(first, dtype=float)[:n].T
     table[:, 2::2] = np.asarray(second, dtype=float)[:n].T
     frame = pd.DataFrame(table, columns=list(quantities), copy=False)
-    _label(frame, quantities)
+    label_frame(frame, quantities)
     frame.attrs.update(attrs)
     return frame
 
 
-def _label(frame, quantities: dict) -> None:
+def label_frame(frame, quantities: dict) -> None:
+    """Store each column's :class:`~numkin.quantities.Quantity` and unit in ``frame.attrs``."""
     frame.attrs["quantities"] = quantities
     frame.attrs["units"] = {name: q.unit for name, q in quantities.items()}
 
 
-# --------------------------------------------------------------------------- points
-_POINT_CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+_EXPRESSIONS = ("point_derivatives", "point_kinematics", "derived_values", "derived_derivatives", "derived_kinematics")
 
 
-def _point_names(mech, points) -> list:
-    if not mech.points:
-        raise InputError(f"{mech.name} has no named points (give points= when building the Mechanism)")
-    if points is None:
-        return list(mech.points)
-    names = [points] if isinstance(points, str) else list(points)
-    unknown = [p for p in names if p not in mech.points]
-    if unknown:
-        raise InputError(f"{mech.name} has no point(s) {unknown}; its points are {list(mech.points)}")
-    return names
+def __getattr__(name):
+    """The rates of named points and derived quantities live in :mod:`numkin.expressions`."""
+    if name in _EXPRESSIONS:
+        from . import expressions
 
-
-def _point_functions(mech, names):
-    """Compiled (P, dP/dtheta, d2P/dtheta2) of the named points, derived once per mechanism."""
-    cache = _POINT_CACHE.setdefault(mech, {})
-    key = tuple(names)
-    if key not in cache:
-        import sympy as sp
-
-        q = list(mech.compiled.unknowns)
-        t = mech.compiled.input_symbol
-        params = list(mech.compiled.parameters)
-        dq = [sp.Dummy(f"d{u}") for u in q]
-        d2q = [sp.Dummy(f"dd{u}") for u in q]
-        exprs = [sp.sympify(c) for name in names for c in mech.points[name]]
-        first = [sum((sp.diff(e, u) * du for u, du in zip(q, dq)), sp.S.Zero) + sp.diff(e, t) for e in exprs]
-        second = [
-            sum((sp.diff(f, u) * du for u, du in zip(q, dq)), sp.S.Zero)
-            + sum((sp.diff(f, du) * ddu for du, ddu in zip(dq, d2q)), sp.S.Zero)
-            + sp.diff(f, t)
-            for f in first
-        ]
-        varying = [*q, *dq, *d2q, t]
-        args = [*q, *dq, *d2q, t, *params]
-        cache[key] = (
-            vector_function(exprs, args, varying),
-            vector_function(first, args, varying),
-            vector_function(second, args, varying),
-        )
-    return cache[key]
-
-
-def point_derivatives(sweep, points=None) -> dict:
-    """Positions of named points and their first and second derivatives with respect to the input.
-
-    ``dP/dtheta = dP/dq q' + dP/dtheta`` and
-    ``d2P/dtheta2 = dP'/dq q' + dP'/dq' q'' + dP'/dtheta``, derived once per
-    mechanism with sympy and evaluated over the whole sweep.
-
-    Parameters
-    ----------
-    sweep : Sweep
-    points : str or sequence of str, optional
-        Point names (default: all of ``sweep.mechanism.points``).
-
-    Returns
-    -------
-    dict
-        name -> (P, dP, d2P), each an array of shape (2, N) (rows x and y;
-        length unit, per rad, per rad^2).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from numkin import analytic, linkages
-    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([90.0]))
-    >>> P, dP, d2P = analytic.point_derivatives(sweep, "A")["A"]
-    >>> print(np.round(dP[:, 0], 9), np.round(d2P[:, 0], 9))
-    [-80.   0.] [ -0. -80.]
-    """
-    mech, t, q = check_sweep(sweep)
-    names = _point_names(mech, points)
-    f0, f1, f2 = _point_functions(mech, names)
-    dq, d2q = derivatives(sweep)
-    args = (*q, *dq, *d2q, t, *mech.parameter_values)
-    P, dP, d2P = (np.asarray(f(*args), dtype=float) for f in (f0, f1, f2))
-    return {name: (P[2 * k : 2 * k + 2], dP[2 * k : 2 * k + 2], d2P[2 * k : 2 * k + 2]) for k, name in enumerate(names)}
-
-
-def point_kinematics(sweep, omega, alpha=0.0, points=None):
-    """Positions, velocities and accelerations of named points over a sweep.
-
-    Parameters
-    ----------
-    sweep : Sweep
-    omega : float, str or array_like
-        Input angular speed (rad/s, or a string with units), see :func:`kinematics`.
-    alpha : float, str or array_like, default 0
-        Input angular acceleration (rad/s^2, or a string with units).
-    points : str or sequence of str, optional
-        Point names (default: all named points of the mechanism).
-
-    Returns
-    -------
-    pandas.DataFrame
-        Column ``<input>`` (rad), then for each point P: ``x_P``, ``y_P``
-        [length unit], ``vx_P``, ``vy_P`` [length unit/s], ``ax_P``, ``ay_P``
-        [length unit/s^2]. Units also in ``frame.attrs["units"]``.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from numkin import analytic, linkages
-    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([0.0]))
-    >>> kin = analytic.point_kinematics(sweep, "6000 rpm", points="P")
-    >>> print(f"{kin['x_P'][0]:.1f} mm, {kin['ax_P'][0] / 1000:.1f} m/s^2")
-    280.0 mm, -44215.8 m/s^2
-    """
-    import pandas as pd
-
-    mech, t, _ = check_sweep(sweep)
-    w, a = input_rates(omega, alpha, t.size)
-    data = point_derivatives(sweep, points)
-    quantities = {mech.input_name: input_quantity(mech)}
-    cols = {mech.input_name: t}
-    for name, (P, dP, d2P) in data.items():
-        values = (P, w * dP, w**2 * d2P + a * dP)
-        for pair, v in zip(point_quantities(mech, name), values):
-            for k, q in enumerate(pair):
-                quantities[q.name], cols[q.name] = q, v[k]
-    frame = pd.DataFrame(cols)
-    _label(frame, quantities)
-    frame.attrs.update({"omega": _scalar_attr(w), "alpha": _scalar_attr(a), "method": "analytic"})
-    return frame
+        return getattr(expressions, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -54,6 +54,7 @@ def read_mechanism(r: SceneReader, scene: Scene, mech: dict) -> None:
     except UnitError as error:
         r.fail("[mechanism] unit", str(error))
     dims = r.table(mech.get("dimensions", {}), "[mechanism.dimensions]")
+    _read_quantities(r, scene, mech)
     if "linkage" in mech:
         _read_linkage(r, scene, mech, dims)
         return
@@ -216,6 +217,20 @@ def _read_linkage(r: SceneReader, scene: Scene, mech: dict, dims: dict) -> None:
         scene.branch = branch
 
 
+def _read_quantities(r: SceneReader, scene: Scene, mech: dict) -> None:
+    """``[mechanism.quantities]``: ``mu = { expression = "theta4 - theta3", dimension = "angle" }``."""
+    where = "[mechanism.quantities]"
+    for name, value in r.table(mech.get("quantities", {}), where).items():
+        _identifier(r, name, f"{where} {name}")
+        r.keys(r.table(value, f"{where} {name}"), ("expression", "dimension"), f"{where} {name}")
+        for key in ("expression", "dimension"):
+            if key not in value:
+                r.fail(f"{where} {name}", f"missing key '{key}' (e.g. {name} = {{ expression = \"theta4 - theta3\", "
+                                          'dimension = "angle" })')
+        scene.derived[name] = (r.string(value["expression"], f"{where} {name} expression"),
+                               r.string(value["dimension"], f"{where} {name} dimension"))
+
+
 def _default(dimension, spec_unit: str, unit: str):
     """A dimension's default, its lengths converted from the spec's unit to the scene's."""
     value = dimension.default
@@ -237,6 +252,10 @@ def build_mechanism(scene: Scene):
     if scene.kind != "mechanism":
         raise SceneError(f"{scene.source}: a {scene.kind} scene has no mechanism")
     mech = _build_linkage(scene) if scene.linkage else _build_loops(scene)
+    try:
+        mech.add_quantities(scene.derived)
+    except InputError as error:
+        scene.fail("[mechanism.quantities]", str(error))
     _check_names(scene, mech)
     return mech
 
@@ -422,7 +441,8 @@ def scene_quantities(scene: Scene, mech, *, all_unknowns: bool = False, all_poin
     """Scene name -> :class:`~numkin.quantities.Quantity` of what the scene computes, in table order.
 
     Per unknown its position, velocity and acceleration (those the scene
-    wants), then per point its x, y coordinates and their derivatives.
+    wants), then the same per derived quantity, then per point its x, y
+    coordinates and their derivatives.
     """
     from .quantities import catalogue
     from .schema import QUANTITIES
@@ -433,7 +453,8 @@ def scene_quantities(scene: Scene, mech, *, all_unknowns: bool = False, all_poin
         orders = [k for k, kind in enumerate(QUANTITIES) if scene.wants(kind)]
     every = catalogue(mech, sorted(orders), points=bool(points)).values()  # by order, then unknown or point
     out = {}
-    for of, is_point in [(u, False) for u in unknowns] + [(p, True) for p in points]:
+    derived = [(d, False) for d in getattr(mech, "derived", {})]
+    for of, is_point in [(u, False) for u in unknowns] + derived + [(p, True) for p in points]:
         for q in every:
             if q.of == of and q.is_point == is_point:
                 out.setdefault(scene_key(q), q)

@@ -245,6 +245,8 @@ def _cmd_bench(args) -> int:
     from . import bench
 
     kwargs = {} if args.repeat is None else {"repeat": args.repeat}
+    if args.textbook_points is not None:
+        kwargs["textbook_points"] = args.textbook_points
     with _progress("bench") as step:
         step("timing")
         table = bench.run(**kwargs)
@@ -433,6 +435,8 @@ def build_parser() -> argparse.ArgumentParser:
         epilog="example:\n  numkin bench",
     )
     p.add_argument("--repeat", metavar="N", type=_positive_int, help="timing repeats")
+    p.add_argument("--textbook-points", metavar="K", type=_positive_int,
+                   help="angles of the textbook sweep actually timed, scaled to 361 (default 12)")
     return parser
 
 

@@ -14,7 +14,9 @@ The names of the columns of :func:`numkin.analytic.kinematics` and
 * ``omega_<angle>`` [rad/s], ``alpha_<angle>`` [rad/s^2];
 * ``v_<length>`` [unit/s], ``a_<length>`` [unit/s^2];
 * ``vx_<P>``, ``vy_<P>`` [unit/s], ``ax_<P>``, ``ay_<P>`` [unit/s^2] of a
-  named point P.
+  named point P;
+* the rates of a derived quantity (:mod:`numkin.derived`), named as an
+  unknown's (``omega_mu``, ``alpha_mu`` of a transmission angle ``mu``).
 
 Velocities are compared with first-derivative schemes, accelerations with
 second-derivative ones. For an accelerating input the ``alpha_in q'`` term
@@ -46,7 +48,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import derivatives as _d
-from .analytic import check_sweep, derivatives, input_rates, point_derivatives
+from .analytic import check_sweep, derivatives, input_rates
+from .expressions import derived_derivatives, point_derivatives
 from .errors import InputError
 from .kinematics import PARTNER, prepare_rows, scheme_for, sweep_grid
 from .quantities import Quantity, catalogue, input_quantity
@@ -150,7 +153,7 @@ def _resolve(mech, quantity) -> Quantity:
     if quantity in catalog:
         return catalog[quantity]
     hint = ""
-    if quantity in mech.unknowns:
+    if quantity in mech.unknowns or quantity in getattr(mech, "derived", {}):
         velocity, acceleration = (catalog[n] for n in catalogue(mech, (1, 2), points=False) if catalog[n].of == quantity)
         hint = f" (for the unknown {quantity!r} use {velocity.name!r} or {acceleration.name!r})"
     raise InputError(f"unknown quantity {quantity!r} for {mech.name}{hint}; valid: {sorted(catalog)}")
@@ -169,7 +172,8 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
     quantity : str
         A column name of :func:`numkin.analytic.kinematics` (``"omega_beta"``,
         ``"alpha_beta"``, ``"v_x"``, ``"a_x"``) or of
-        :func:`numkin.analytic.point_kinematics` (``"vx_D"``, ``"ax_D"``).
+        :func:`numkin.analytic.point_kinematics` (``"vx_D"``, ``"ax_D"``) or
+        :func:`numkin.analytic.derived_kinematics` (``"omega_mu"``).
     schemes : sequence of str, optional
         Scheme names of :data:`numkin.derivatives.SCHEMES` estimating the
         quantity's derivative (first for velocities, second for
@@ -221,7 +225,10 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
                          f"{target.kind} is 0, so no scheme's error can be compared; give the input's speed")
 
     # the signal and its exact theta-derivatives
-    if not target.is_point:
+    if name in getattr(mech, "derived", {}) and not target.is_point:
+        y, d1, d2 = derived_derivatives(sweep, name)[name]
+        is_angle = target.dimension == "angle"
+    elif not target.is_point:
         k = mech.unknowns.index(name)
         dq, d2q = derivatives(sweep)
         y, d1, d2 = q[k], dq[k], d2q[k]

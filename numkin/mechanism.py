@@ -16,6 +16,7 @@ from typing import Callable, Mapping, Sequence
 import numpy as np
 
 from .compiled import BlockStructure, CompiledMechanism, KernelNotKept, compiled_once, export_function, import_function
+from .derived import bind, names_of, read_quantities, taken_names
 from .errors import AssemblyError, ConvergenceError, InputError
 from .loops import (LazyPoints, Loop, SymbolName, as_symbol, check_lengths, check_symbols, default_length_scale,
                     describe, read_parameters)
@@ -25,7 +26,7 @@ from .units import finite
 __all__ = ["Mechanism", "LENGTH_SCALE_RANGE"]
 
 #: Keywords of :class:`Mechanism` besides the loops, input, parameters, points, name and unit.
-_OPTIONS = ("guess", "guess_input", "links", "ground", "length_scale", "assembly_check", "branch")
+_OPTIONS = ("guess", "guess_input", "links", "ground", "length_scale", "assembly_check", "branch", "quantities")
 
 #: Length scales (in any unit) a mechanism may have: products of two lengths (a loop
 #: Jacobian's determinant) stay normal float64 numbers, so every length scale in this
@@ -58,6 +59,10 @@ class Mechanism:
         input and the parameters (for drawing and point kinematics).
     links : sequence of sequences, optional
         Rigid links as sequences of point names (drawn as polylines).
+    quantities : mapping, optional
+        Derived quantities ``name -> (expression, "angle" or "length")``, e.g.
+        a transmission angle ``{"mu": ("theta4 - theta3", "angle")}``: listed,
+        differentiated and compared like the unknowns (:mod:`numkin.derived`).
     ground : sequence, optional
         Names of the fixed pivots (drawn as ground symbols).
     length_unit : str
@@ -105,6 +110,7 @@ class Mechanism:
         length_scale: float | None = None,
         assembly_check: Callable | None = None,
         branch: str | None = None,
+        quantities: Mapping | None = None,
     ):
         if isinstance(loops, Loop):
             loops = [loops]
@@ -119,7 +125,7 @@ class Mechanism:
         self.unknown_symbols = [u for lp in self.loops for u in lp.unknowns]
         self._setup(describe(self.loops, self.input_symbol, self.parameters, points), list(self.parameters.values()), name=name, guess=guess,
                     guess_input=guess_input, links=links, ground=ground, length_unit=length_unit,
-                    length_scale=length_scale, assembly_check=assembly_check, branch=branch)
+                    length_scale=length_scale, assembly_check=assembly_check, branch=branch, quantities=quantities)
         import sympy as sp
 
         self.points = {k: tuple(sp.sympify(c) for c in v) for k, v in (points or {}).items()}
@@ -129,9 +135,11 @@ class Mechanism:
             self.input_symbol,
             list(self.parameters),
         )
+        for derived in self.derived.values():
+            bind(self, derived)  # what an expression names is checked now, not at first use
 
     def _setup(self, model: dict, values: list, *, name, guess, guess_input, links, ground, length_unit,
-               length_scale, assembly_check, branch) -> None:
+               length_scale, assembly_check, branch, quantities=None) -> None:
         """Everything numeric about the mechanism, from the names in ``model`` and the parameter ``values``."""
         self.name = name
         self.input_name = model["input"]
@@ -180,6 +188,27 @@ class Mechanism:
         self._guess = guess
         self.guess_input = guess_input
         self.parameter_values = np.array(values, dtype=float)
+        self.derived = {}
+        self.add_quantities(quantities)
+
+    def add_quantities(self, quantities) -> "Mechanism":
+        """Declare derived quantities ``{name: (expression, "angle" or "length")}``; returns the mechanism.
+
+        For a ready-made linkage, whose builder takes its dimensions only:
+        ``linkages.four_bar(4, 1, 3, 3).add_quantities({"mu": ("theta4 - theta3", "angle")})``.
+        See :mod:`numkin.derived`.
+        """
+        model = self._description
+        taken = taken_names(self.unknowns, self.angles, self.input_name, [p for p, _, _ in model["parameters"]],
+                            model["points"])
+        taken.update({own: f"the quantity {d.name}" for d in self.derived.values() for own in names_of(d.name, d.dimension)})
+        known = [*self.unknowns, self.input_name, *(p for p, _, _ in model["parameters"])]
+        new = read_quantities(quantities, taken, self.name, known)
+        if new and "_model" not in self.__dict__ and "compiled" in self.__dict__:
+            for derived in new.values():
+                bind(self, derived)
+        self.derived = {**self.derived, **new}
+        return self
 
     @classmethod
     def from_model(cls, key: str, model: Callable, values, **options) -> "Mechanism":

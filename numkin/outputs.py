@@ -100,10 +100,19 @@ def tables(result) -> dict:
         return pk[q.name].to_numpy() if pk is not None and q.name in pk else None
 
     def unknown_rate(q):
+        if q.of in mech.derived:
+            return result.derived_kinematics[q.name].to_numpy()
         return result.kinematics[q.name].to_numpy()
 
     if "positions" in wanted:
         frame = sweep.to_frame()
+        if mech.derived:
+            from .expressions import derived_values
+
+            derived = derived_values(sweep)
+            derived_positions = [q for q in quantities if q.of in derived and not q.is_point and q.order == 0]
+            for label, values in _columns(result, derived_positions, lambda q: derived[q.of]).items():
+                frame[label] = values
         for label, values in _columns(result, [q for q in quantities if q.is_point and q.order == 0], point_value).items():
             frame[label] = values
         out["positions"] = frame

@@ -102,6 +102,9 @@ class SceneResult:
         ``numkin.analytic.kinematics`` (velocity/acceleration scenes only).
     point_kinematics : pandas.DataFrame or None
         ``numkin.analytic.point_kinematics`` of the wanted points.
+    derived_kinematics : pandas.DataFrame or None
+        ``numkin.analytic.derived_kinematics`` of the derived quantities
+        (``[mechanism.quantities]``).
     comparisons : dict
         Quantity name (``omega_beta``, ``alpha_beta``, ``a_x``) -> ``numkin.compare.Comparison``.
     checks : list of CheckResult
@@ -127,6 +130,7 @@ class SceneResult:
     alpha: float | None = None
     kinematics: Any = None
     point_kinematics: Any = None
+    derived_kinematics: Any = None
     comparisons: dict = field(default_factory=dict)
     checks: list = field(default_factory=list)
     at: CheckResult | None = None
@@ -412,6 +416,8 @@ def _differentiate(result: SceneResult) -> None:
     result.kinematics = analytic.kinematics(sweep, result.omega, result.alpha)
     if scene.points:
         result.point_kinematics = analytic.point_kinematics(sweep, result.omega, result.alpha, points=list(scene.points))
+    if result.mechanism.derived:
+        result.derived_kinematics = analytic.derived_kinematics(sweep, result.omega, result.alpha)
     if scene.schemes or scene.second_schemes:
         from .compare import compare
 
@@ -431,16 +437,23 @@ def _evaluate(result: SceneResult, at_deg: float, check: dict | None = None, *, 
     i = sweep.index(at)
     on_grid = bool(abs(sweep.inputs[i] - at) <= 1e-9 * max(1.0, abs(at)))
     if on_grid:
-        sub, j, kin, pk = sweep, i, result.kinematics, result.point_kinematics
+        sub, j, kin, pk, dk = sweep, i, result.kinematics, result.point_kinematics, result.derived_kinematics
     else:  # solve there by continuation from the nearest grid point
         sub = mech.sweep(np.array([sweep.inputs[i], at]), guess=sweep.values[:, i])
-        j, kin, pk = 1, None, None
+        j, kin, pk, dk = 1, None, None, None
         if result.kinematics is not None:
             from . import analytic
 
             kin = analytic.kinematics(sub, result.omega, result.alpha)
             if scene.points:
                 pk = analytic.point_kinematics(sub, result.omega, result.alpha, points=list(scene.points))
+            if mech.derived:
+                dk = analytic.derived_kinematics(sub, result.omega, result.alpha)
+    derived = {}
+    if mech.derived and dk is None:  # a position-only scene: the values alone, nothing differentiated
+        from .expressions import derived_values
+
+        derived = {name: v[j] for name, v in derived_values(sub).items()}
     xy = mech.point_coordinates(sub.values[:, j : j + 1], sub.inputs[j : j + 1]) if scene.points else {}
     values, units = {}, {}
     for key, q in scene_quantities(scene, mech, all_unknowns=every).items():
@@ -451,6 +464,14 @@ def _evaluate(result: SceneResult, at_deg: float, check: dict | None = None, *, 
                 value = pk[q.name].iloc[j]
             else:
                 continue
+        elif q.of in mech.derived:
+            if dk is not None:
+                value = dk[q.name].iloc[j]
+            elif q.order == 0:
+                value = derived[q.of]
+            else:
+                continue
+            value = math.degrees(value) if q.order == 0 and q.dimension == "angle" else value
         elif q.order == 0:
             value = math.degrees(sub[q.of][j]) if q.dimension == "angle" else sub[q.of][j]
         elif kin is not None:

@@ -228,6 +228,9 @@ def catalogue(mechanism, orders=(0, 1, 2), *, wrt: str = "time", points: bool = 
     points : bool
         Whether to list the coordinates of the named points too.
 
+    The unknowns come first, then the derived quantities (:mod:`numkin.derived`),
+    then the points, at each order.
+
     Examples
     --------
     >>> from numkin import linkages
@@ -242,6 +245,9 @@ def catalogue(mechanism, orders=(0, 1, 2), *, wrt: str = "time", points: bool = 
         for name in mechanism.unknowns:
             dim = "angle" if name in mechanism.angles else "length"
             q = Quantity(name, order, dim, source=source, **common)
+            out[q.name] = q
+        for name, derived in getattr(mechanism, "derived", {}).items():
+            q = Quantity(name, order, derived.dimension, source=source, **common)
             out[q.name] = q
         for point in mechanism.points if points else ():
             for axis in "xy":

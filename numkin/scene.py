@@ -35,6 +35,8 @@ are optional. ::
     crank = 1
     coupler = 3
     rocker = 3
+    [mechanism.quantities]   # optional derived quantities, reported like the unknowns
+    mu = { expression = "theta4 - theta3", dimension = "angle" }   # the transmission angle
 
     [input]
     speed = "450 rad/min"    # needed for velocity/acceleration: rad/s, rad/min, rpm,
@@ -148,6 +150,15 @@ Quantity names (for ``[[check]]``, ``--at``, JSON): an angle unknown's position
 ``<u>_deg``, a length unknown ``<u>`` [unit]; ``omega_<u>`` [rad/s] and
 ``alpha_<u>`` [rad/s^2]; ``v_<u>`` [unit/s] and ``a_<u>`` [unit/s^2]; points
 ``x_<P>``, ``y_<P>``, ``vx_<P>``, ``vy_<P>``, ``ax_<P>``, ``ay_<P>``.
+
+A derived quantity of ``[mechanism.quantities]`` (:mod:`numkin.derived`) is
+named like an unknown (``mu_deg``, ``omega_mu``, ``alpha_mu`` for an angle;
+``s``, ``v_s``, ``a_s`` for a length), always reported, compared by
+``[compare]`` and checked by ``[[check]]``. Its expression uses the
+mechanism's own symbols: the unknowns, the input and the dimensions of a
+mechanism of loops; for a ready-made linkage its unknowns (table below), its
+input and its parameters (a four-bar's ``r1`` to ``r4``; a misspelt name is
+refused with the list of them).
 
 The stability suite is a scene too: ``[stability] cases = [...]`` (default all
 of :data:`numkin.stability.CASES`) instead of ``[mechanism]``.

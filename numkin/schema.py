@@ -71,7 +71,8 @@ class SceneError(NumkinError, ValueError):
 _TOP = ("scene", "mechanism", "input", "guess", "output", "compare", "check", "report", "animation", "stability")
 _SECTIONS = {
     "scene": ("description", "title"),
-    "mechanism": ("linkage", "unit", "dimensions", "branch", "input", "loops", "points", "links", "ground", "name"),
+    "mechanism": ("linkage", "unit", "dimensions", "branch", "input", "loops", "points", "links", "ground", "name",
+                  "quantities"),
     "input": ("speed", "acceleration", "start_deg", "stop_deg", "step_deg", "on_singular"),
     "output": ("quantities", "unknowns", "points", "tables", "table_formats", "figures"),
     "compare": ("schemes", "second_schemes"),
@@ -182,6 +183,9 @@ class Scene:
         Subset of ("position", "velocity", "acceleration").
     unknowns, points : tuple of str or None
         Unknowns (None = all) and named points reported.
+    derived : dict
+        ``[mechanism.quantities]``: name -> (expression, "angle" or "length"),
+        always reported (:mod:`numkin.derived`).
     schemes, second_schemes : tuple of str
         Finite-difference schemes compared for velocity and acceleration.
     checks : list of dict
@@ -204,6 +208,7 @@ class Scene:
     dimensions: dict = field(default_factory=dict)
     branch: str | None = None
     custom: dict | None = None
+    derived: dict = field(default_factory=dict)
     speed: float | None = None
     speed_text: str | None = None
     acceleration: float = 0.0

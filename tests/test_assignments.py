@@ -246,6 +246,21 @@ def test_arrays_of_every_plausible_length_are_read_without_a_traceback(size):
     kc.series("dy", candidates[size], ref, rtol=1e-2)  # all three are close to cos at 1 deg
 
 
+def test_the_forward_difference_applied_twice_is_read_from_the_start():
+    h = math.radians(1.0)
+    y = np.sin(np.arange(361.0) * h)
+    twice = np.diff(y, 2) / h**2  # 359 values, at 0 deg ... 358 deg: (y[i+2] - 2 y[i+1] + y[i]) / h^2
+    forward_twice = {d: (y[d + 2] - 2 * y[d + 1] + y[d]) / h**2 for d in range(10, 360, 30)}
+    centred = {d: (y[d + 1] - 2 * y[d] + y[d - 1]) / h**2 for d in range(10, 360, 30)}
+    named = [(centred, "this matches the centred second difference")]
+    kc.series("d2y", twice, forward_twice, rtol=1e-9, forward=True, alternatives=named)
+    padded = np.append(twice, [np.nan, np.nan])  # undefined at 359 and 360 deg, neither checked
+    kc.series("d2y", padded, forward_twice, rtol=1e-9, forward=True, alternatives=named)
+    # read as interior points (the centred reading), the same values are the centred second difference
+    assert "centred second difference" in _fails(kc.series, "d2y", twice, forward_twice, rtol=1e-9,
+                                                 alternatives=named)
+
+
 def test_nan_at_the_ends_is_allowed_unless_the_end_is_checked():
     y = np.cos(np.radians(np.arange(361.0)))
     y[0] = y[-1] = np.nan

@@ -328,6 +328,9 @@ def test_bench_prints_the_report(capsys, monkeypatch):
     code, out, _ = run(capsys, "bench", "--repeat", "2")
     assert code == 0 and out.strip() == "speed report of {'repeat': 2}"
     assert calls["run"] == {"repeat": 2}
+    calls.clear()
+    code, _, _ = run(capsys, "bench", "--textbook-points", "3")  # as README's Speed section names it
+    assert code == 0 and calls["run"] == {"textbook_points": 3}
 
 
 def test_stability_scene_with_chosen_cases(capsys, tmp_path):

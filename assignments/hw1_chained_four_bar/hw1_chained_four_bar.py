@@ -543,7 +543,7 @@ def test_d2beta_dt2_forward(d2beta_dt2_fw):
     FORWARD_TWICE = {10: 141.834312181, 40: 38.0004175175, 70: -36.3696217271, 100: -28.1265557975, 130: -36.417933694, 160: -148.743488111, 190: -128.172584077, 220: -7.63602782686, 250: 11.1778128316, 280: 43.7021492814, 310: 70.1928583397, 340: 85.0328710984}  # reference: d2beta_dt2_forward_twice
     kc.series(
         "d2beta_dt2_fw", d2beta_dt2_fw, FORWARD_TWICE, rtol=1e-4, unit="rad/s²", step_rad=0.017453292519943295,
-        alternatives=[(SECOND, "this matches the centred second difference; the question asks for the forward difference applied twice")],
+        forward=True, alternatives=[(SECOND, "this matches the centred second difference; the question asks for the forward difference applied twice")],
     )
 
 # %%

@@ -1,0 +1,164 @@
+"""Derived quantities: named expressions of a mechanism's unknowns, input and parameters.
+
+A four-bar's transmission angle ``mu = theta4 - theta3``, a coupler's slope, a
+slider's distance from a pivot: what a course asks about besides the unknowns.
+Declared once, a derived quantity is everywhere an unknown is:
+:func:`numkin.quantities.catalogue` lists ``mu`` [rad], ``omega_mu`` [rad/s]
+and ``alpha_mu`` [rad/s^2]; :func:`numkin.analytic.derived_kinematics` gives
+its values and exact rates (the chain rule through the unknowns' derivatives,
+derived once with sympy); :func:`numkin.compare.compare` sets the difference
+schemes against them; a scene declares it under ``[mechanism.quantities]``.
+
+Examples
+--------
+>>> import numpy as np
+>>> from numkin import analytic, linkages
+>>> mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"mu": ("theta4 - theta3", "angle")})
+>>> kin = analytic.derived_kinematics(mech.sweep(np.radians([90.0])), omega=10.0)
+>>> print(f"{np.degrees(kin['mu'][0]):.4f} deg, {kin['omega_mu'][0]:.4f} rad/s")
+86.8153 deg, 4.4513 rad/s
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+from .errors import InputError
+
+__all__ = ["Derived", "DIMENSIONS", "read_quantities", "taken_names", "names_of", "bind"]
+
+#: What a derived quantity's value is: an angle (rad) or a length (the mechanism's length unit).
+DIMENSIONS = ("angle", "length")
+
+_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]*")
+#: Names an expression string may use besides the mechanism's own.
+FUNCTIONS = frozenset({"sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh", "sqrt", "exp",
+                       "log", "abs", "Abs", "pi", "E"})
+
+
+@dataclass(frozen=True)
+class Derived:
+    """One derived quantity: its name, its expression and whether it is an angle or a length.
+
+    Parameters
+    ----------
+    name : str
+        A name such as ``"mu"``; its rates are named by the rule of
+        :mod:`numkin.quantities` (``omega_mu``, ``alpha_mu``; ``v_s``, ``a_s``).
+    expression : sympy expression or str
+        In the unknowns, the input and the parameters, by their names.
+    dimension : {"angle", "length"}
+    """
+
+    name: str
+    expression: Any
+    dimension: str
+
+
+def read_quantities(spec, taken: Mapping[str, str], owner: str = "mechanism", known=None) -> dict:
+    """Validate ``{name: (expression, dimension)}`` into ``{name: Derived}`` (names only, no sympy).
+
+    ``taken`` maps every name the mechanism already uses (unknowns, input,
+    parameters, points and the names of their rates) to what it is, so a
+    derived quantity can neither shadow one nor be shadowed. ``known``: the
+    names an expression may use (unknowns, input, parameters), if given.
+
+    Examples
+    --------
+    >>> read_quantities({"mu": ("theta4 - theta3", "angle")}, {"theta3": "an unknown"})["mu"].dimension
+    'angle'
+    >>> read_quantities({"theta3": ("2*theta3", "angle")}, {"theta3": "an unknown"})
+    Traceback (most recent call last):
+    ...
+    numkin.errors.InputError: mechanism: quantity 'theta3' is already the name of an unknown
+    """
+    if spec is None:
+        return {}
+    if not isinstance(spec, Mapping):
+        raise InputError(f"{owner}: quantities must be a mapping name -> (expression, 'angle' or 'length'), "
+                         f"got {type(spec).__name__}")
+    out = {}
+    for name, value in spec.items():
+        where = f"{owner}: quantity {name!r}"
+        if isinstance(value, Derived):
+            value = (value.expression, value.dimension)
+        if not (isinstance(name, str) and _NAME.fullmatch(name)):
+            raise InputError(f"{where}: a quantity's name is a letter then letters, digits or _")
+        if not (isinstance(value, (tuple, list)) and len(value) == 2):
+            raise InputError(f"{where} must be (expression, 'angle' or 'length'), got {value!r}")
+        expression, dimension = value
+        if dimension not in DIMENSIONS:
+            raise InputError(f"{where}: dimension must be 'angle' or 'length', got {dimension!r}")
+        if isinstance(expression, bool) or not (isinstance(expression, str) and expression.strip()
+                                                 or hasattr(expression, "free_symbols")):
+            raise InputError(f"{where}: the expression must be a string or a sympy expression, got {expression!r}")
+        if isinstance(expression, str):
+            try:
+                ast.parse(expression.replace("^", "**").strip(), mode="eval")
+            except SyntaxError:
+                raise InputError(f"{where}: cannot read the expression {expression!r}") from None
+        if known is not None:
+            used = ({str(s) for s in expression.free_symbols} if hasattr(expression, "free_symbols")
+                    else set(re.findall(r"[A-Za-z_][A-Za-z0-9_]*", expression)) - FUNCTIONS)
+            strange = sorted(used - set(known))
+            if strange:
+                raise InputError(f"{where} names {strange}, which the mechanism does not have: it may use "
+                                 f"{sorted(known)}")
+        for own in names_of(name, dimension):
+            if own in taken:
+                raise InputError(f"{where} is already the name of {taken[own]}" if own == name else
+                                 f"{where}: its rate {own!r} is already the name of {taken[own]}")
+        out[name] = Derived(name, expression, dimension)
+    return out
+
+
+def names_of(name: str, dimension: str) -> tuple:
+    """The names of a derived quantity and its two rates (``mu``, ``omega_mu``, ``alpha_mu``)."""
+    return (name, f"omega_{name}", f"alpha_{name}") if dimension == "angle" else (name, f"v_{name}", f"a_{name}")
+
+
+def taken_names(unknowns, angles, input_name, parameters, points) -> dict:
+    """Name -> what it is, for every name a mechanism's own quantities and symbols use."""
+    taken = {input_name: "the input", **{p: "a parameter" for p in parameters}}
+    for u in unknowns:
+        for own in names_of(u, "angle" if u in angles else "length"):
+            taken[own] = "an unknown" if own == u else f"a rate of the unknown {u}"
+    for p in points:
+        for prefix in ("", "v", "a"):
+            for axis in "xy":
+                taken[f"{prefix}{axis}_{p}"] = f"a coordinate of the point {p}"
+        taken[p] = "a point"
+    return taken
+
+
+def bind(mechanism, derived: Derived):
+    """The expression of ``derived`` in the mechanism's own symbols (sympy).
+
+    Raises
+    ------
+    InputError
+        If the expression names something that is neither an unknown, the
+        input nor a parameter, or cannot be read.
+    """
+    import sympy as sp
+
+    symbols = {str(s): s for s in (*mechanism.unknown_symbols, mechanism.input_symbol, *mechanism.parameters)}
+    where = f"{mechanism.name}: quantity {derived.name!r}"
+    try:
+        expr = sp.sympify(derived.expression, locals=dict(symbols), rational=False)
+    except (sp.SympifyError, SyntaxError, TypeError) as error:
+        raise InputError(f"{where}: cannot read the expression {derived.expression!r} ({error})") from None
+    if not isinstance(expr, sp.Expr):
+        raise InputError(f"{where}: the expression {derived.expression!r} is not a number-valued expression")
+    strange = sorted(str(s) for s in expr.free_symbols if str(s) not in symbols)
+    if strange:
+        raise InputError(f"{where} names {strange}, which the mechanism does not have: it may use the unknowns "
+                         f"{[str(u) for u in mechanism.unknown_symbols]}, the input {mechanism.input_symbol} "
+                         f"and the parameters {[str(p) for p in mechanism.parameters]}")
+    expr = expr.xreplace({s: symbols[str(s)] for s in expr.free_symbols})  # a name means the loops' own symbol
+    if expr.has(sp.I) or expr.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
+        raise InputError(f"{where}: the expression {derived.expression!r} is not a finite real expression")
+    return expr

@@ -1,0 +1,297 @@
+"""Positions and exact rates of expressions of the solution: named points and derived quantities.
+
+A named point ``P = (x(q, theta), y(q, theta))`` and a derived quantity
+``mu = e(q, theta)`` (:mod:`numkin.derived`) are expressions of the unknowns
+``q`` and the input ``theta``. Their derivatives along the solution follow
+from the unknowns' ones (:func:`numkin.analytic.derivatives`) by the chain
+rule::
+
+    e'  = e_q q' + e_theta
+    e'' = (e')_q q' + (e')_q' q'' + (e')_theta
+
+derived once per mechanism with sympy, compiled once, and evaluated over the
+whole sweep; time rates as for the unknowns, ``omega_in e'`` and
+``omega_in**2 e'' + alpha_in e'``. The functions are also reached as
+``numkin.analytic.point_kinematics`` and so on.
+
+Examples
+--------
+>>> import numpy as np
+>>> from numkin import linkages
+>>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([0.0]))
+>>> kin = point_kinematics(sweep, "6000 rpm", points="P")
+>>> print(f"{kin['x_P'][0]:.1f} mm, {kin['ax_P'][0] / 1000:.1f} m/s^2")
+280.0 mm, -44215.8 m/s^2
+"""
+
+from __future__ import annotations
+
+import weakref
+
+import numpy as np
+
+from .analytic import check_sweep, derivatives, input_rates, label_frame, scalar_attr
+from .compiled import vector_function
+from .derived import bind
+from .errors import InputError
+from .quantities import Quantity, input_quantity, point_quantities
+
+__all__ = ["point_derivatives", "point_kinematics", "derived_values", "derived_derivatives", "derived_kinematics",
+           "expression_functions"]
+
+_CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+#: The parameters every ``*_kinematics`` function here shares, written once.
+_RATES = """sweep : Sweep
+    omega : float, str or array_like
+        Input angular speed (rad/s, or a string with units), see :func:`numkin.analytic.kinematics`.
+    alpha : float, str or array_like, default 0
+        Input angular acceleration (rad/s^2, or a string with units)."""
+
+
+def _shared(*functions) -> None:
+    """Write the shared parameters into the functions' docstrings (their ``%(rates)s``)."""
+    for function in functions:
+        function.__doc__ = function.__doc__.replace("%(rates)s", _RATES)
+
+
+def expression_functions(mech, key, expressions, rates: bool = True):
+    """Compiled ``(e, de/dtheta, d2e/dtheta2)`` of expressions of the unknowns, input and parameters.
+
+    Derived once per mechanism and ``key``; ``expressions()`` gives the sympy
+    expressions when they are first needed. Each function takes
+    ``(*q, *dq, *d2q, theta, *parameters)`` and returns one row per expression.
+    ``rates=False``: ``(e,)`` alone, taking ``(*q, theta, *parameters)`` (nothing differentiated).
+    """
+    cache = _CACHE.setdefault(mech, {})
+    if not rates and (key, "values") not in cache:
+        import sympy as sp
+
+        q, t = list(mech.compiled.unknowns), mech.compiled.input_symbol
+        exprs = [sp.sympify(e) for e in expressions()]
+        cache[key, "values"] = (vector_function(exprs, [*q, t, *mech.compiled.parameters], [*q, t]),)
+    if not rates:
+        return cache[key, "values"]
+    if key not in cache:
+        import sympy as sp
+
+        q = list(mech.compiled.unknowns)
+        t = mech.compiled.input_symbol
+        params = list(mech.compiled.parameters)
+        dq = [sp.Dummy(f"d{u}") for u in q]
+        d2q = [sp.Dummy(f"dd{u}") for u in q]
+        exprs = [sp.sympify(e) for e in expressions()]
+        first = [sum((sp.diff(e, u) * du for u, du in zip(q, dq)), sp.S.Zero) + sp.diff(e, t) for e in exprs]
+        second = [
+            sum((sp.diff(f, u) * du for u, du in zip(q, dq)), sp.S.Zero)
+            + sum((sp.diff(f, du) * ddu for du, ddu in zip(dq, d2q)), sp.S.Zero)
+            + sp.diff(f, t)
+            for f in first
+        ]
+        varying = [*q, *dq, *d2q, t]
+        args = [*q, *dq, *d2q, t, *params]
+        cache[key] = tuple(vector_function(rows, args, varying) for rows in (exprs, first, second))
+    return cache[key]
+
+
+def _evaluate(sweep, key, expressions, rows: int):
+    """Values and theta-derivatives of ``rows`` expressions over a sweep: three (rows, N) arrays."""
+    mech, t, q = check_sweep(sweep)
+    functions = expression_functions(mech, key, expressions)
+    dq, d2q = derivatives(sweep)
+    args = (*q, *dq, *d2q, t, *mech.parameter_values)
+    return [np.broadcast_to(np.asarray(f(*args), dtype=float).reshape(rows, -1), (rows, t.size)) for f in functions]
+
+
+def _names(mech, wanted, have, what: str, how: str) -> list:
+    """The names asked for among ``have`` (all of them when ``wanted`` is None)."""
+    if not have:
+        raise InputError(f"{mech.name} has no {what} (give {how} when building the Mechanism)")
+    if wanted is None:
+        return list(have)
+    names = [wanted] if isinstance(wanted, str) else list(wanted)
+    unknown = [p for p in names if p not in have]
+    if unknown:
+        raise InputError(f"{mech.name} has no {what} {unknown}; its {what} are {list(have)}")
+    return names
+
+
+# --------------------------------------------------------------------------- points
+def point_derivatives(sweep, points=None) -> dict:
+    """Positions of named points and their first and second derivatives with respect to the input.
+
+    Parameters
+    ----------
+    sweep : Sweep
+    points : str or sequence of str, optional
+        Point names (default: all of ``sweep.mechanism.points``).
+
+    Returns
+    -------
+    dict
+        name -> (P, dP, d2P), each an array of shape (2, N) (rows x and y;
+        length unit, per rad, per rad^2).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([90.0]))
+    >>> P, dP, d2P = point_derivatives(sweep, "A")["A"]
+    >>> print(np.round(dP[:, 0], 9), np.round(d2P[:, 0], 9))
+    [-80.   0.] [ -0. -80.]
+    """
+    mech = check_sweep(sweep)[0]
+    names = _names(mech, points, list(mech.points), "points", "points=")
+    P, dP, d2P = _evaluate(sweep, ("points", tuple(names)),
+                           lambda: [c for name in names for c in mech.points[name]], 2 * len(names))
+    return {name: (P[2 * k : 2 * k + 2], dP[2 * k : 2 * k + 2], d2P[2 * k : 2 * k + 2]) for k, name in enumerate(names)}
+
+
+def point_kinematics(sweep, omega, alpha=0.0, points=None):
+    """Positions, velocities and accelerations of named points over a sweep.
+
+    Parameters
+    ----------
+    %(rates)s
+    points : str or sequence of str, optional
+        Point names (default: all named points of the mechanism).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Column ``<input>`` (rad), then for each point P: ``x_P``, ``y_P``
+        [length unit], ``vx_P``, ``vy_P`` [length unit/s], ``ax_P``, ``ay_P``
+        [length unit/s^2]. Units also in ``frame.attrs["units"]``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([90.0]))
+    >>> kin = point_kinematics(sweep, "6000 rpm", points="A")
+    >>> print(f"{kin['vx_A'][0] / 1000:.4f} m/s")
+    -50.2655 m/s
+    """
+    mech, t, _ = check_sweep(sweep)
+    w, a = input_rates(omega, alpha, t.size)
+    data = point_derivatives(sweep, points)
+    columns = []
+    for name, (P, dP, d2P) in data.items():
+        for pair, v in zip(point_quantities(mech, name), (P, w * dP, w**2 * d2P + a * dP)):
+            columns += [(q, v[k]) for k, q in enumerate(pair)]
+    return _frame(mech, t, w, a, columns)
+
+
+# --------------------------------------------------------------------------- derived quantities
+def derived_derivatives(sweep, names=None) -> dict:
+    """Values of derived quantities and their first and second derivatives with respect to the input.
+
+    Parameters
+    ----------
+    sweep : Sweep
+    names : str or sequence of str, optional
+        Names of the mechanism's derived quantities (default: all of
+        ``sweep.mechanism.derived``).
+
+    Returns
+    -------
+    dict
+        name -> (e, de, d2e), each an array of shape (N,) (rad or length
+        unit; per rad; per rad^2).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> mech = linkages.slider_crank(80, 200).add_quantities({"gap": ("x - r*cos(theta)", "length")})
+    >>> e, de, d2e = derived_derivatives(mech.sweep(np.radians([90.0])))["gap"]
+    >>> print(f"{e[0]:.4f} mm, {abs(de[0]):.4f} mm/rad, {d2e[0]:.4f} mm/rad^2")  # r^2/sqrt(l^2 - r^2) at 90 deg
+    183.3030 mm, 0.0000 mm/rad, 34.9149 mm/rad^2
+    """
+    mech = check_sweep(sweep)[0]
+    names, chosen, key = _derived(mech, names)
+    e, de, d2e = _evaluate(sweep, key, lambda: [bind(mech, d) for d in chosen], len(chosen))
+    return {name: (e[k], de[k], d2e[k]) for k, name in enumerate(names)}
+
+
+def derived_values(sweep, names=None) -> dict:
+    """Values of derived quantities over a sweep, name -> (N,) array (rad or length unit); nothing is
+    differentiated.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"mu": ("theta4 - theta3", "angle")})
+    >>> print(np.degrees(derived_values(mech.sweep(np.radians([0.0, 90.0])))["mu"]).round(4))
+    [60.     86.8153]
+    """
+    mech, t, q = check_sweep(sweep)
+    names, chosen, key = _derived(mech, names)
+    (f,) = expression_functions(mech, key, lambda: [bind(mech, d) for d in chosen], rates=False)
+    e = np.broadcast_to(np.asarray(f(*q, t, *mech.parameter_values), dtype=float).reshape(len(chosen), -1),
+                        (len(chosen), t.size))
+    return {name: e[k] for k, name in enumerate(names)}
+
+
+def _derived(mech, names):
+    """The names asked for, their :class:`~numkin.derived.Derived` and their cache key."""
+    names = _names(mech, names, list(getattr(mech, "derived", {})), "derived quantities", "quantities=")
+    chosen = [mech.derived[n] for n in names]
+    return names, chosen, ("derived", tuple((d.name, str(d.expression), d.dimension) for d in chosen))
+
+
+def derived_kinematics(sweep, omega, alpha=0.0, names=None):
+    """Values, rates and accelerations of derived quantities over a sweep.
+
+    Parameters
+    ----------
+    %(rates)s
+    names : str or sequence of str, optional
+        Derived quantities (default: all the mechanism's).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Column ``<input>`` (rad), then for each derived quantity ``mu`` (an
+        angle): ``mu`` [rad], ``omega_mu`` [rad/s], ``alpha_mu`` [rad/s^2];
+        for ``s`` (a length): ``s``, ``v_s``, ``a_s`` in the length unit
+        (per s, per s^2). Units also in ``frame.attrs["units"]``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"mu": ("theta4 - theta3", "angle")})
+    >>> kin = derived_kinematics(mech.sweep(np.radians([90.0])), omega=10.0)
+    >>> print(f"{np.degrees(kin['mu'][0]):.4f} deg, {kin['omega_mu'][0]:.4f} rad/s")
+    86.8153 deg, 4.4513 rad/s
+    """
+    mech, t, _ = check_sweep(sweep)
+    w, a = input_rates(omega, alpha, t.size)
+    columns = []
+    for name, (e, de, d2e) in derived_derivatives(sweep, names).items():
+        common = dict(length_unit=mech.length_unit, input_name=mech.input_name)
+        for order, v in enumerate((e, w * de, w**2 * d2e + a * de)):
+            q = Quantity(name, order, mech.derived[name].dimension, source="solved" if order == 0 else "analytic",
+                         **common)
+            columns.append((q, v))
+    return _frame(mech, t, w, a, columns)
+
+
+def _frame(mech, t, w, a, columns):
+    """The DataFrame of ``[(Quantity, values)]`` after the input column, labelled."""
+    import pandas as pd
+
+    quantities = {mech.input_name: input_quantity(mech)}
+    cols = {mech.input_name: t}
+    for q, v in columns:
+        quantities[q.name], cols[q.name] = q, v
+    frame = pd.DataFrame(cols)
+    label_frame(frame, quantities)
+    frame.attrs.update({"omega": scalar_attr(w), "alpha": scalar_attr(a), "method": "analytic"})
+    return frame
+
+
+_shared(point_kinematics, derived_kinematics)
