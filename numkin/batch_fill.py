@@ -66,6 +66,7 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
     scale = None if all(w == 1.0 for w in ctx.inv_xs) else np.asarray(ctx.inv_xs)[:, None]
     ok = np.empty(N, dtype=bool)
     residual = np.empty(N)
+    cond = np.empty(N)
     jac = None
     # many points per segment: curvatures from the tangent field (a few kernel calls on the nodes);
     # fewer: from the nodes' values and tangents alone
@@ -88,7 +89,8 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
             x_pred *= scale
         okc = converged & (_colmax(x_pred) <= MAX_CORRECTION)
         del x_pred
-        o = ctx.blocks.signs(jac_c, tc.size)
+        cond_c, o = ctx.blocks.cond_signs(jac_c, tc.size)
+        cond[c] = _colmax(cond_c)
         if one_orientation:
             for kk in range(O.shape[0]):
                 okc &= o[kk] == On[kk, 0]
@@ -100,21 +102,22 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
                 okc &= (o[kk] == Oa[kk]) & (Oa[kk] == Ob[kk])
         ok[c] = okc | ~fm
         X[:, c] = x  # the nodes were not active: unchanged
-        O[:, c] = np.where(fm, o, O[:, c])
-        iters[c] = np.where(fm, it, iters[c])
+        np.copyto(O[:, c], o, where=fm)
+        np.copyto(iters[c], it, where=fm)
         residual[c] = _colmax(np.abs(f)) / ctx.fscale
         jac = jac_c if c.stop - c.start == N else _put_rows(jac, jac_c, c, N)
-        del x, f, jac_c, o
+        del x, f, jac_c, o, cond_c
     if ctx.angle_idx:
         # Both nodes of a segment are right (marched), so a run of batch points on another turn
         # shows as a neighbour step of half a turn or more: march that whole segment.
         rows = ctx.angle_idx
-        steps = np.diff(X[rows[0]] if len(rows) == 1 else X.take(rows, axis=0), axis=-1)
+        angles = X[rows[0]] if len(rows) == 1 else X if len(rows) == X.shape[0] else X.take(rows, axis=0)
+        steps = angles[..., 1:] - angles[..., :-1]
         np.abs(steps, out=steps)
-        jump = np.flatnonzero((steps if len(rows) == 1 else steps.max(axis=0)) >= math.pi)
-        if jump.size:
-            ok &= ~(fine_mask & np.isin(k, k.take(jump)))
-    cond = _conds(ctx, jac, N)
+        if not steps.max() < math.pi:  # (a NaN is no jump: looked at as a jump would be)
+            jump = np.flatnonzero((steps if len(rows) == 1 else steps.max(axis=0)) >= math.pi)
+            if jump.size:
+                ok &= ~(fine_mask & np.isin(k, k.take(jump)))
     n = X.shape[0]
     redone = set()
 
@@ -156,17 +159,6 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
         jac = _put_rows(jac, jac_redo, redo, N)
         cond[redo] = _colmax(ctx.blocks.cond(jac_redo, redo.size))
     return residual, cond, jac
-
-
-def _conds(ctx, jac, N):
-    """The largest condition number of the loops' blocks at every point, CHUNK points at a time."""
-    if N <= CHUNK:
-        return _colmax(ctx.blocks.cond(jac, N))
-    cond = np.empty(N)
-    for c0 in range(0, N, CHUNK):
-        c = slice(c0, min(N, c0 + CHUNK))
-        cond[c] = _colmax(ctx.blocks.cond([r[c] if np.ndim(r) else r for r in jac], c.stop - c.start))
-    return cond
 
 
 def _put_rows(rows, sub, idx, N):

@@ -76,12 +76,15 @@ __all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION", 
 
 
 def _validate_inputs(inputs) -> np.ndarray:
-    try:
-        if np.iscomplexobj(inputs):
-            raise TypeError("complex")
-        t = np.asarray(inputs, dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(f"inputs must be numbers (input values, rad), got {inputs!r:.80}") from None
+    if type(inputs) is np.ndarray and inputs.dtype == np.float64:  # what np.asarray would return
+        t = inputs
+    else:
+        try:
+            if np.iscomplexobj(inputs):
+                raise TypeError("complex")
+            t = np.asarray(inputs, dtype=float)
+        except (TypeError, ValueError):
+            raise InputError(f"inputs must be numbers (input values, rad), got {inputs!r:.80}") from None
     if t.ndim == 0:
         t = t.reshape(1)
     if t.ndim != 1 or t.size == 0:
@@ -89,8 +92,8 @@ def _validate_inputs(inputs) -> np.ndarray:
     if not math.isfinite(t.sum()):
         raise InputError(f"inputs[{int(np.flatnonzero(~np.isfinite(t))[0])}] is not finite")
     if t.size > 1:
-        d = t[1:] - t[:-1]
-        if not ((d > 0).all() or (d < 0).all()):
+        d = t[1:] - t[:-1]  # finite or infinite, never NaN: the sum above was finite
+        if not (d.min() > 0 or d.max() < 0):
             k = int(np.flatnonzero(np.sign(d) != np.sign(d[0]))[0]) if np.any(d != 0) else 0
             raise InputError(f"inputs must be strictly monotonic for continuation (check inputs[{k}:{k + 2}])")
     return t
