@@ -75,6 +75,7 @@ class BlockStructure:
             self._step = unrolled_solve(n, self.blocks, zeros, batch=True)
             self.update1 = unrolled_update(n, self.blocks, zeros, self.inv_xscale)
             self._local = unrolled_local(n, self.blocks, zeros, self._col)
+            self.local1 = self._local  # the method below, written out: called without the indirection
             #: Newton-Raphson at one point with every update written out for these blocks; called with
             #: the kernel, the point and the stopping rule (see :meth:`numkin.march.Continuation.newton1`).
             self.newton1 = unrolled_newton(n, self.blocks, zeros, self.inv_xscale, self._col)

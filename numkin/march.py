@@ -452,6 +452,8 @@ class Continuation:
         iters = 0
         inv_xs = self.inv_xs
         unit = self.unit_scale
+        newton1, fjt, pt, fscale, tol, floor = self._newton1, self._fjt, self.pt, self.fscale, self.tol, self._floor
+        local1 = self.blocks.local1
         for _ in range(MAX_TRIALS):
             if t == t1:
                 break
@@ -471,13 +473,30 @@ class Continuation:
             if dt < min_step or t_new == t:
                 self.fail(t0, x0, t, x, t_new, x, "singular", "singular", 0, math.nan)
             x_pred = self.predict1(t, x, d, t_prev, x_prev, t_new, rate, d_prev)
-            x_new, status, it, res, v = self.correct(x_pred, t_new)
-            reason = status
+            # self.correct(x_pred, t_new), with the nearest turn looked for only where an angle moved by
+            # more than half a turn (angles are scaled by one: a smaller distance moves none)
+            if newton1 is not None:
+                x_new, status, it, res, v, evals = newton1(fjt, x_pred, t_new, pt, CORRECTOR_ITERATIONS, fscale, tol,
+                                                           floor, MATH_ERRORS, None)
+                self.nfev += evals
+                self.njev += evals
+            else:
+                x_new, status, it, res, v = self.newton1(x_pred, t_new, CORRECTOR_ITERATIONS)
             ok = status == "converged"
-            if ok and not self.small_correction(x_new, x_pred):
+            if ok:
+                moved = self.distance(x_new, x_pred)
+                if not moved <= math.pi:
+                    x_new, turned = self.nearest_turn(x_new, x_pred)
+                    if turned:  # polished on the prediction's turn
+                        x_new, status, it2, res, v = self.newton1(x_new, t_new, CORRECTOR_ITERATIONS)
+                        it += it2
+                        ok = status == "converged"
+                    moved = self.distance(x_new, x_pred)
+            reason = status
+            if ok and not moved <= MAX_CORRECTION:
                 ok, reason = False, "correction"
             if ok:
-                d_new, o_new, cond = self.blocks.local1(v) if v is not None else (None, None, math.inf)
+                d_new, o_new, cond = local1(v) if v is not None else (None, None, math.inf)
                 if o_new is None and d is not None and v is not None:
                     # a root where the Jacobian is singular (a change point on the grid, reached exactly):
                     # no tangent or orientation of its own; the branch's go on from the side it came from
