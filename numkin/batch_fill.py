@@ -23,11 +23,19 @@ from .sweep import SingularityWarning, SweepEvent
 __all__ = ["nodes_of", "fill", "report_near_singular", "CHUNK"]
 
 
-def nodes_of(t: np.ndarray, max_step: float) -> np.ndarray:
-    """Grid indices marched sequentially: at most ``max_step`` apart where the grid allows."""
+def nodes_of(t: np.ndarray, max_step: float, largest_step: float | None = None) -> np.ndarray:
+    """Grid indices marched sequentially: at most ``max_step`` apart where the grid allows.
+
+    ``largest_step``: the largest ``|t[i + 1] - t[i]|``, if known.
+
+    Examples
+    --------
+    >>> nodes_of(np.linspace(0.0, 1.0, 11), 0.35).tolist()
+    [0, 3, 6, 9, 10]
+    """
     if t.size <= 2:
         return np.arange(t.size)
-    h = float(np.abs(t[1:] - t[:-1]).max())
+    h = float(np.abs(t[1:] - t[:-1]).max()) if largest_step is None else largest_step
     every = max(1, int(max_step / h * (1.0 + 1e-9))) if h > 0 else 1
     last = t.size - 1
     return np.arange(0, t.size, every) if last % every == 0 else np.array([*range(0, last, every), last])

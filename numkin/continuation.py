@@ -75,7 +75,8 @@ __all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION", 
            "CROSSING_STEP"]
 
 
-def _validate_inputs(inputs) -> np.ndarray:
+def _validate_inputs(inputs):
+    """The inputs as a float array, checked, and the largest step between neighbours (0.0 for one input)."""
     if type(inputs) is np.ndarray and inputs.dtype == np.float64:  # what np.asarray would return
         t = inputs
     else:
@@ -91,12 +92,17 @@ def _validate_inputs(inputs) -> np.ndarray:
         raise InputError(f"inputs must be a non-empty 1-D array of input values (rad), got shape {t.shape}")
     if not math.isfinite(t.sum()):
         raise InputError(f"inputs[{int(np.flatnonzero(~np.isfinite(t))[0])}] is not finite")
-    if t.size > 1:
-        d = t[1:] - t[:-1]  # finite or infinite, never NaN: the sum above was finite
-        if not (d.min() > 0 or d.max() < 0):
-            k = int(np.flatnonzero(np.sign(d) != np.sign(d[0]))[0]) if np.any(d != 0) else 0
-            raise InputError(f"inputs must be strictly monotonic for continuation (check inputs[{k}:{k + 2}])")
-    return t
+    if t.size == 1:
+        return t, 0.0
+    d = t[1:] - t[:-1]  # finite or infinite, never NaN: the sum above was finite
+    low = d.min()
+    if low > 0:
+        return t, float(d.max())
+    high = d.max()
+    if high < 0:
+        return t, float(-low)
+    k = int(np.flatnonzero(np.sign(d) != np.sign(d[0]))[0]) if np.any(d != 0) else 0
+    raise InputError(f"inputs must be strictly monotonic for continuation (check inputs[{k}:{k + 2}])")
 
 
 def _warn_if_degrees(mech, t) -> None:
@@ -138,7 +144,7 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
         raise InputError(f"maxiter must be a positive integer, got {maxiter!r}")
     if jacobian not in JACOBIANS:
         raise InputError(f"jacobian must be one of {JACOBIANS}, got {jacobian!r}")
-    t = _validate_inputs(inputs)
+    t, largest_step = _validate_inputs(inputs)
     _warn_if_degrees(mech, t)
     mech.check_assembly(t)
     ctx = Continuation(mech, jacobian, tol, float(max_step), on_singular)
@@ -153,7 +159,7 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
         d0, o0 = ctx.local1(v0)
         X[:, 0], D[:, 0], O[:, 0] = x0, d0, o0
 
-        nodes = nodes_of(t, max_step)
+        nodes = nodes_of(t, max_step, largest_step)
         x, d, o = x0, d0, o0
         ctx.last_previous = None
         pairs = zip(nodes[:-1].tolist(), nodes[1:].tolist())
