@@ -17,7 +17,15 @@ from .errors import warn
 from .march import COND_TANGENT, MAX_CORRECTION, Continuation, deg_text
 from .newton import COND_MAX, COND_WARN, is_singular, residual_floor
 from .newton import colmax as _colmax
-from .predictors import QUINTIC_MIN_POINTS, free_quintic, hermite, node_curvatures, quintic_pays, quintic_terms
+from .predictors import (
+    QUINTIC_MIN_POINTS,
+    free_quintic,
+    hermite,
+    hermite_uniform,
+    node_curvatures,
+    quintic_pays,
+    quintic_terms,
+)
 from .sweep import SingularityWarning, SweepEvent
 
 __all__ = ["nodes_of", "fill", "report_near_singular", "CHUNK"]
@@ -51,10 +59,12 @@ FREE_CURVATURES = True
 CHUNK = 8192
 
 
-def fill(ctx: Continuation, t, X, D, O, iters, nodes):
+def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
     """Solve the grid points between nodes by Newton batches (a Hermite predictor from the nodes).
 
-    The points are taken :data:`CHUNK` at a time. Returns the scaled
+    The points are taken :data:`CHUNK` at a time. ``every``: the inputs are evenly spaced and
+    the nodes are every ``every``-th of them, the last included (one matrix product predicts
+    them: :func:`numkin.predictors.hermite_uniform`). Returns the scaled
     residual norm (N,), the largest condition number of the loops' blocks
     (N,) and the Jacobian rows at every point of the sweep.
     """
@@ -64,8 +74,9 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
         return _colmax(np.abs(f)) / ctx.fscale, _colmax(ctx.blocks.cond(jac, N)), jac
     fine_mask = np.ones(N, dtype=bool)
     fine_mask[nodes] = False
+    uniform = every is not None and N <= CHUNK
     # every column's left and right node (a node is its own left node, at s = 0)
-    k = np.searchsorted(nodes, np.arange(N), side="right") - 1
+    k = np.arange(N) // every if uniform else np.searchsorted(nodes, np.arange(N), side="right") - 1
     # the round-off floor of the residual: sines of the largest angles and inputs of the sweep
     big = float(np.abs(X.take(nodes, axis=1)).max() * max(ctx.inv_xs))
     ctx.floor = residual_floor([big], max(abs(float(t[0])), abs(float(t[-1]))))
@@ -87,7 +98,10 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
     for c0 in range(0, N, CHUNK):
         c = slice(c0, min(N, c0 + CHUNK))
         fm, kc, tc = fine_mask[c], k[c], t[c]
-        x_pred = hermite(tc, t, X, D, None, nodes, kc, terms)
+        if uniform:
+            x_pred = hermite_uniform(t.take(nodes), X, D, every, terms)
+        else:
+            x_pred = hermite(tc, t, X, D, None, nodes, kc, terms)
         x, converged, it, f, jac_c = ctx.newton_batch(x_pred.copy(), tc, fm, overwrite=True)
         # accept a point if Newton converged on the turn of its prediction, the correction is
         # small and no loop changed orientation

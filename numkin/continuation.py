@@ -75,8 +75,14 @@ __all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION", 
            "CROSSING_STEP"]
 
 
+#: Relative spread of the input steps up to which a grid counts as evenly spaced: its batch points are
+#: predicted at ``j / every`` of their segments (:func:`numkin.predictors.hermite_uniform`).
+EVEN_STEPS = 1e-9
+
+
 def _validate_inputs(inputs):
-    """The inputs as a float array, checked, and the largest step between neighbours (0.0 for one input)."""
+    """The inputs as a float array, checked; the largest step between neighbours (0.0 for one input); and
+    whether the steps are all equal to :data:`EVEN_STEPS` of it (an evenly spaced grid)."""
     if type(inputs) is np.ndarray and inputs.dtype == np.float64:  # what np.asarray would return
         t = inputs
     else:
@@ -93,14 +99,15 @@ def _validate_inputs(inputs):
     if not math.isfinite(t.sum()):
         raise InputError(f"inputs[{int(np.flatnonzero(~np.isfinite(t))[0])}] is not finite")
     if t.size == 1:
-        return t, 0.0
+        return t, 0.0, True
     d = t[1:] - t[:-1]  # finite or infinite, never NaN: the sum above was finite
     low = d.min()
     if low > 0:
-        return t, float(d.max())
+        high = float(d.max())
+        return t, high, high - low <= EVEN_STEPS * high
     high = d.max()
     if high < 0:
-        return t, float(-low)
+        return t, float(-low), high - low <= EVEN_STEPS * -low
     k = int(np.flatnonzero(np.sign(d) != np.sign(d[0]))[0]) if np.any(d != 0) else 0
     raise InputError(f"inputs must be strictly monotonic for continuation (check inputs[{k}:{k + 2}])")
 
@@ -144,7 +151,7 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
         raise InputError(f"maxiter must be a positive integer, got {maxiter!r}")
     if jacobian not in JACOBIANS:
         raise InputError(f"jacobian must be one of {JACOBIANS}, got {jacobian!r}")
-    t, largest_step = _validate_inputs(inputs)
+    t, largest_step, evenly = _validate_inputs(inputs)
     _warn_if_degrees(mech, t)
     mech.check_assembly(t)
     ctx = Continuation(mech, jacobian, tol, float(max_step), on_singular)
@@ -172,7 +179,10 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
             X[:, b], D[:, b], O[:, b] = x, d, o
 
         ctx.raise_pending()  # a change point passed in the last step of the march
-        residual, cond, jac = fill(ctx, t, X, D, O, iters, nodes)
+        every = int(nodes[1]) if evenly and nodes.size > 1 else 0
+        # the nodes every `every`-th input, the last one included, of an evenly spaced grid
+        every = every if every and t.size - 1 == every * (nodes.size - 1) else None
+        residual, cond, jac = fill(ctx, t, X, D, O, iters, nodes, every=every)
         ctx.raise_pending()
         if ctx.crossings:
             ctx.describe_crossings(t, X, O, cond)

@@ -19,7 +19,7 @@ import numpy as np
 if TYPE_CHECKING:  # pragma: no cover - for annotations only
     from .march import Continuation
 
-__all__ = ["predict", "unrolled_predict", "hermite", "node_curvatures", "free_curvatures", "cubic_bases", "MAX_PREDICTION",
+__all__ = ["predict", "unrolled_predict", "hermite", "hermite_uniform", "node_curvatures", "free_curvatures", "cubic_bases", "MAX_PREDICTION",
            "SANE_DISTANCE", "QUINTIC_MIN_POINTS", "HERMITE_BLOCK", "QUINTIC_GAIN_FLOOR", "QUINTIC_GAIN_LIMIT", "quintic_pays", "quintic_terms", "free_quintic", "FREE_QUINTIC_NODES"]
 
 #: Largest predicted change of an unknown in one step (scaled), 1.0: with the largest accepted
@@ -483,6 +483,64 @@ def hermite(tc, t, X, D, D2n, nodes, k, terms=None):
             part *= w
             row += part
     return out
+
+
+def hermite_uniform(tn, X, D, every, terms=None):
+    """:func:`hermite` at every input of an evenly spaced grid whose nodes are every ``every``-th input,
+    first and last included (``(X.shape[1] - 1) % every == 0``): one matrix product.
+
+    The inputs of a segment sit at ``s = j / every`` (j = 0 ... every - 1) of it, so the bases
+    are the same on every segment: the prediction is the nodes' values, tangents (times the
+    segment's length) and quintic terms ``(alpha, beta)`` (:func:`quintic_terms`; None: the
+    cubic) times a (6, every) matrix of bases. ``tn``: the nodes' inputs. The same polynomials
+    as :func:`hermite`, evaluated at these ``s`` (equal to the grid's to its rounding).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 2.0, 9); nodes = np.arange(0, 9, 4); k = np.arange(9) // 4
+    >>> X, D = np.vstack([np.sin(t), t ** 4]), np.vstack([np.cos(t), 4 * t ** 3])
+    >>> bool(np.allclose(hermite_uniform(t[nodes], X, D, 4), hermite(t, t, X, D, None, nodes, k), rtol=0, atol=1e-14))
+    True
+    """
+    n, N = X.shape
+    m = tn.size
+    basis = _uniform_bases(every, terms is not None)
+    cols = basis.shape[0]
+    h = tn[1:] - tn[:-1]
+    Y, Dn = X[:, ::every], D[:, ::every]
+    coef = np.empty((n, m - 1, cols))
+    coef[:, :, 0] = Y[:, :-1]
+    coef[:, :, 1] = Y[:, 1:]
+    np.multiply(Dn[:, :-1], h, out=coef[:, :, 2])
+    np.multiply(Dn[:, 1:], h, out=coef[:, :, 3])
+    if terms is not None:
+        coef[:, :, 4] = terms[0][:, :-1]
+        coef[:, :, 5] = terms[1][:, :-1]
+    out = np.empty((n, N))
+    out[:, :-1] = (coef.reshape(n * (m - 1), cols) @ basis).reshape(n, N - 1)
+    out[:, -1] = X[:, -1]  # the last node
+    return out
+
+
+@lru_cache(maxsize=16)
+def _uniform_bases(every, quintic):
+    """The bases of :func:`hermite_uniform` at ``s = j / every`` (read-only): the left and right
+    node's value, tangent (per unit of the segment's length), and with ``quintic`` the terms
+    ``s^2 (1 - s)^2`` and ``s^3 (1 - s)^2``."""
+    s = np.arange(every) / every
+    u = 1.0 - s
+    h01, h10, h11 = cubic_bases(s, u)
+    basis = np.empty((6 if quintic else 4, every))
+    np.subtract(1.0, h01, out=basis[0])
+    basis[1], basis[2], basis[3] = h01, h10, h11
+    if quintic:
+        w = s * u
+        w *= w
+        basis[4] = w
+        np.multiply(w, s, out=basis[5])
+    basis.flags.writeable = False
+    return basis
 
 
 def cubic_bases(s, u):
