@@ -29,7 +29,7 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["cond2", "step_lines", "scaled_max", "unrolled_update", "unrolled_newton", "unrolled_newton_batch",
+__all__ = ["cond2", "step_lines", "scaled_max", "max_lines", "unrolled_update", "unrolled_newton", "unrolled_newton_batch",
            "unrolled_solve", "unrolled_local", "scaled_distance"]
 
 
@@ -91,6 +91,15 @@ def scaled_max(names, weights):
     return terms[0] if len(terms) == 1 else f"max({', '.join(terms)})"
 
 
+def max_lines(target, terms, indent):
+    """Lines setting ``target`` to ``max(terms)`` (expressions) without the call: the same value as the
+    built-in, which keeps the first term unless a later one is larger (a NaN stays where it is first)."""
+    lines = [f"{indent}{target} = {terms[0]}"]
+    for term in terms[1:]:
+        lines += [f"{indent}_next = {term}", f"{indent}if _next > {target}: {target} = _next"]
+    return lines
+
+
 def unrolled_update(n, blocks, zeros, inv_xscale):
     """Generate ``update1(v, x) -> (x_new, step)``: one Newton update at one point, written out.
 
@@ -121,7 +130,8 @@ def unrolled_newton(n, blocks, zeros, inv_xscale, col):
     """
     xs = [f"x{i}" for i in range(n)]
     xl = "[" + ", ".join(xs) + "]"
-    res = "max(" + ", ".join(f"abs(v[{i}])" for i in range(n)) + ")" if n > 1 else "abs(v[0])"
+    res = [f"abs(v[{i}])" for i in range(n)]
+    steps = [f"abs(d{i})" if w == 1.0 else f"abs(d{i}) * {w!r}" for i, w in enumerate(inv_xscale)]
     # the conditioning rule on the scaled 2 x 2 blocks (a block of size 1 is refused only where it is
     # exactly singular, by the step itself, as in BlockStructure.cond1)
     conds = [f"COND2(v[{n + a * n + a}] * {col[a]!r}, v[{n + a * n + a + 1}] * {col[a + 1]!r}, "
@@ -143,7 +153,8 @@ def unrolled_newton(n, blocks, zeros, inv_xscale, col):
         "        return x, 'diverged', 0, NAN, None, 1",
         "    if not -INF < sum(v) < INF:",
         "        return x, 'diverged', 0, NAN, None, 1",
-        f"    res = {res} / fscale",
+        *max_lines("res", res, "    "),
+        "    res /= fscale",
         "    prev = INF",
         "    it = 0",
         "    status = 'maxiter'",
@@ -152,7 +163,7 @@ def unrolled_newton(n, blocks, zeros, inv_xscale, col):
         *step_lines(n, blocks, zeros, "status = 'converged' if res <= tol and cond_max is None else 'singular'; break",
                      indent="        "),
         *[f"        x{i} += d{i}" for i in range(n)],
-        f"        step = {scaled_max([f'd{i}' for i in range(n)], inv_xscale)}",
+        *max_lines("step", steps, "        "),
         "        it += 1",
         "        try:",
         f"            v = K({', '.join(xs)}, t, *pt)",
@@ -160,7 +171,8 @@ def unrolled_newton(n, blocks, zeros, inv_xscale, col):
         f"            return {xl}, 'diverged', it, NAN, None, it + 1",
         "        if not -INF < sum(v) < INF:",
         f"            return {xl}, 'diverged', it, NAN, None, it + 1",
-        f"        res = {res} / fscale",
+        *max_lines("res", res, "        "),
+        "        res /= fscale",
         "        if res <= tol:",  # numkin.newton_rules.has_converged at one point
         "            if step <= tol or (step <= tol23 and step <= 0.25 * prev) or step >= 0.9 * prev:",
         "                status = 'converged'",
@@ -378,7 +390,7 @@ def scaled_distance(n, weights):
     1.5
     """
     terms = [f"abs(a[{i}] - b[{i}])" + ("" if weights[i] == 1.0 else f" * {weights[i]!r}") for i in range(n)]
-    body = terms[0] if n == 1 else f"max({', '.join(terms)})"
+    lines = ["def distance(a, b):", *max_lines("out", terms, "    "), "    return out"]
     namespace = {}
-    exec(f"def distance(a, b):\n    return {body}", namespace)  # noqa: S102 - generated from integers and floats only
+    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
     return namespace["distance"]
