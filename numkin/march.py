@@ -27,7 +27,7 @@ from .newton import (
 )
 from .predictors import MAX_PREDICTION, unrolled_predict
 from .sweep import SingularityWarning, SweepEvent
-from .unrolled import scaled_distance
+from .unrolled import scaled_distance, unrolled_kink
 
 __all__ = ["Continuation", "deg_text", "MAX_CORRECTION", "CORRECTOR_ITERATIONS",
            "DEFAULT_MAX_STEP", "FAR", "TWO_PI", "MAX_TANGENT_TURN", "TREND_REACH", "CROSSING_STEP", "COND_TANGENT"]
@@ -102,6 +102,8 @@ class Continuation:
         self.angle_idx = [k for k, u in enumerate(mech.unknowns) if u in mech.angles]
         self.predict1 = unrolled_predict(self.n, None if self.unit_scale else tuple(self.inv_xs))
         self.distance = scaled_distance(self.n, tuple(self.inv_xs))  # max |a - b| / xscale of two points
+        #: :meth:`trend` and :meth:`kinked` in one written-out function
+        self.kinked1 = unrolled_kink(self.n, tuple(self.inv_xs), MAX_TANGENT_TURN, TREND_REACH)
         self._fjt = comp.scalar_FJT
         self._newton1 = self.blocks.newton1 if self.symbolic else None
         self._f = comp.scalar_F
@@ -454,6 +456,7 @@ class Continuation:
         unit = self.unit_scale
         newton1, fjt, pt, fscale, tol, floor = self._newton1, self._fjt, self.pt, self.fscale, self.tol, self._floor
         local1 = self.blocks.local1
+        kinked = self.kinked1
         for _ in range(MAX_TRIALS):
             if t == t1:
                 break
@@ -516,7 +519,7 @@ class Continuation:
                         # (the other branch keeps it) tells the branches apart: localise as for a crossing.
                         ok, reason = False, "singular"
                     d_new = d  # a tangent solved through a near-singular Jacobian is noise: keep the last good one
-                elif dt > crossing_step and self.kinked(self.trend(t, d, t_prev, d_prev, t_new), d_new, rate):
+                elif dt > crossing_step and kinked(t, d, t_prev, d_prev, t_new, d_new, rate):
                     # Where branches meet, the other branch keeps the orientation: only the
                     # tangent shows the switch. A smooth branch passes once the step is small.
                     ok, reason = False, "kink"

@@ -16,6 +16,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .unrolled import max_lines
+
 if TYPE_CHECKING:  # pragma: no cover - for annotations only
     from .march import Continuation
 
@@ -138,8 +140,7 @@ def unrolled_predict(n, inv_xs=None):
     w = [1.0] * n if inv_xs is None else list(inv_xs)
 
     def biggest(name):
-        terms = [f"abs({name}{i})" if w[i] == 1.0 else f"abs({name}{i}) * {w[i]!r}" for i in range(n)]
-        return terms[0] if n == 1 else f"max({', '.join(terms)})"
+        return [f"abs({name}{i})" if w[i] == 1.0 else f"abs({name}{i}) * {w[i]!r}" for i in range(n)]
 
     def listed(fmt):
         return "[" + ", ".join(fmt.format(i=i) for i in range(n)) + "]"
@@ -164,10 +165,12 @@ def unrolled_predict(n, inv_xs=None):
         "    if d_prev is not None:",
         *[f"        g{i} = (d_prev[{i}] - d{i}) * h" for i in range(n)],
         *[f"        q{i} = ((3.0 * e{i} - g{i}) + (g{i} - 2.0 * e{i}) * r) * r * r" for i in range(n)],
-        f"        if {biggest('q')} <= bound:",
+        *max_lines("qmax", biggest("q"), "        "),
+        "        if qmax <= bound:",
         f"            return {listed('lin{i} + q{i}')}",
         *[f"    q{i} = e{i} * r * r" for i in range(n)],
-        f"    if not {biggest('q')} <= bound:",
+        *max_lines("qmax", biggest("q"), "    "),
+        "    if not qmax <= bound:",
         f"        return {listed('lin{i}')}",
         f"    return {listed('lin{i} + q{i}')}",
     ]

@@ -30,7 +30,7 @@ from functools import lru_cache
 import numpy as np
 
 __all__ = ["cond2", "step_lines", "scaled_max", "max_lines", "unrolled_update", "unrolled_newton", "unrolled_newton_batch",
-           "unrolled_solve", "unrolled_local", "scaled_distance"]
+           "unrolled_solve", "unrolled_local", "scaled_distance", "unrolled_kink"]
 
 
 def cond2(p, q, r, s):
@@ -394,3 +394,37 @@ def scaled_distance(n, weights):
     namespace = {}
     exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
     return namespace["distance"]
+
+
+@lru_cache(maxsize=64)
+def unrolled_kink(n, weights, turn, reach):
+    """Generate ``kinked(t, d, t_prev, d_prev, t_new, d_new, rate) -> bool`` for ``n`` unknowns, written out:
+    whether the tangent ``d_new`` at ``t_new`` differs from the one expected by more than ``turn`` (1 +
+    ``rate``), scaled by ``weights`` (a tuple).
+
+    The tangent expected is ``d`` extrapolated linearly through ``d_prev`` (the tangent at ``t_prev``)
+    when ``t_prev`` is at most ``reach`` steps back, else ``d``: the same numbers as
+    :meth:`numkin.march.Continuation.trend` followed by :meth:`numkin.march.Continuation.kinked`.
+
+    Examples
+    --------
+    >>> kinked = unrolled_kink(1, (1.0,), 0.5, 2.0)
+    >>> kinked(1.0, [1.0], 0.0, [0.0], 2.0, [2.0], 1.0), kinked(1.0, [1.0], 0.0, [0.0], 2.0, [3.5], 1.0)
+    (False, True)
+    """
+    diffs = [f"abs(d_new[{i}] - e{i})" + ("" if weights[i] == 1.0 else f" * {weights[i]!r}") for i in range(n)]
+    lines = [
+        "def kinked(t, d, t_prev, d_prev, t_new, d_new, rate):",
+        "    if d_new is None:",
+        "        return False",
+        f"    {', '.join(f'e{i}' for i in range(n))}{',' if n == 1 else ''} = d",
+        "    if d_prev is not None and t_prev is not None:",
+        "        r = (t_new - t) / (t - t_prev)",
+        f"        if 0.0 < r <= {reach!r}:",
+        *[f"            e{i} = e{i} + (e{i} - d_prev[{i}]) * r" for i in range(n)],
+        *max_lines("out", diffs, "    "),
+        f"    return out > {turn!r} * (1.0 + rate)",
+    ]
+    namespace = {}
+    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
+    return namespace["kinked"]
