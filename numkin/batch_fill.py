@@ -72,13 +72,14 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
     if nodes.size == N:
         f, jac = ctx.eval_batch(X, t)
         return _colmax(np.abs(f)) / ctx.fscale, _colmax(ctx.blocks.cond(jac, N)), jac
-    fine_mask = np.ones(N, dtype=bool)
+    fine_mask = np.empty(N, dtype=bool)
+    fine_mask.fill(True)
     fine_mask[nodes] = False
     uniform = every is not None and N <= CHUNK
     # every column's left and right node (a node is its own left node, at s = 0)
     k = np.arange(N) // every if uniform else np.searchsorted(nodes, np.arange(N), side="right") - 1
     # the round-off floor of the residual: sines of the largest angles and inputs of the sweep
-    big = float(np.abs(X.take(nodes, axis=1)).max() * max(ctx.inv_xs))
+    big = float(np.maximum.reduce(np.abs(X.take(nodes, axis=1)), axis=None) * max(ctx.inv_xs))
     ctx.floor = residual_floor([big], max(abs(float(t[0])), abs(float(t[-1]))))
     On = O.take(nodes, axis=1)
     one_orientation = bool((On == On[:, :1]).all())
@@ -111,7 +112,7 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
             x_pred *= scale
         okc = converged & (_colmax(x_pred) <= MAX_CORRECTION)
         del x_pred
-        cond_c, o = ctx.blocks.cond_signs(jac_c, tc.size)
+        cond_c, o = ctx.blocks.cond_signs(jac_c, tc.size, quiet=False)  # (under the sweep's errstate)
         cond[c] = _colmax(cond_c)
         if one_orientation:
             for kk in range(O.shape[0]):
@@ -136,7 +137,7 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
         angles = X[rows[0]] if len(rows) == 1 else X if len(rows) == X.shape[0] else X.take(rows, axis=0)
         steps = angles[..., 1:] - angles[..., :-1]
         np.abs(steps, out=steps)
-        if not steps.max() < math.pi:  # (a NaN is no jump: looked at as a jump would be)
+        if not np.maximum.reduce(steps, axis=None) < math.pi:  # (a NaN is no jump: looked at as a jump would be)
             jump = np.flatnonzero((steps if len(rows) == 1 else steps.max(axis=0)) >= math.pi)
             if jump.size:
                 ok &= ~(fine_mask & np.isin(k, k.take(jump)))
@@ -152,10 +153,10 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
 
     # A node on a singular position (a change point on the grid) gives the Hermite predictor
     # and the orientation test nothing to trust: its segments are marched.
-    bad_nodes = np.flatnonzero(~(cond.take(nodes) <= COND_TANGENT))
+    bad_nodes = (~(cond.take(nodes) <= COND_TANGENT)).nonzero()[0]
     if bad_nodes.size:
         ok &= ~(fine_mask & (np.isin(k, bad_nodes) | np.isin(k + 1, bad_nodes)))
-    redo = np.flatnonzero(~ok)
+    redo = (~ok).nonzero()[0]
     if redo.size:
         # Points the batch could not place safely are reached one by one from their left
         # neighbour, or from the nearest point before it that is not on a singular position:
@@ -201,7 +202,7 @@ def _put_rows(rows, sub, idx, N):
 def report_near_singular(ctx, t, X, cond):
     """Record (or raise, as ``ctx.on_singular`` says) the first singular point of a sweep, and warn
     of the points near a singular position (condition number above ``COND_WARN``)."""
-    if not cond.size or cond.max() <= COND_WARN:  # (a NaN fails the test)
+    if not cond.size or np.maximum.reduce(cond) <= COND_WARN:  # (a NaN fails the test)
         return
     singular = np.flatnonzero(is_singular(cond))
     if singular.size:

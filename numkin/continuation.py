@@ -96,16 +96,16 @@ def _validate_inputs(inputs):
         t = t.reshape(1)
     if t.ndim != 1 or t.size == 0:
         raise InputError(f"inputs must be a non-empty 1-D array of input values (rad), got shape {t.shape}")
-    if not math.isfinite(t.sum()):
+    if not math.isfinite(np.add.reduce(t)):
         raise InputError(f"inputs[{int(np.flatnonzero(~np.isfinite(t))[0])}] is not finite")
     if t.size == 1:
         return t, 0.0, True
     d = t[1:] - t[:-1]  # finite or infinite, never NaN: the sum above was finite
-    low = d.min()
+    low = np.minimum.reduce(d)
     if low > 0:
-        high = float(d.max())
+        high = float(np.maximum.reduce(d))
         return t, high, high - low <= EVEN_STEPS * high
-    high = d.max()
+    high = np.maximum.reduce(d)
     if high < 0:
         return t, float(-low), high - low <= EVEN_STEPS * -low
     k = int(np.flatnonzero(np.sign(d) != np.sign(d[0]))[0]) if np.any(d != 0) else 0
@@ -157,7 +157,8 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
     ctx = Continuation(mech, jacobian, tol, float(max_step), on_singular)
     n, N = ctx.n, t.size
     X = np.empty((n, N))
-    D = np.full((n, N), np.nan)
+    D = np.empty((n, N))
+    D.fill(np.nan)
     O = np.zeros((len(mech.loops), N))
     iters = np.zeros(N, dtype=int)
 

@@ -27,7 +27,7 @@ from .newton import (
 )
 from .predictors import MAX_PREDICTION, unrolled_predict
 from .sweep import SingularityWarning, SweepEvent
-from .unrolled import scaled_distance, unrolled_kink
+from .unrolled import scaled_distance, scaled_size, unrolled_kink
 
 __all__ = ["Continuation", "deg_text", "MAX_CORRECTION", "CORRECTOR_ITERATIONS",
            "DEFAULT_MAX_STEP", "FAR", "TWO_PI", "MAX_TANGENT_TURN", "TREND_REACH", "CROSSING_STEP", "COND_TANGENT"]
@@ -102,6 +102,7 @@ class Continuation:
         self.angle_idx = [k for k, u in enumerate(mech.unknowns) if u in mech.angles]
         self.predict1 = unrolled_predict(self.n, None if self.unit_scale else tuple(self.inv_xs))
         self.distance = scaled_distance(self.n, tuple(self.inv_xs))  # max |a - b| / xscale of two points
+        self.size = scaled_size(self.n, tuple(self.inv_xs))  # max |a| / xscale of a point or tangent
         #: :meth:`trend` and :meth:`kinked` in one written-out function
         self.kinked1 = unrolled_kink(self.n, tuple(self.inv_xs), MAX_TANGENT_TURN, TREND_REACH)
         self._fjt = comp.scalar_FJT
@@ -452,8 +453,7 @@ class Continuation:
         t_prev, x_prev = previous[:2] if previous is not None else (None, None)
         d_prev = previous[2] if previous is not None and len(previous) > 2 else None
         iters = 0
-        inv_xs = self.inv_xs
-        unit = self.unit_scale
+        size = self.size
         newton1, fjt, pt, fscale, tol, floor = self._newton1, self._fjt, self.pt, self.fscale, self.tol, self._floor
         local1 = self.blocks.local1
         kinked = self.kinked1
@@ -464,7 +464,7 @@ class Continuation:
             dt = step
             rate = 0.0
             if d is not None:  # no predicted change above MAX_PREDICTION
-                rate = max(map(abs, d)) if unit else max([abs(a) * w for a, w in zip(d, inv_xs)])
+                rate = size(d)
                 if rate * dt > MAX_PREDICTION:
                     dt = MAX_PREDICTION / rate
             if remaining <= dt * (1.0 + 1e-9):

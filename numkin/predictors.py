@@ -319,7 +319,7 @@ def quintic_pays(gap, inv_xs, floor=None, limit=None):
     gap = np.abs(gap)
     if any(w != 1.0 for w in inv_xs):
         gap *= np.asarray(inv_xs)[:, None]
-    largest = float(gap.max()) / 16.0
+    largest = float(np.maximum.reduce(gap, axis=None)) / 16.0
     if largest != largest:  # NaN somewhere: the largest of the others
         largest = float(np.nanmax(gap)) / 16.0 if np.isfinite(gap).any() else 0.0
     return (QUINTIC_GAIN_FLOOR if floor is None else floor) < largest <= (QUINTIC_GAIN_LIMIT if limit is None else limit)
@@ -350,12 +350,13 @@ def free_quintic(t, X, D, nodes):
     if m < 3:
         return None
     Y, Dn = X.take(nodes, axis=1), D.take(nodes, axis=1)
-    if m > FREE_QUINTIC_NODES or not np.isfinite(Dn.sum() + Y.sum()):
+    if m > FREE_QUINTIC_NODES or not np.isfinite(np.add.reduce(Dn, axis=None) + np.add.reduce(Y, axis=None)):
         alpha, beta = quintic_terms(t, X, D, free_curvatures(t, X, D, nodes), nodes)
         gap = 0.5 * beta
         gap += alpha
         return alpha, beta, gap
-    wy, wd = _free_quintic_weights(tuple(np.diff(t.take(nodes)).tolist()))
+    tn = t.take(nodes)
+    wy, wd = _free_quintic_weights(tuple((tn[1:] - tn[:-1]).tolist()))
     out = Y @ wy
     out += Dn @ wd
     return out[:, :m], out[:, m : 2 * m], out[:, 2 * m :]

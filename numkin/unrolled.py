@@ -30,7 +30,7 @@ from functools import lru_cache
 import numpy as np
 
 __all__ = ["cond2", "step_lines", "scaled_max", "max_lines", "unrolled_update", "unrolled_newton", "unrolled_newton_batch",
-           "unrolled_solve", "unrolled_local", "scaled_distance", "unrolled_kink"]
+           "unrolled_solve", "unrolled_local", "scaled_distance", "scaled_size", "unrolled_kink"]
 
 
 def cond2(p, q, r, s):
@@ -222,7 +222,7 @@ def unrolled_newton_batch(n, blocks, zeros, inv_xscale):
         "    N = x.shape[1]",
         *[f"    x{i} = x[{i}]" for i in range(n)],
         f"    v = {call}",
-        f"    if not all(type(v[i]) is NDARRAY and v[i].shape == (N,) for i in range({n})):",
+        f"    if not ({' and '.join(f'type(v[{i}]) is NDARRAY and v[{i}].shape == (N,)' for i in range(n))}):",
         "        return None",
         "    evaluations = 1",
         f"    fmax = {fmax}",
@@ -394,6 +394,23 @@ def scaled_distance(n, weights):
     namespace = {}
     exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
     return namespace["distance"]
+
+
+@lru_cache(maxsize=64)
+def scaled_size(n, weights):
+    """Generate ``size(a) -> max |a_i| w_i`` for ``n`` values, written out (the same float as
+    ``max([abs(x) * w for ...])``, a weight of one left out).
+
+    Examples
+    --------
+    >>> scaled_size(2, (1.0, 0.5))([-1.0, 4.0])
+    2.0
+    """
+    terms = [f"abs(a[{i}])" + ("" if weights[i] == 1.0 else f" * {weights[i]!r}") for i in range(n)]
+    lines = ["def size(a):", *max_lines("out", terms, "    "), "    return out"]
+    namespace = {}
+    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
+    return namespace["size"]
 
 
 @lru_cache(maxsize=64)
