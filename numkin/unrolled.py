@@ -134,18 +134,27 @@ def unrolled_newton(n, blocks, zeros, inv_xscale, col):
     steps = [f"abs(d{i})" if w == 1.0 else f"abs(d{i}) * {w!r}" for i, w in enumerate(inv_xscale)]
     # the conditioning rule on the scaled 2 x 2 blocks (a block of size 1 is refused only where it is
     # exactly singular, by the step itself, as in BlockStructure.cond1)
-    conds = [f"COND2(v[{n + a * n + a}] * {col[a]!r}, v[{n + a * n + a + 1}] * {col[a + 1]!r}, "
-             f"v[{n + (a + 1) * n + a}] * {col[a]!r}, v[{n + (a + 1) * n + a + 1}] * {col[a + 1]!r})"
-             for a, b in blocks if b - a == 2]
+    # The condition number of a scaled 2 x 2 block is at most its squared Frobenius norm over |det|
+    # (sigma1 / sigma2 <= (sigma1^2 + sigma2^2) / (sigma1 sigma2)): where that bound is below half of
+    # cond_max the block passes without the closed form (the same decision, rounding included).
     cond_check = []
-    if conds:
-        worst = conds[0] if len(conds) == 1 else f"max({', '.join(conds)})"
-        cond_check = [f"        if cond_max is not None and not {worst} <= cond_max:",
-                      "            status = 'singular'",
-                      "            break"]
+    for a, b in blocks:
+        if b - a != 2:
+            continue
+        entries = [f"v[{n + a * n + a}] * {col[a]!r}", f"v[{n + a * n + a + 1}] * {col[a + 1]!r}",
+                   f"v[{n + (a + 1) * n + a}] * {col[a]!r}", f"v[{n + (a + 1) * n + a + 1}] * {col[a + 1]!r}"]
+        cond_check += [
+            f"            p, q, r, s = {', '.join(entries)}",
+            "            if not p * p + q * q + r * r + s * s <= half * abs(p * s - q * r) and not COND2(p, q, r, s) <= cond_max:",
+            "                status = 'singular'",
+            "                break",
+        ]
+    if cond_check:
+        cond_check = ["        if cond_max is not None:", *cond_check]
     lines = [
         "def newton1(K, x, t, pt, maxiter, fscale, tol, floor, errors, cond_max=None):",
         "    tol23 = tol ** (2.0 / 3.0)",
+        "    half = 0.5 * cond_max if cond_max is not None else 0.0",
         f"    {', '.join(xs)}{',' if n == 1 else ''} = x",
         "    try:",
         f"        v = K({', '.join(xs)}, t, *pt)",
