@@ -398,11 +398,7 @@ def scaled_distance(n, weights):
     >>> scaled_distance(2, (1.0, 0.5))([1.0, 4.0], [0.0, 1.0])
     1.5
     """
-    terms = [f"abs(a[{i}] - b[{i}])" + ("" if weights[i] == 1.0 else f" * {weights[i]!r}") for i in range(n)]
-    lines = ["def distance(a, b):", *max_lines("out", terms, "    "), "    return out"]
-    namespace = {}
-    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
-    return namespace["distance"]
+    return _largest_scaled("distance(a, b)", [f"a[{i}] - b[{i}]" for i in range(n)], weights)
 
 
 @lru_cache(maxsize=64)
@@ -415,11 +411,16 @@ def scaled_size(n, weights):
     >>> scaled_size(2, (1.0, 0.5))([-1.0, 4.0])
     2.0
     """
-    terms = [f"abs(a[{i}])" + ("" if weights[i] == 1.0 else f" * {weights[i]!r}") for i in range(n)]
-    lines = ["def size(a):", *max_lines("out", terms, "    "), "    return out"]
+    return _largest_scaled("size(a)", [f"a[{i}]" for i in range(n)], weights)
+
+
+def _largest_scaled(signature, values, weights):
+    """Generate ``def <signature>`` returning ``max |value_i| w_i`` written out (a weight of one left out)."""
+    terms = [f"abs({v})" + ("" if w == 1.0 else f" * {w!r}") for v, w in zip(values, weights)]
+    lines = [f"def {signature}:", *max_lines("out", terms, "    "), "    return out"]
     namespace = {}
     exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
-    return namespace["size"]
+    return namespace[signature.split("(")[0]]
 
 
 @lru_cache(maxsize=64)
