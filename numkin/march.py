@@ -236,10 +236,6 @@ class Continuation:
         d, o, _ = self.blocks.local1(v)
         return d, o
 
-    def small_correction(self, x, x_pred) -> bool:
-        """Whether Newton moved the prediction ``x_pred`` by at most :data:`MAX_CORRECTION` (scaled)."""
-        return self.distance(x, x_pred) <= MAX_CORRECTION
-
     def worst1(self, x, t, which="residual"):
         """(loop name, value) of the loop with the largest residual or condition number at one point."""
         v = self.eval1(x, t)
