@@ -86,7 +86,7 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
     scale = None if all(w == 1.0 for w in ctx.inv_xs) else np.asarray(ctx.inv_xs)[:, None]
     ok = np.empty(N, dtype=bool)
     residual = np.empty(N)
-    cond = np.empty(N)
+    cond = np.empty(N) if N <= CHUNK else None  # (a long sweep's after its batches: a lower peak of memory)
     jac = None
     # many points per segment: curvatures from the tangent field (a few kernel calls on the nodes);
     # fewer: from the nodes' values and tangents alone
@@ -112,8 +112,12 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
             x_pred *= scale
         okc = converged & (_colmax(x_pred) <= MAX_CORRECTION)
         del x_pred
-        cond_c, o = ctx.blocks.cond_signs(jac_c, tc.size, quiet=False)  # (under the sweep's errstate)
-        cond[c] = _colmax(cond_c)
+        if cond is not None:
+            cond_c, o = ctx.blocks.cond_signs(jac_c, tc.size, quiet=False)  # (under the sweep's errstate)
+            cond[c] = _colmax(cond_c)
+            del cond_c
+        else:
+            o = ctx.blocks.signs(jac_c, tc.size)
         if one_orientation:
             for kk in range(O.shape[0]):
                 okc &= o[kk] == On[kk, 0]
@@ -129,7 +133,7 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
         np.copyto(iters[c], it, where=fm)
         residual[c] = _colmax(np.abs(f)) / ctx.fscale
         jac = jac_c if c.stop - c.start == N else _put_rows(jac, jac_c, c, N)
-        del x, f, jac_c, o, cond_c
+        del x, f, jac_c, o
     if ctx.angle_idx:
         # Both nodes of a segment are right (marched), so a run of batch points on another turn
         # shows as a neighbour step of half a turn or more: march that whole segment.
@@ -141,6 +145,8 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
             jump = np.flatnonzero((steps if len(rows) == 1 else steps.max(axis=0)) >= math.pi)
             if jump.size:
                 ok &= ~(fine_mask & np.isin(k, k.take(jump)))
+    if cond is None:
+        cond = _conds(ctx, jac, N)
     n = X.shape[0]
     redone = set()
 
@@ -182,6 +188,16 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
         jac = _put_rows(jac, jac_redo, redo, N)
         cond[redo] = _colmax(ctx.blocks.cond(jac_redo, redo.size))
     return residual, cond, jac
+
+
+def _conds(ctx, jac, N):
+    """The largest condition number of the loops' blocks at every point, CHUNK points at a time."""
+    cond = np.empty(N)
+    for c0 in range(0, N, CHUNK):
+        c = slice(c0, min(N, c0 + CHUNK))
+        cond[c] = _colmax(ctx.blocks.cond_signs([r[c] if np.ndim(r) else r for r in jac], c.stop - c.start,
+                                                quiet=False)[0])
+    return cond
 
 
 def _put_rows(rows, sub, idx, N):
