@@ -497,7 +497,8 @@ def hermite_uniform(tn, X, D, every, terms=None):
     are the same on every segment: the prediction is the nodes' values, tangents (times the
     segment's length) and quintic terms ``(alpha, beta)`` (:func:`quintic_terms`; None: the
     cubic) times a (6, every) matrix of bases. ``tn``: the nodes' inputs. The same polynomials
-    as :func:`hermite`, evaluated at these ``s`` (equal to the grid's to its rounding).
+    as :func:`hermite`, evaluated at these ``s`` (the grid's own to its unevenness: a sweep takes
+    this path where its steps agree to ``numkin.continuation.EVEN_STEPS``).
 
     Examples
     --------
