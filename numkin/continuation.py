@@ -72,7 +72,7 @@ from .predictors import MAX_PREDICTION
 from .sweep import Sweep, record_evaluations
 
 __all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION", "MAX_TANGENT_TURN", "TREND_REACH",
-           "CROSSING_STEP"]
+           "CROSSING_STEP", "EVEN_STEPS"]
 
 
 #: Relative spread of the input steps up to which a grid counts as evenly spaced: its batch points are
