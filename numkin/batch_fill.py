@@ -17,17 +17,33 @@ from .errors import warn
 from .march import COND_TANGENT, MAX_CORRECTION, Continuation, deg_text
 from .newton import COND_MAX, COND_WARN, is_singular, residual_floor
 from .newton import colmax as _colmax
-from .predictors import QUINTIC_MIN_POINTS, free_quintic, hermite, node_curvatures, quintic_pays, quintic_terms
+from .predictors import (
+    QUINTIC_MIN_POINTS,
+    free_quintic,
+    hermite,
+    hermite_uniform,
+    node_curvatures,
+    quintic_pays,
+    quintic_terms,
+)
 from .sweep import SingularityWarning, SweepEvent
 
 __all__ = ["nodes_of", "fill", "report_near_singular", "CHUNK"]
 
 
-def nodes_of(t: np.ndarray, max_step: float) -> np.ndarray:
-    """Grid indices marched sequentially: at most ``max_step`` apart where the grid allows."""
+def nodes_of(t: np.ndarray, max_step: float, largest_step: float | None = None) -> np.ndarray:
+    """Grid indices marched sequentially: at most ``max_step`` apart where the grid allows.
+
+    ``largest_step``: the largest ``|t[i + 1] - t[i]|``, if known.
+
+    Examples
+    --------
+    >>> nodes_of(np.linspace(0.0, 1.0, 11), 0.35).tolist()
+    [0, 3, 6, 9, 10]
+    """
     if t.size <= 2:
         return np.arange(t.size)
-    h = float(np.abs(t[1:] - t[:-1]).max())
+    h = float(np.abs(t[1:] - t[:-1]).max()) if largest_step is None else largest_step
     every = max(1, int(max_step / h * (1.0 + 1e-9))) if h > 0 else 1
     last = t.size - 1
     return np.arange(0, t.size, every) if last % every == 0 else np.array([*range(0, last, every), last])
@@ -43,10 +59,12 @@ FREE_CURVATURES = True
 CHUNK = 8192
 
 
-def fill(ctx: Continuation, t, X, D, O, iters, nodes):
+def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
     """Solve the grid points between nodes by Newton batches (a Hermite predictor from the nodes).
 
-    The points are taken :data:`CHUNK` at a time. Returns the scaled
+    The points are taken :data:`CHUNK` at a time. ``every``: the inputs are evenly spaced and
+    the nodes are every ``every``-th of them, the last included (one matrix product predicts
+    them: :func:`numkin.predictors.hermite_uniform`). Returns the scaled
     residual norm (N,), the largest condition number of the loops' blocks
     (N,) and the Jacobian rows at every point of the sweep.
     """
@@ -54,18 +72,21 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
     if nodes.size == N:
         f, jac = ctx.eval_batch(X, t)
         return _colmax(np.abs(f)) / ctx.fscale, _colmax(ctx.blocks.cond(jac, N)), jac
-    fine_mask = np.ones(N, dtype=bool)
+    fine_mask = np.empty(N, dtype=bool)
+    fine_mask.fill(True)
     fine_mask[nodes] = False
+    uniform = every is not None and N <= CHUNK
     # every column's left and right node (a node is its own left node, at s = 0)
-    k = np.searchsorted(nodes, np.arange(N), side="right") - 1
+    k = np.arange(N) // every if uniform else np.searchsorted(nodes, np.arange(N), side="right") - 1
     # the round-off floor of the residual: sines of the largest angles and inputs of the sweep
-    big = float(np.abs(X.take(nodes, axis=1)).max() * max(ctx.inv_xs))
+    big = float(np.maximum.reduce(np.abs(X.take(nodes, axis=1)), axis=None) * max(ctx.inv_xs))
     ctx.floor = residual_floor([big], max(abs(float(t[0])), abs(float(t[-1]))))
     On = O.take(nodes, axis=1)
     one_orientation = bool((On == On[:, :1]).all())
     scale = None if all(w == 1.0 for w in ctx.inv_xs) else np.asarray(ctx.inv_xs)[:, None]
     ok = np.empty(N, dtype=bool)
     residual = np.empty(N)
+    cond = np.empty(N) if N <= CHUNK else None  # (a long sweep's after its batches: a lower peak of memory)
     jac = None
     # many points per segment: curvatures from the tangent field (a few kernel calls on the nodes);
     # fewer: from the nodes' values and tangents alone
@@ -78,7 +99,10 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
     for c0 in range(0, N, CHUNK):
         c = slice(c0, min(N, c0 + CHUNK))
         fm, kc, tc = fine_mask[c], k[c], t[c]
-        x_pred = hermite(tc, t, X, D, None, nodes, kc, terms)
+        if uniform:
+            x_pred = hermite_uniform(t.take(nodes), X, D, every, terms)
+        else:
+            x_pred = hermite(tc, t, X, D, None, nodes, kc, terms)
         x, converged, it, f, jac_c = ctx.newton_batch(x_pred.copy(), tc, fm, overwrite=True)
         # accept a point if Newton converged on the turn of its prediction, the correction is
         # small and no loop changed orientation
@@ -88,7 +112,12 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
             x_pred *= scale
         okc = converged & (_colmax(x_pred) <= MAX_CORRECTION)
         del x_pred
-        o = ctx.blocks.signs(jac_c, tc.size)
+        if cond is not None:
+            cond_c, o = ctx.blocks.cond_signs(jac_c, tc.size, quiet=False)  # (under the sweep's errstate)
+            cond[c] = _colmax(cond_c)
+            del cond_c
+        else:
+            o = ctx.blocks.signs(jac_c, tc.size)
         if one_orientation:
             for kk in range(O.shape[0]):
                 okc &= o[kk] == On[kk, 0]
@@ -100,8 +129,8 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
                 okc &= (o[kk] == Oa[kk]) & (Oa[kk] == Ob[kk])
         ok[c] = okc | ~fm
         X[:, c] = x  # the nodes were not active: unchanged
-        O[:, c] = np.where(fm, o, O[:, c])
-        iters[c] = np.where(fm, it, iters[c])
+        np.copyto(O[:, c], o, where=fm)
+        np.copyto(iters[c], it, where=fm)
         residual[c] = _colmax(np.abs(f)) / ctx.fscale
         jac = jac_c if c.stop - c.start == N else _put_rows(jac, jac_c, c, N)
         del x, f, jac_c, o
@@ -109,12 +138,15 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
         # Both nodes of a segment are right (marched), so a run of batch points on another turn
         # shows as a neighbour step of half a turn or more: march that whole segment.
         rows = ctx.angle_idx
-        steps = np.diff(X[rows[0]] if len(rows) == 1 else X.take(rows, axis=0), axis=-1)
+        angles = X[rows[0]] if len(rows) == 1 else X if len(rows) == X.shape[0] else X.take(rows, axis=0)
+        steps = angles[..., 1:] - angles[..., :-1]
         np.abs(steps, out=steps)
-        jump = np.flatnonzero((steps if len(rows) == 1 else steps.max(axis=0)) >= math.pi)
-        if jump.size:
-            ok &= ~(fine_mask & np.isin(k, k.take(jump)))
-    cond = _conds(ctx, jac, N)
+        if not np.maximum.reduce(steps, axis=None) < math.pi:  # (a NaN is no jump: looked at as a jump would be)
+            jump = np.flatnonzero((steps if len(rows) == 1 else steps.max(axis=0)) >= math.pi)
+            if jump.size:
+                ok &= ~(fine_mask & np.isin(k, k.take(jump)))
+    if cond is None:
+        cond = _conds(ctx, jac, N)
     n = X.shape[0]
     redone = set()
 
@@ -127,10 +159,10 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
 
     # A node on a singular position (a change point on the grid) gives the Hermite predictor
     # and the orientation test nothing to trust: its segments are marched.
-    bad_nodes = np.flatnonzero(~(cond.take(nodes) <= COND_TANGENT))
+    bad_nodes = (~(cond.take(nodes) <= COND_TANGENT)).nonzero()[0]
     if bad_nodes.size:
         ok &= ~(fine_mask & (np.isin(k, bad_nodes) | np.isin(k + 1, bad_nodes)))
-    redo = np.flatnonzero(~ok)
+    redo = (~ok).nonzero()[0]
     if redo.size:
         # Points the batch could not place safely are reached one by one from their left
         # neighbour, or from the nearest point before it that is not on a singular position:
@@ -160,12 +192,11 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes):
 
 def _conds(ctx, jac, N):
     """The largest condition number of the loops' blocks at every point, CHUNK points at a time."""
-    if N <= CHUNK:
-        return _colmax(ctx.blocks.cond(jac, N))
     cond = np.empty(N)
     for c0 in range(0, N, CHUNK):
         c = slice(c0, min(N, c0 + CHUNK))
-        cond[c] = _colmax(ctx.blocks.cond([r[c] if np.ndim(r) else r for r in jac], c.stop - c.start))
+        cond[c] = _colmax(ctx.blocks.cond_signs([r[c] if np.ndim(r) else r for r in jac], c.stop - c.start,
+                                                quiet=False)[0])
     return cond
 
 
@@ -187,7 +218,7 @@ def _put_rows(rows, sub, idx, N):
 def report_near_singular(ctx, t, X, cond):
     """Record (or raise, as ``ctx.on_singular`` says) the first singular point of a sweep, and warn
     of the points near a singular position (condition number above ``COND_WARN``)."""
-    if not cond.size or cond.max() <= COND_WARN:  # (a NaN fails the test)
+    if not cond.size or np.maximum.reduce(cond) <= COND_WARN:  # (a NaN fails the test)
         return
     singular = np.flatnonzero(is_singular(cond))
     if singular.size:

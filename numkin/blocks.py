@@ -75,6 +75,7 @@ class BlockStructure:
             self._step = unrolled_solve(n, self.blocks, zeros, batch=True)
             self.update1 = unrolled_update(n, self.blocks, zeros, self.inv_xscale)
             self._local = unrolled_local(n, self.blocks, zeros, self._col)
+            self.local1 = self._local  # the method below, written out: called without the indirection
             #: Newton-Raphson at one point with every update written out for these blocks; called with
             #: the kernel, the point and the stopping rule (see :meth:`numkin.march.Continuation.newton1`).
             self.newton1 = unrolled_newton(n, self.blocks, zeros, self.inv_xscale, self._col)
@@ -263,49 +264,88 @@ class BlockStructure:
 
         Block rows are divided by ``fscale`` and columns multiplied by the
         unknowns' scales. A 2 x 2 block uses the closed form
-        ``(s + sqrt((s - 2|d|)(s + 2|d|))) / (2|d|)``, ``s`` the squared
-        Frobenius norm and ``d`` the determinant, with ``s - 2|d|`` computed
+        ``((A + B) / 2)^2 / |d|``, ``d`` the determinant and ``A``, ``B`` the
+        sum and the difference of the singular values (``A^2 = s + 2|d|``,
+        ``B^2 = s - 2|d|``, ``s`` the squared Frobenius norm), each computed
         as a sum of squares, so that well-conditioned blocks lose no digits.
         A singular or non-finite block gives ``inf``.
         """
+        return self.cond_signs(J, N)[0]
+
+    def cond_signs(self, J, N, quiet=True):
+        """:meth:`cond` and :meth:`signs` from one pass over the blocks: ``(cond (loops, N), signs (loops, N))``.
+
+        ``quiet``: numpy's floating-point warnings (a singular block divides by zero) silenced here;
+        False where the caller runs under ``numpy.errstate(all="ignore")`` already.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> bs = BlockStructure([slice(0, 2)], 1.0, [1.0, 1.0])
+        >>> cond, signs = bs.cond_signs([np.array([2.0, 0.0]), 0.0, 0.0, np.array([4.0, -1.0])], 2)
+        >>> cond.tolist(), signs.tolist()
+        ([[2.0, inf]], [[1.0, 0.0]])
+        """
+        if quiet:
+            with np.errstate(all="ignore"):
+                return self.cond_signs(J, N, quiet=False)
         n = self.n
         out = np.empty((len(self.blocks), N))
-        with np.errstate(all="ignore"):
-            for k, (a, b) in enumerate(self.blocks):
-                size = b - a
-                if size == 2:
-                    i0 = a * n + a
-                    p, q, r, s = (J[i] if isinstance(J[i], np.ndarray) and J[i].dtype.kind == "f" else np.real(J[i])
-                                  for i in (i0, i0 + 1, i0 + n, i0 + n + 1))
-                    ca, cb = self._col[a], self._col[a + 1]
-                    if self._extreme:  # entries of order one whatever the length scale: no overflow in the squares
-                        p, q, r, s = p * ca, q * cb, r * ca, s * cb
-                    elif ca != cb:  # scaling all entries alike leaves the condition number alone
-                        p, q, r, s = p * (ca / cb), q, r * (ca / cb), s
+        signs = np.empty((len(self.blocks), N))
+        for k, (a, b) in enumerate(self.blocks):
+            size = b - a
+            if size == 2:
+                i0 = a * n + a
+                p, q, r, s = (J[i] if isinstance(J[i], np.ndarray) and J[i].dtype.kind == "f" else np.real(J[i])
+                              for i in (i0, i0 + 1, i0 + n, i0 + n + 1))
+                ca, cb = self._col[a], self._col[a + 1]
+                det = p * s - q * r
+                signs[k] = np.sign(det)
+                if self._extreme:  # entries of order one whatever the length scale: no overflow in the squares
+                    p, q, r, s = p * ca, q * cb, r * ca, s * cb
                     det = p * s - q * r
-                    fro = p * p + q * q + r * r + s * s
-                    sg = np.copysign(1.0, det)
-                    u, w = p - sg * s, q + sg * r
-                    ad2 = 2 * np.abs(det)
-                    c = np.sqrt((u * u + w * w) * (fro + ad2))
-                    c += fro
-                    c /= ad2
-                    out[k] = np.maximum(c, 1.0)  # c < 1 only by rounding at cond 1
-                    nan = np.isnan(out[k])  # a zero or non-finite block: singular
-                    if np.count_nonzero(nan):
-                        out[k, nan] = np.inf
-                elif size == 1:
-                    e = np.real(J[a * n + a])
-                    out[k] = np.where(np.isfinite(e) & (e != 0), 1.0, np.inf)
-                else:
-                    m = np.moveaxis(stack_rows([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0)
-                    m = np.real(m) * (np.asarray(self._col[a:b])[None, None, :])
-                    c = np.full(N, np.inf)
-                    ok = np.all(np.isfinite(m), axis=(1, 2))
-                    if ok.any():
-                        c[ok] = np.linalg.cond(m[ok])
-                    out[k] = np.where(np.isfinite(c), c, np.inf)
-        return out
+                elif ca != cb:  # scaling all entries alike leaves the condition number alone
+                    p, r = p * (ca / cb), r * (ca / cb)
+                    det = p * s - q * r
+                if np.ndim(det) == 0:  # a block of constants
+                    det = np.full(N, det, dtype=float)
+                sg = np.copysign(1.0, det)
+                ss, sr = sg * s, sg * r
+                c = p + ss  # (sigma1 + sigma2)^2 = (p + sg s)^2 + (q - sg r)^2
+                c *= c
+                w = q - sr
+                w *= w
+                c += w
+                u = p - ss  # (sigma1 - sigma2)^2 = (p - sg s)^2 + (q + sg r)^2
+                u *= u
+                np.add(q, sr, out=w)
+                w *= w
+                u += w
+                np.sqrt(c, out=c)
+                np.sqrt(u, out=u)
+                c += u
+                c *= c  # (2 sigma1)^2
+                np.abs(det, out=u)
+                u *= 4.0
+                c /= u  # sigma1 / sigma2
+                np.maximum(c, 1.0, out=out[k])  # c < 1 only by rounding at cond 1
+                nan = np.isnan(out[k])  # a zero or non-finite block: singular
+                if np.count_nonzero(nan):
+                    out[k, nan] = np.inf
+            elif size == 1:
+                e = np.real(J[a * n + a])
+                out[k] = np.where(np.isfinite(e) & (e != 0), 1.0, np.inf)
+                signs[k] = np.sign(e)
+            else:
+                m = np.moveaxis(stack_rows([J[i] for i in self._rows[(a, b)]], N).reshape(size, size, N), -1, 0)
+                signs[k] = np.sign(np.real(np.linalg.det(m)))
+                m = np.real(m) * (np.asarray(self._col[a:b])[None, None, :])
+                c = np.full(N, np.inf)
+                ok = np.all(np.isfinite(m), axis=(1, 2))
+                if ok.any():
+                    c[ok] = np.linalg.cond(m[ok])
+                out[k] = np.where(np.isfinite(c), c, np.inf)
+        return out, signs
 
 
 def _any_complex(rows) -> bool:

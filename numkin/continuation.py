@@ -72,28 +72,44 @@ from .predictors import MAX_PREDICTION
 from .sweep import Sweep, record_evaluations
 
 __all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION", "MAX_TANGENT_TURN", "TREND_REACH",
-           "CROSSING_STEP"]
+           "CROSSING_STEP", "EVEN_STEPS"]
 
 
-def _validate_inputs(inputs) -> np.ndarray:
-    try:
-        if np.iscomplexobj(inputs):
-            raise TypeError("complex")
-        t = np.asarray(inputs, dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(f"inputs must be numbers (input values, rad), got {inputs!r:.80}") from None
+#: Relative spread of the input steps up to which a grid counts as evenly spaced: its batch points are
+#: predicted at ``j / every`` of their segments (:func:`numkin.predictors.hermite_uniform`).
+EVEN_STEPS = 1e-9
+
+
+def _validate_inputs(inputs):
+    """The inputs as a float array, checked; the largest step between neighbours (0.0 for one input); and
+    whether the steps are all equal to :data:`EVEN_STEPS` of it (an evenly spaced grid)."""
+    if type(inputs) is np.ndarray and inputs.dtype == np.float64:  # what np.asarray would return
+        t = inputs
+    else:
+        try:
+            if np.iscomplexobj(inputs):
+                raise TypeError("complex")
+            t = np.asarray(inputs, dtype=float)
+        except (TypeError, ValueError):
+            raise InputError(f"inputs must be numbers (input values, rad), got {inputs!r:.80}") from None
     if t.ndim == 0:
         t = t.reshape(1)
     if t.ndim != 1 or t.size == 0:
         raise InputError(f"inputs must be a non-empty 1-D array of input values (rad), got shape {t.shape}")
-    if not math.isfinite(t.sum()):
+    if not math.isfinite(np.add.reduce(t)):
         raise InputError(f"inputs[{int(np.flatnonzero(~np.isfinite(t))[0])}] is not finite")
-    if t.size > 1:
-        d = t[1:] - t[:-1]
-        if not ((d > 0).all() or (d < 0).all()):
-            k = int(np.flatnonzero(np.sign(d) != np.sign(d[0]))[0]) if np.any(d != 0) else 0
-            raise InputError(f"inputs must be strictly monotonic for continuation (check inputs[{k}:{k + 2}])")
-    return t
+    if t.size == 1:
+        return t, 0.0, True
+    d = t[1:] - t[:-1]  # finite or infinite, never NaN: the sum above was finite
+    low = np.minimum.reduce(d)
+    if low > 0:
+        high = float(np.maximum.reduce(d))
+        return t, high, high - low <= EVEN_STEPS * high
+    high = np.maximum.reduce(d)
+    if high < 0:
+        return t, float(-low), high - low <= EVEN_STEPS * -low
+    k = int(np.flatnonzero(np.sign(d) != np.sign(d[0]))[0]) if np.any(d != 0) else 0
+    raise InputError(f"inputs must be strictly monotonic for continuation (check inputs[{k}:{k + 2}])")
 
 
 def _warn_if_degrees(mech, t) -> None:
@@ -135,13 +151,14 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
         raise InputError(f"maxiter must be a positive integer, got {maxiter!r}")
     if jacobian not in JACOBIANS:
         raise InputError(f"jacobian must be one of {JACOBIANS}, got {jacobian!r}")
-    t = _validate_inputs(inputs)
+    t, largest_step, evenly = _validate_inputs(inputs)
     _warn_if_degrees(mech, t)
     mech.check_assembly(t)
     ctx = Continuation(mech, jacobian, tol, float(max_step), on_singular)
     n, N = ctx.n, t.size
     X = np.empty((n, N))
-    D = np.full((n, N), np.nan)
+    D = np.empty((n, N))
+    D.fill(np.nan)
     O = np.zeros((len(mech.loops), N))
     iters = np.zeros(N, dtype=int)
 
@@ -150,7 +167,7 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
         d0, o0 = ctx.local1(v0)
         X[:, 0], D[:, 0], O[:, 0] = x0, d0, o0
 
-        nodes = nodes_of(t, max_step)
+        nodes = nodes_of(t, max_step, largest_step)
         x, d, o = x0, d0, o0
         ctx.last_previous = None
         pairs = zip(nodes[:-1].tolist(), nodes[1:].tolist())
@@ -163,7 +180,10 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
             X[:, b], D[:, b], O[:, b] = x, d, o
 
         ctx.raise_pending()  # a change point passed in the last step of the march
-        residual, cond, jac = fill(ctx, t, X, D, O, iters, nodes)
+        every = int(nodes[1]) if evenly and nodes.size > 1 else 0
+        # the nodes every `every`-th input, the last one included, of an evenly spaced grid
+        every = every if every and t.size - 1 == every * (nodes.size - 1) else None
+        residual, cond, jac = fill(ctx, t, X, D, O, iters, nodes, every=every)
         ctx.raise_pending()
         if ctx.crossings:
             ctx.describe_crossings(t, X, O, cond)

@@ -118,7 +118,7 @@ def guess_vector(mech, guess, at: float) -> np.ndarray:
             raise InputError(
                 f"guess has {vec.size} values but {mech.name} has {len(mech.unknowns)} unknowns {list(mech.unknowns)}"
             )
-    if not np.all(np.isfinite(vec)):
+    if not math.isfinite(vec.sum()) and not np.isfinite(vec).all():  # (a finite sum: all finite)
         bad = mech.unknowns[int(np.flatnonzero(~np.isfinite(vec))[0])]
         raise InputError(f"guess for {bad} is not finite")
     return vec
@@ -190,12 +190,16 @@ def never_closes(mech):
     return None
 
 
+def _where(t0, note):
+    """The input of a first point, for messages."""
+    return f"input {deg_text(t0, 3)}{note}"
+
+
 def _solve_first(ctx, t0, x_guess, maxiter, note=""):
     """Newton from the guess at t0, the angles reduced to the guess's turn, then polished."""
     mech = ctx.mech
     guess = x_guess.tolist()
     x, status, it, res, v = ctx.newton1(guess, t0, maxiter, cond_max=COND_MAX)
-    where = f"input {deg_text(t0, 3)}{note}"
     far = far_guesses(mech, guess)
     if status != "converged" and (status != "singular" or not res <= FAR):
         impossible = never_closes(mech)
@@ -203,6 +207,7 @@ def _solve_first(ctx, t0, x_guess, maxiter, note=""):
             raise AssemblyError(f"{mech.name}: {impossible[1]}", input_value=float(t0), loop=impossible[0],
                                 cause="cannot close", residual=res, iterations=it)
     if status == "singular":
+        where = _where(t0, note)
         loop, cond = ctx.worst1(x, t0, which="cond")
         _, res = ctx.worst1(x, t0)
         if _dependent(ctx, x, t0):
@@ -227,6 +232,7 @@ def _solve_first(ctx, t0, x_guess, maxiter, note=""):
             kind="singular", input_value=float(t0), loop=loop, cond=cond,
         )
     if status != "converged":
+        where = _where(t0, note)
         loop, res = ctx.worst1(x, t0)
         raise _hinted(AssemblyError(
             f"{mech.name}: cannot assemble at {where}: Newton from the guess did not converge "
@@ -240,6 +246,7 @@ def _solve_first(ctx, t0, x_guess, maxiter, note=""):
         it += it2
     far = [(name, value) for name, value in far if abs(x[mech.unknowns.index(name)] - value) > 1.0]
     if far:
+        where = _where(t0, note)
         starts = ", ".join(f"{name} at {math.degrees(x[mech.unknowns.index(name)]):.6g}°" for name, _ in far)
         warn(GuessWarning(
             f"{mech.name}: {degrees_hint(far)}; the solution at {where} is more than 1 rad from it, and the "

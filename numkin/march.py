@@ -27,7 +27,7 @@ from .newton import (
 )
 from .predictors import MAX_PREDICTION, unrolled_predict
 from .sweep import SingularityWarning, SweepEvent
-from .unrolled import scaled_distance
+from .unrolled import scaled_distance, scaled_size, unrolled_kink
 
 __all__ = ["Continuation", "deg_text", "MAX_CORRECTION", "CORRECTOR_ITERATIONS",
            "DEFAULT_MAX_STEP", "FAR", "TWO_PI", "MAX_TANGENT_TURN", "TREND_REACH", "CROSSING_STEP", "COND_TANGENT"]
@@ -102,6 +102,9 @@ class Continuation:
         self.angle_idx = [k for k, u in enumerate(mech.unknowns) if u in mech.angles]
         self.predict1 = unrolled_predict(self.n, None if self.unit_scale else tuple(self.inv_xs))
         self.distance = scaled_distance(self.n, tuple(self.inv_xs))  # max |a - b| / xscale of two points
+        self.size = scaled_size(self.n, tuple(self.inv_xs))  # max |a| / xscale of a point or tangent
+        #: :meth:`trend` and :meth:`kinked` in one written-out function
+        self.kinked1 = unrolled_kink(self.n, tuple(self.inv_xs), MAX_TANGENT_TURN, TREND_REACH)
         self._fjt = comp.scalar_FJT
         self._newton1 = self.blocks.newton1 if self.symbolic else None
         self._f = comp.scalar_F
@@ -232,10 +235,6 @@ class Continuation:
             return None, None
         d, o, _ = self.blocks.local1(v)
         return d, o
-
-    def small_correction(self, x, x_pred) -> bool:
-        """Whether Newton moved the prediction ``x_pred`` by at most :data:`MAX_CORRECTION` (scaled)."""
-        return self.distance(x, x_pred) <= MAX_CORRECTION
 
     def worst1(self, x, t, which="residual"):
         """(loop name, value) of the loop with the largest residual or condition number at one point."""
@@ -450,8 +449,10 @@ class Continuation:
         t_prev, x_prev = previous[:2] if previous is not None else (None, None)
         d_prev = previous[2] if previous is not None and len(previous) > 2 else None
         iters = 0
-        inv_xs = self.inv_xs
-        unit = self.unit_scale
+        size = self.size
+        newton1, fjt, pt, fscale, tol, floor = self._newton1, self._fjt, self.pt, self.fscale, self.tol, self._floor
+        local1 = self.blocks.local1
+        kinked = self.kinked1
         for _ in range(MAX_TRIALS):
             if t == t1:
                 break
@@ -459,7 +460,7 @@ class Continuation:
             dt = step
             rate = 0.0
             if d is not None:  # no predicted change above MAX_PREDICTION
-                rate = max(map(abs, d)) if unit else max([abs(a) * w for a, w in zip(d, inv_xs)])
+                rate = size(d)
                 if rate * dt > MAX_PREDICTION:
                     dt = MAX_PREDICTION / rate
             if remaining <= dt * (1.0 + 1e-9):
@@ -471,13 +472,30 @@ class Continuation:
             if dt < min_step or t_new == t:
                 self.fail(t0, x0, t, x, t_new, x, "singular", "singular", 0, math.nan)
             x_pred = self.predict1(t, x, d, t_prev, x_prev, t_new, rate, d_prev)
-            x_new, status, it, res, v = self.correct(x_pred, t_new)
-            reason = status
+            # self.correct(x_pred, t_new), with the nearest turn looked for only where an angle moved by
+            # more than half a turn (angles are scaled by one: a smaller distance moves none)
+            if newton1 is not None:
+                x_new, status, it, res, v, evals = newton1(fjt, x_pred, t_new, pt, CORRECTOR_ITERATIONS, fscale, tol,
+                                                           floor, MATH_ERRORS, None)
+                self.nfev += evals
+                self.njev += evals
+            else:
+                x_new, status, it, res, v = self.newton1(x_pred, t_new, CORRECTOR_ITERATIONS)
             ok = status == "converged"
-            if ok and not self.small_correction(x_new, x_pred):
+            if ok:
+                moved = self.distance(x_new, x_pred)
+                if not moved <= math.pi:
+                    x_new, turned = self.nearest_turn(x_new, x_pred)
+                    if turned:  # polished on the prediction's turn
+                        x_new, status, it2, res, v = self.newton1(x_new, t_new, CORRECTOR_ITERATIONS)
+                        it += it2
+                        ok = status == "converged"
+                    moved = self.distance(x_new, x_pred)
+            reason = status
+            if ok and not moved <= MAX_CORRECTION:
                 ok, reason = False, "correction"
             if ok:
-                d_new, o_new, cond = self.blocks.local1(v) if v is not None else (None, None, math.inf)
+                d_new, o_new, cond = local1(v) if v is not None else (None, None, math.inf)
                 if o_new is None and d is not None and v is not None:
                     # a root where the Jacobian is singular (a change point on the grid, reached exactly):
                     # no tangent or orientation of its own; the branch's go on from the side it came from
@@ -497,7 +515,7 @@ class Continuation:
                         # (the other branch keeps it) tells the branches apart: localise as for a crossing.
                         ok, reason = False, "singular"
                     d_new = d  # a tangent solved through a near-singular Jacobian is noise: keep the last good one
-                elif dt > crossing_step and self.kinked(self.trend(t, d, t_prev, d_prev, t_new), d_new, rate):
+                elif dt > crossing_step and kinked(t, d, t_prev, d_prev, t_new, d_new, rate):
                     # Where branches meet, the other branch keeps the orientation: only the
                     # tangent shows the switch. A smooth branch passes once the step is small.
                     ok, reason = False, "kink"

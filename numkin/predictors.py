@@ -16,10 +16,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .unrolled import max_lines
+
 if TYPE_CHECKING:  # pragma: no cover - for annotations only
     from .march import Continuation
 
-__all__ = ["predict", "unrolled_predict", "hermite", "node_curvatures", "free_curvatures", "cubic_bases", "MAX_PREDICTION",
+__all__ = ["predict", "unrolled_predict", "hermite", "hermite_uniform", "node_curvatures", "free_curvatures", "cubic_bases", "MAX_PREDICTION",
            "SANE_DISTANCE", "QUINTIC_MIN_POINTS", "HERMITE_BLOCK", "QUINTIC_GAIN_FLOOR", "QUINTIC_GAIN_LIMIT", "quintic_pays", "quintic_terms", "free_quintic", "FREE_QUINTIC_NODES"]
 
 #: Largest predicted change of an unknown in one step (scaled), 1.0: with the largest accepted
@@ -138,8 +140,7 @@ def unrolled_predict(n, inv_xs=None):
     w = [1.0] * n if inv_xs is None else list(inv_xs)
 
     def biggest(name):
-        terms = [f"abs({name}{i})" if w[i] == 1.0 else f"abs({name}{i}) * {w[i]!r}" for i in range(n)]
-        return terms[0] if n == 1 else f"max({', '.join(terms)})"
+        return [f"abs({name}{i})" if w[i] == 1.0 else f"abs({name}{i}) * {w[i]!r}" for i in range(n)]
 
     def listed(fmt):
         return "[" + ", ".join(fmt.format(i=i) for i in range(n)) + "]"
@@ -164,10 +165,12 @@ def unrolled_predict(n, inv_xs=None):
         "    if d_prev is not None:",
         *[f"        g{i} = (d_prev[{i}] - d{i}) * h" for i in range(n)],
         *[f"        q{i} = ((3.0 * e{i} - g{i}) + (g{i} - 2.0 * e{i}) * r) * r * r" for i in range(n)],
-        f"        if {biggest('q')} <= bound:",
+        *max_lines("qmax", biggest("q"), "        "),
+        "        if qmax <= bound:",
         f"            return {listed('lin{i} + q{i}')}",
         *[f"    q{i} = e{i} * r * r" for i in range(n)],
-        f"    if not {biggest('q')} <= bound:",
+        *max_lines("qmax", biggest("q"), "    "),
+        "    if not qmax <= bound:",
         f"        return {listed('lin{i}')}",
         f"    return {listed('lin{i} + q{i}')}",
     ]
@@ -316,7 +319,7 @@ def quintic_pays(gap, inv_xs, floor=None, limit=None):
     gap = np.abs(gap)
     if any(w != 1.0 for w in inv_xs):
         gap *= np.asarray(inv_xs)[:, None]
-    largest = float(gap.max()) / 16.0
+    largest = float(np.maximum.reduce(gap, axis=None)) / 16.0
     if largest != largest:  # NaN somewhere: the largest of the others
         largest = float(np.nanmax(gap)) / 16.0 if np.isfinite(gap).any() else 0.0
     return (QUINTIC_GAIN_FLOOR if floor is None else floor) < largest <= (QUINTIC_GAIN_LIMIT if limit is None else limit)
@@ -347,12 +350,13 @@ def free_quintic(t, X, D, nodes):
     if m < 3:
         return None
     Y, Dn = X.take(nodes, axis=1), D.take(nodes, axis=1)
-    if m > FREE_QUINTIC_NODES or not np.isfinite(Dn.sum() + Y.sum()):
+    if m > FREE_QUINTIC_NODES or not np.isfinite(np.add.reduce(Dn, axis=None) + np.add.reduce(Y, axis=None)):
         alpha, beta = quintic_terms(t, X, D, free_curvatures(t, X, D, nodes), nodes)
         gap = 0.5 * beta
         gap += alpha
         return alpha, beta, gap
-    wy, wd = _free_quintic_weights(tuple(np.diff(t.take(nodes)).tolist()))
+    tn = t.take(nodes)
+    wy, wd = _free_quintic_weights(tuple((tn[1:] - tn[:-1]).tolist()))
     out = Y @ wy
     out += Dn @ wd
     return out[:, :m], out[:, m : 2 * m], out[:, 2 * m :]
@@ -483,6 +487,65 @@ def hermite(tc, t, X, D, D2n, nodes, k, terms=None):
             part *= w
             row += part
     return out
+
+
+def hermite_uniform(tn, X, D, every, terms=None):
+    """:func:`hermite` at every input of an evenly spaced grid whose nodes are every ``every``-th input,
+    first and last included (``(X.shape[1] - 1) % every == 0``): one matrix product.
+
+    The inputs of a segment sit at ``s = j / every`` (j = 0 ... every - 1) of it, so the bases
+    are the same on every segment: the prediction is the nodes' values, tangents (times the
+    segment's length) and quintic terms ``(alpha, beta)`` (:func:`quintic_terms`; None: the
+    cubic) times a (6, every) matrix of bases. ``tn``: the nodes' inputs. The same polynomials
+    as :func:`hermite`, evaluated at these ``s`` (the grid's own to its unevenness: a sweep takes
+    this path where its steps agree to ``numkin.continuation.EVEN_STEPS``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 2.0, 9); nodes = np.arange(0, 9, 4); k = np.arange(9) // 4
+    >>> X, D = np.vstack([np.sin(t), t ** 4]), np.vstack([np.cos(t), 4 * t ** 3])
+    >>> bool(np.allclose(hermite_uniform(t[nodes], X, D, 4), hermite(t, t, X, D, None, nodes, k), rtol=0, atol=1e-14))
+    True
+    """
+    n, N = X.shape
+    m = tn.size
+    basis = _uniform_bases(every, terms is not None)
+    cols = basis.shape[0]
+    h = tn[1:] - tn[:-1]
+    Y, Dn = X[:, ::every], D[:, ::every]
+    coef = np.empty((n, m - 1, cols))
+    coef[:, :, 0] = Y[:, :-1]
+    coef[:, :, 1] = Y[:, 1:]
+    np.multiply(Dn[:, :-1], h, out=coef[:, :, 2])
+    np.multiply(Dn[:, 1:], h, out=coef[:, :, 3])
+    if terms is not None:
+        coef[:, :, 4] = terms[0][:, :-1]
+        coef[:, :, 5] = terms[1][:, :-1]
+    out = np.empty((n, N))
+    out[:, :-1] = (coef.reshape(n * (m - 1), cols) @ basis).reshape(n, N - 1)
+    out[:, -1] = X[:, -1]  # the last node
+    return out
+
+
+@lru_cache(maxsize=16)
+def _uniform_bases(every, quintic):
+    """The bases of :func:`hermite_uniform` at ``s = j / every`` (read-only): the left and right
+    node's value, tangent (per unit of the segment's length), and with ``quintic`` the terms
+    ``s^2 (1 - s)^2`` and ``s^3 (1 - s)^2``."""
+    s = np.arange(every) / every
+    u = 1.0 - s
+    h01, h10, h11 = cubic_bases(s, u)
+    basis = np.empty((6 if quintic else 4, every))
+    np.subtract(1.0, h01, out=basis[0])
+    basis[1], basis[2], basis[3] = h01, h10, h11
+    if quintic:
+        w = s * u
+        w *= w
+        basis[4] = w
+        np.multiply(w, s, out=basis[5])
+    basis.flags.writeable = False
+    return basis
 
 
 def cubic_bases(s, u):

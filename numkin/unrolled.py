@@ -29,8 +29,8 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["cond2", "step_lines", "scaled_max", "unrolled_update", "unrolled_newton", "unrolled_newton_batch",
-           "unrolled_solve", "unrolled_local", "scaled_distance"]
+__all__ = ["cond2", "step_lines", "scaled_max", "max_lines", "unrolled_update", "unrolled_newton", "unrolled_newton_batch",
+           "unrolled_solve", "unrolled_local", "scaled_distance", "scaled_size", "unrolled_kink"]
 
 
 def cond2(p, q, r, s):
@@ -91,6 +91,15 @@ def scaled_max(names, weights):
     return terms[0] if len(terms) == 1 else f"max({', '.join(terms)})"
 
 
+def max_lines(target, terms, indent):
+    """Lines setting ``target`` to ``max(terms)`` (expressions) without the call: the same value as the
+    built-in, which keeps the first term unless a later one is larger (a NaN stays where it is first)."""
+    lines = [f"{indent}{target} = {terms[0]}"]
+    for term in terms[1:]:
+        lines += [f"{indent}_next = {term}", f"{indent}if _next > {target}: {target} = _next"]
+    return lines
+
+
 def unrolled_update(n, blocks, zeros, inv_xscale):
     """Generate ``update1(v, x) -> (x_new, step)``: one Newton update at one point, written out.
 
@@ -121,21 +130,31 @@ def unrolled_newton(n, blocks, zeros, inv_xscale, col):
     """
     xs = [f"x{i}" for i in range(n)]
     xl = "[" + ", ".join(xs) + "]"
-    res = "max(" + ", ".join(f"abs(v[{i}])" for i in range(n)) + ")" if n > 1 else "abs(v[0])"
+    res = [f"abs(v[{i}])" for i in range(n)]
+    steps = [f"abs(d{i})" if w == 1.0 else f"abs(d{i}) * {w!r}" for i, w in enumerate(inv_xscale)]
     # the conditioning rule on the scaled 2 x 2 blocks (a block of size 1 is refused only where it is
     # exactly singular, by the step itself, as in BlockStructure.cond1)
-    conds = [f"COND2(v[{n + a * n + a}] * {col[a]!r}, v[{n + a * n + a + 1}] * {col[a + 1]!r}, "
-             f"v[{n + (a + 1) * n + a}] * {col[a]!r}, v[{n + (a + 1) * n + a + 1}] * {col[a + 1]!r})"
-             for a, b in blocks if b - a == 2]
+    # The condition number of a scaled 2 x 2 block is at most its squared Frobenius norm over |det|
+    # (sigma1 / sigma2 <= (sigma1^2 + sigma2^2) / (sigma1 sigma2)): where that bound is below half of
+    # cond_max the block passes without the closed form (the same decision, rounding included).
     cond_check = []
-    if conds:
-        worst = conds[0] if len(conds) == 1 else f"max({', '.join(conds)})"
-        cond_check = [f"        if cond_max is not None and not {worst} <= cond_max:",
-                      "            status = 'singular'",
-                      "            break"]
+    for a, b in blocks:
+        if b - a != 2:
+            continue
+        entries = [f"v[{n + a * n + a}] * {col[a]!r}", f"v[{n + a * n + a + 1}] * {col[a + 1]!r}",
+                   f"v[{n + (a + 1) * n + a}] * {col[a]!r}", f"v[{n + (a + 1) * n + a + 1}] * {col[a + 1]!r}"]
+        cond_check += [
+            f"            p, q, r, s = {', '.join(entries)}",
+            "            if not p * p + q * q + r * r + s * s <= half * abs(p * s - q * r) and not COND2(p, q, r, s) <= cond_max:",
+            "                status = 'singular'",
+            "                break",
+        ]
+    if cond_check:
+        cond_check = ["        if cond_max is not None:", *cond_check]
     lines = [
         "def newton1(K, x, t, pt, maxiter, fscale, tol, floor, errors, cond_max=None):",
         "    tol23 = tol ** (2.0 / 3.0)",
+        "    half = 0.5 * cond_max if cond_max is not None else 0.0",
         f"    {', '.join(xs)}{',' if n == 1 else ''} = x",
         "    try:",
         f"        v = K({', '.join(xs)}, t, *pt)",
@@ -143,7 +162,8 @@ def unrolled_newton(n, blocks, zeros, inv_xscale, col):
         "        return x, 'diverged', 0, NAN, None, 1",
         "    if not -INF < sum(v) < INF:",
         "        return x, 'diverged', 0, NAN, None, 1",
-        f"    res = {res} / fscale",
+        *max_lines("res", res, "    "),
+        "    res /= fscale",
         "    prev = INF",
         "    it = 0",
         "    status = 'maxiter'",
@@ -152,7 +172,7 @@ def unrolled_newton(n, blocks, zeros, inv_xscale, col):
         *step_lines(n, blocks, zeros, "status = 'converged' if res <= tol and cond_max is None else 'singular'; break",
                      indent="        "),
         *[f"        x{i} += d{i}" for i in range(n)],
-        f"        step = {scaled_max([f'd{i}' for i in range(n)], inv_xscale)}",
+        *max_lines("step", steps, "        "),
         "        it += 1",
         "        try:",
         f"            v = K({', '.join(xs)}, t, *pt)",
@@ -160,7 +180,8 @@ def unrolled_newton(n, blocks, zeros, inv_xscale, col):
         f"            return {xl}, 'diverged', it, NAN, None, it + 1",
         "        if not -INF < sum(v) < INF:",
         f"            return {xl}, 'diverged', it, NAN, None, it + 1",
-        f"        res = {res} / fscale",
+        *max_lines("res", res, "        "),
+        "        res /= fscale",
         "        if res <= tol:",  # numkin.newton_rules.has_converged at one point
         "            if step <= tol or (step <= tol23 and step <= 0.25 * prev) or step >= 0.9 * prev:",
         "                status = 'converged'",
@@ -210,7 +231,7 @@ def unrolled_newton_batch(n, blocks, zeros, inv_xscale):
         "    N = x.shape[1]",
         *[f"    x{i} = x[{i}]" for i in range(n)],
         f"    v = {call}",
-        f"    if not all(type(v[i]) is NDARRAY and v[i].shape == (N,) for i in range({n})):",
+        f"    if not ({' and '.join(f'type(v[{i}]) is NDARRAY and v[{i}].shape == (N,)' for i in range(n))}):",
         "        return None",
         "    evaluations = 1",
         f"    fmax = {fmax}",
@@ -377,8 +398,60 @@ def scaled_distance(n, weights):
     >>> scaled_distance(2, (1.0, 0.5))([1.0, 4.0], [0.0, 1.0])
     1.5
     """
-    terms = [f"abs(a[{i}] - b[{i}])" + ("" if weights[i] == 1.0 else f" * {weights[i]!r}") for i in range(n)]
-    body = terms[0] if n == 1 else f"max({', '.join(terms)})"
+    return _largest_scaled("distance(a, b)", [f"a[{i}] - b[{i}]" for i in range(n)], weights)
+
+
+@lru_cache(maxsize=64)
+def scaled_size(n, weights):
+    """Generate ``size(a) -> max |a_i| w_i`` for ``n`` values, written out (the same float as
+    ``max([abs(x) * w for ...])``, a weight of one left out).
+
+    Examples
+    --------
+    >>> scaled_size(2, (1.0, 0.5))([-1.0, 4.0])
+    2.0
+    """
+    return _largest_scaled("size(a)", [f"a[{i}]" for i in range(n)], weights)
+
+
+def _largest_scaled(signature, values, weights):
+    """Generate ``def <signature>`` returning ``max |value_i| w_i`` written out (a weight of one left out)."""
+    terms = [f"abs({v})" + ("" if w == 1.0 else f" * {w!r}") for v, w in zip(values, weights)]
+    lines = [f"def {signature}:", *max_lines("out", terms, "    "), "    return out"]
     namespace = {}
-    exec(f"def distance(a, b):\n    return {body}", namespace)  # noqa: S102 - generated from integers and floats only
-    return namespace["distance"]
+    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
+    return namespace[signature.split("(")[0]]
+
+
+@lru_cache(maxsize=64)
+def unrolled_kink(n, weights, turn, reach):
+    """Generate ``kinked(t, d, t_prev, d_prev, t_new, d_new, rate) -> bool`` for ``n`` unknowns, written out:
+    whether the tangent ``d_new`` at ``t_new`` differs from the one expected by more than ``turn`` (1 +
+    ``rate``), scaled by ``weights`` (a tuple).
+
+    The tangent expected is ``d`` extrapolated linearly through ``d_prev`` (the tangent at ``t_prev``)
+    when ``t_prev`` is at most ``reach`` steps back, else ``d``: the same numbers as
+    :meth:`numkin.march.Continuation.trend` followed by :meth:`numkin.march.Continuation.kinked`.
+
+    Examples
+    --------
+    >>> kinked = unrolled_kink(1, (1.0,), 0.5, 2.0)
+    >>> kinked(1.0, [1.0], 0.0, [0.0], 2.0, [2.0], 1.0), kinked(1.0, [1.0], 0.0, [0.0], 2.0, [3.5], 1.0)
+    (False, True)
+    """
+    diffs = [f"abs(d_new[{i}] - e{i})" + ("" if weights[i] == 1.0 else f" * {weights[i]!r}") for i in range(n)]
+    lines = [
+        "def kinked(t, d, t_prev, d_prev, t_new, d_new, rate):",
+        "    if d_new is None:",
+        "        return False",
+        f"    {', '.join(f'e{i}' for i in range(n))}{',' if n == 1 else ''} = d",
+        "    if d_prev is not None and t_prev is not None:",
+        "        r = (t_new - t) / (t - t_prev)",
+        f"        if 0.0 < r <= {reach!r}:",
+        *[f"            e{i} = e{i} + (e{i} - d_prev[{i}]) * r" for i in range(n)],
+        *max_lines("out", diffs, "    "),
+        f"    return out > {turn!r} * (1.0 + rate)",
+    ]
+    namespace = {}
+    exec("\n".join(lines), namespace)  # noqa: S102 - generated from integers and floats only
+    return namespace["kinked"]

@@ -16,6 +16,7 @@ import numkin.batch_fill as batch_fill
 import numkin.predictors as predictors
 from numkin import linkages
 from numkin.batch_fill import nodes_of
+from numkin.blocks import BlockStructure
 from numkin.march import Continuation
 from numkin.newton_rules import has_converged
 from numkin.predictors import free_curvatures, free_quintic, hermite, quintic_pays, quintic_terms
@@ -175,15 +176,31 @@ def test_sweeps_with_and_without_free_curvatures_agree(monkeypatch):
         assert [e.kind for e in with_free.events] == [e.kind for e in cubic.events]
 
 
-def test_block_condition_numbers_match_numpy():
-    mech = linkages.chained_four_bars()
+@pytest.mark.parametrize("build", [linkages.chained_four_bars, lambda: linkages.slider_crank(80, 200, 20),
+                                   linkages.six_bar])
+def test_block_condition_numbers_and_orientations_in_one_pass_match_numpy(build):
+    mech = build()
     t = np.radians(np.arange(0.0, 360.0, 7.0))
     sweep = mech.sweep(t)
     bs = mech.block_structure
     J = mech.compiled.J(sweep.values, t, mech.parameter_values)  # (N, n, n)
     col = np.asarray(bs.xscale) / bs.fscale
     rows = [J[:, i // bs.n, i % bs.n] for i in range(bs.n * bs.n)]
-    got = bs.cond(rows, t.size)
+    cond, signs = bs.cond_signs(rows, t.size)
+    np.testing.assert_array_equal(bs.cond(rows, t.size), cond)
     for k, (a, b) in enumerate(bs.blocks):
-        ref = np.linalg.cond(J[:, a:b, a:b] * col[None, None, a:b])
-        np.testing.assert_allclose(got[k], ref, rtol=1e-12)
+        np.testing.assert_allclose(cond[k], np.linalg.cond(J[:, a:b, a:b] * col[None, None, a:b]), rtol=1e-12)
+        np.testing.assert_array_equal(signs[k], np.sign(np.linalg.det(J[:, a:b, a:b])))
+    # an ill-conditioned and an exactly singular 2 x 2 block, against mpmath's singular values (50 digits)
+    import mpmath
+
+    one = BlockStructure([slice(0, 2)], 1.0, [1.0, 1.0])
+    blocks = [[1.0, 1.0], [1.0, 1.0 + 1e-9]], [[3.0, -2.0], [1.0, 5.0]], [[1.0, 2.0], [2.0, 4.0]]
+    cond, signs = one.cond_signs([np.array([m[i][j] for m in blocks]) for i in range(2) for j in range(2)], 3)
+    with mpmath.workdps(50):
+        for got, m in zip(cond[0][:2], blocks[:2]):
+            sv = mpmath.svd_r(mpmath.matrix(m), compute_uv=False)
+            assert got == pytest.approx(float(sv[0] / sv[1]), rel=1e-6)
+        assert mpmath.det(mpmath.matrix(blocks[2])) == 0
+    assert cond[0][2] == math.inf
+    assert signs[0].tolist() == [1.0, 1.0, 0.0]

@@ -158,3 +158,39 @@ def test_batch_newton_solves_active_columns_and_leaves_the_others(written_out, m
     # the residuals and Jacobian rows returned are those at the returned positions
     rows = mech.compiled.FJ_rows(got, t, mech.parameter_values)
     assert np.array_equal(f, np.array(rows[:2])) and all(np.array_equal(a, b) for a, b in zip(jac, rows[2:]))
+
+
+def test_uniform_hermite_reproduces_a_quintic_and_a_cubic_on_an_even_grid():
+    # q(t) = quintic with its exact values, tangents and curvatures at nodes every 6th input of 37
+    from numkin.predictors import hermite_uniform, quintic_terms
+
+    t = np.linspace(-1.0, 2.0, 37)
+    nodes = np.arange(0, 37, 6)
+    q = np.vstack([t**5 - 2 * t**3 + t, 0.5 * t**3 - t])
+    d = np.vstack([5 * t**4 - 6 * t**2 + 1, 1.5 * t**2 - 1.0])
+    d2 = np.vstack([20 * t**3 - 12 * t, 3.0 * t])
+    X, D = q.copy(), d.copy()
+    X[:, np.setdiff1d(np.arange(37), nodes)] = np.nan  # only the nodes are read
+    D[:, np.setdiff1d(np.arange(37), nodes)] = np.nan
+    got = hermite_uniform(t[nodes], X, D, 6, quintic_terms(t, X, D, d2[:, nodes], nodes))
+    np.testing.assert_allclose(got, q, rtol=0, atol=1e-13)
+    cubic = hermite_uniform(t[nodes], X, D, 6)  # values and tangents: exact for the cubic row only
+    np.testing.assert_allclose(cubic[1], q[1], rtol=0, atol=1e-14)
+    assert np.abs(cubic[0] - q[0]).max() > 1e-3
+
+
+@pytest.mark.parametrize("build", [lambda: linkages.four_bar(4, 1, 3, 3), linkages.chained_four_bars,
+                                   linkages.quick_return, lambda: linkages.slider_crank(80, 200, 20)])
+def test_even_grid_prediction_gives_the_sweep_of_the_general_one_to_rounding(build, monkeypatch):
+    import numkin.continuation as continuation
+
+    mech = build()
+    t = np.linspace(0.0, 2 * np.pi, 361)
+    even = mech.sweep(t)
+    general_fill = continuation.fill
+    monkeypatch.setattr(continuation, "fill", lambda *a, every=None: general_fill(*a, every=None))
+    general = mech.sweep(t)
+    scale = np.where([u in mech.angles for u in mech.unknowns], 1.0, float(mech.length_scale))[:, None]
+    assert np.abs((even.values - general.values) / scale).max() < 1e-13
+    np.testing.assert_array_equal(even.iterations, general.iterations)
+    assert [e.kind for e in even.events] == [e.kind for e in general.events]

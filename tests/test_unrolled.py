@@ -97,3 +97,25 @@ def test_scaled_distance_is_the_largest_weighted_difference(n, data):
     a, b = data.draw(vec), data.draw(vec)
     w = tuple(data.draw(st.lists(st.sampled_from([1.0, 0.25, 3.0]), min_size=n, max_size=n)))
     assert scaled_distance(n, w)(a, b) == max(abs(x - y) * k for x, y, k in zip(a, b, w))
+
+
+def test_written_out_kink_test_is_the_extrapolated_tangent_rule():
+    # the rule by hand: expected tangent d + (d - d_prev) r, r = (t_new - t) / (t - t_prev) when 0 < r <= reach,
+    # else d; kinked when max |d_new - expected| w > turn (1 + rate)
+    from numkin.unrolled import unrolled_kink
+
+    rng = np.random.default_rng(7)
+    weights = (1.0, 0.25, 1.0)
+    kinked = unrolled_kink(3, weights, 0.5, 2.0)
+    for _ in range(300):
+        t, t_prev = 1.0, 1.0 - rng.uniform(0.1, 1.0)
+        t_new = t + rng.uniform(0.05, 2.5)
+        d, d_prev, d_new = (rng.normal(size=3).tolist() for _ in range(3))
+        rate = float(rng.uniform(0.0, 2.0))
+        r = (t_new - t) / (t - t_prev)
+        expected = [a + (a - b) * r for a, b in zip(d, d_prev)] if 0.0 < r <= 2.0 else d
+        ref = max(abs(a - b) * w for a, b, w in zip(d_new, expected, weights)) > 0.5 * (1.0 + rate)
+        assert kinked(t, d, t_prev, d_prev, t_new, d_new, rate) == ref
+        assert kinked(t, d, None, None, t_new, d_new, rate) == (
+            max(abs(a - b) * w for a, b, w in zip(d_new, d, weights)) > 0.5 * (1.0 + rate))
+    assert kinked(t, d, t_prev, d_prev, t_new, None, 0.0) is False
