@@ -110,6 +110,8 @@ def _names(mech, wanted, have, what: str, how: str) -> list:
     if wanted is None:
         return list(have)
     names = [wanted] if isinstance(wanted, str) else list(wanted)
+    if not names:
+        raise InputError(f"name at least one of the {what} of {mech.name}: {list(have)}")
     unknown = [p for p in names if p not in have]
     if unknown:
         raise InputError(f"{mech.name} has no {what} {unknown}; its {what} are {list(have)}")

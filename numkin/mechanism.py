@@ -9,24 +9,21 @@ residuals, Jacobian and input derivative compiled once
 from __future__ import annotations
 
 import math
-import sys
 from functools import cached_property
 from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
-from .compiled import BlockStructure, CompiledMechanism, KernelNotKept, compiled_once, export_function, import_function
+from .cached_model import CachedModel
+from .compiled import BlockStructure, CompiledMechanism, compiled_once
 from .derived import bind, names_of, read_quantities, taken_names
-from .errors import AssemblyError, ConvergenceError, InputError
-from .loops import (LazyPoints, Loop, SymbolName, as_symbol, check_lengths, check_symbols, default_length_scale,
-                    describe, read_parameters)
+from .errors import AssemblyError, ConvergenceError, GuessWarning, InputError, warn
+from .loops import Loop, as_symbol, check_lengths, check_symbols, default_length_scale, describe, read_parameters
 from .newton import JACOBIANS, TOL_MIN, NewtonResult, check_tol, iterate, residual_floor, scaled_cond
 from .units import finite
 
 __all__ = ["Mechanism", "LENGTH_SCALE_RANGE"]
 
-#: Keywords of :class:`Mechanism` besides the loops, input, parameters, points, name and unit.
-_OPTIONS = ("guess", "guess_input", "links", "ground", "length_scale", "assembly_check", "branch", "quantities")
 
 #: Length scales (in any unit) a mechanism may have: products of two lengths (a loop
 #: Jacobian's determinant) stay normal float64 numbers, so every length scale in this
@@ -34,7 +31,7 @@ _OPTIONS = ("guess", "guess_input", "links", "ground", "length_scale", "assembly
 LENGTH_SCALE_RANGE = (1e-150, 1e150)
 
 
-class Mechanism:
+class Mechanism(CachedModel):
     """A planar linkage as loop-closure equations in one input.
 
     Parameters
@@ -210,149 +207,6 @@ class Mechanism:
         self.derived = {**self.derived, **new}
         return self
 
-    @classmethod
-    def from_model(cls, key: str, model: Callable, values, **options) -> "Mechanism":
-        """A mechanism whose loops ``model()`` writes, built from the kernel cache when it holds them.
-
-        Parameters
-        ----------
-        key : str
-            What the mechanism is built from, as :func:`numkin.kernel_cache.bundle_key` makes it:
-            two models with one key must write the same loops and points.
-        model : callable
-            ``model() -> (loops, input, parameter symbols, points)``; called only when the cache
-            misses or when a symbolic attribute (``loops``' expressions, ``parameters``,
-            ``points``' expressions, ...) is first read.
-        values : sequence of float
-            The parameters' values, in the order ``model`` lists their symbols.
-        **options
-            The keywords of :class:`Mechanism` (``name``, ``guess``, ``links``, ...).
-
-        Examples
-        --------
-        >>> import sympy as sp
-        >>> def model():
-        ...     t, x = sp.symbols("t x", real=True)
-        ...     r = sp.Symbol("r", real=True)
-        ...     return [Loop([x - r * sp.cos(t)], [x])], t, [r], {"P": (x, 0)}
-        >>> m = Mechanism.from_model("a point on a circle's shadow", model, [2.0], guess={"x": 1.0})
-        >>> m.unknowns, float(m.solve(0.0).x[0])
-        (('x',), 2.0)
-        """
-        from . import kernel_cache
-
-        found = kernel_cache.load_bundle(key)
-        if found is not None:
-            try:
-                return cls._from_bundle(key, found, model, list(values), options)
-            except (KeyError, TypeError, IndexError, AttributeError):
-                pass  # a bundle of another shape: built again below
-        loops, input_symbol, symbols, points = model()
-        symbols = list(symbols)
-        values = list(values)
-        if len(values) != len(symbols):
-            raise InputError(f"{len(values)} parameter values for {len(symbols)} parameters {[str(s) for s in symbols]}")
-        mech = cls(loops, input_symbol, dict(zip(symbols, values)), points=points, **options)
-        mech._keep(key)
-        return mech
-
-    def _keep(self, key: str) -> None:
-        """Store this mechanism's kernels compiled so far, and its names, as a bundle of the kernel cache;
-        kernels compiled later are added as they come (:class:`~numkin.compiled.compiled_once`)."""
-        from . import kernel_cache
-
-        if kernel_cache.cache_dir() is None:
-            return
-        kernels: list = []
-        try:
-            model = describe(self.loops, self.input_symbol, self.parameters, self.points)
-            model["kernels"] = self.compiled.export_kernels(kernels)
-            if "point_function" in self.__dict__ or "point_function" in self.__dict__.get("_loaded", {}):
-                model["point_kernel"] = export_function(self.point_function, kernels)
-        except KernelNotKept:
-            return
-        model["zeros"] = [list(z) for z in self._zeros()]
-        kernel_cache.store_bundle(key, model, kernels)
-        self.__dict__["_on_compile"] = self.compiled.__dict__["_on_compile"] = lambda: self._keep(key)
-
-    @classmethod
-    def _from_bundle(cls, key: str, found, model: Callable, values: list, options: dict) -> "Mechanism":
-        """The mechanism from a bundle of the kernel cache: no sympy until a symbolic attribute is read."""
-        kept, functions = found
-        options = dict(options)
-        name, length_unit = options.pop("name", "mechanism"), options.pop("length_unit", "mm")
-        setup = {k: options.pop(k, None) for k in _OPTIONS}
-        if options:
-            raise TypeError(f"Mechanism.from_model() got unexpected keyword(s) {sorted(options)}")
-        self = cls.__new__(cls)
-        self._setup(kept, values, name=name, length_unit=length_unit, **setup)
-        self._model = model
-        self._input_assumptions = dict(kept["input_assumptions"])
-        self.loops = [Loop.placeholder(lp["name"], self._materialize) for lp in kept["loops"]]
-        self.points = LazyPoints(kept["points"], self._materialize)
-        self._jacobian_zeros = kept["zeros"]
-        self.compiled = CompiledMechanism.from_kernels(len(self.unknowns), kept["kernels"], functions, self._symbolic)
-        if "point_kernel" in kept:
-            self._loaded = {"point_function": import_function(kept["point_kernel"], functions)}
-        self.__dict__["_on_compile"] = self.compiled.__dict__["_on_compile"] = lambda: self._keep(key)
-        return self
-
-    def _materialize(self) -> None:
-        """Build the sympy model of a mechanism loaded from the kernel cache (on first use of a symbolic attribute)."""
-        model = self.__dict__.pop("_model", None)
-        if model is None:
-            return
-        loops, input_symbol, symbols, points = model()
-        for stub, lp in zip(self.__dict__["loops"], loops):
-            stub.__dict__.pop("_resolve", None)
-            stub.__dict__.update(lp.__dict__)
-        self.input_symbol = as_symbol(input_symbol)
-        self.parameters = dict(zip((as_symbol(s) for s in symbols), self.parameter_values.tolist()))
-        self.unknown_symbols = [u for lp in self.loops for u in lp.unknowns]
-        import sympy as sp
-
-        self.points.resolved({k: tuple(sp.sympify(c) for c in v) for k, v in points.items()})
-
-    def _symbolic(self):
-        """``(residuals, unknowns, input symbol, parameter symbols)`` for :class:`CompiledMechanism`."""
-        self._materialize()
-        return ([r for lp in self.loops for r in lp.residuals], self.unknown_symbols, self.input_symbol,
-                list(self.parameters))
-
-    def __getattr__(self, name):
-        if name in ("parameters", "unknown_symbols", "_input_symbol") and "_model" in self.__dict__:
-            self._materialize()
-            return getattr(self, name)
-        raise AttributeError(f"'Mechanism' object has no attribute {name!r}")
-
-    @property
-    def input_symbol(self):
-        """The input as a sympy symbol.
-
-        On a mechanism loaded from the kernel cache before sympy was imported,
-        a :class:`~numkin.loops.SymbolName` (a ``str``, the symbol's name) that
-        sympy reads as the symbol.
-        """
-        sym = self.__dict__.get("_input_symbol")
-        if sym is not None:
-            return sym
-        if "_model" not in self.__dict__:
-            return self._input_symbol
-        if "sympy" in sys.modules:
-            return self._sympy_input()
-        return SymbolName(self.input_name, self._sympy_input)
-
-    @input_symbol.setter
-    def input_symbol(self, value) -> None:
-        self.__dict__["_input_symbol"] = value
-
-    def _sympy_input(self):
-        """The input symbol, equal to the model's, made without deriving the model."""
-        import sympy as sp
-
-        self.input_symbol = sp.Symbol(self.input_name, **self._input_assumptions)
-        return self.input_symbol
-
     # --------------------------------------------------------------- numerics
     def residual_function(self, inputs):
         """``F(x, idx)`` for the Newton batch: residuals at the inputs ``inputs[idx]``."""
@@ -474,6 +328,14 @@ class Mechanism:
         ...     res = m.solve(np.radians(90), guess=[30, 120])  # degrees by mistake: angles are in rad
         >>> res.converged, caught[0].category.__name__
         (False, 'ConvergenceWarning')
+
+        A guess in degrees that still converges, turns away from the solution, is warned of:
+
+        >>> with warnings.catch_warnings(record=True) as caught:
+        ...     warnings.simplefilter("always")
+        ...     res = m.solve(np.radians(30), guess={"theta3": 60, "theta4": 120})
+        >>> res.converged, caught[0].category.__name__
+        (True, 'GuessWarning')
         """
         input_value = finite("input_value (rad)", input_value)
         tol = check_tol(tol)
@@ -486,9 +348,17 @@ class Mechanism:
         out = iterate(F, J, x0[:, None], fscale=self.length_scale, xscale=self.xscale, tol=tol, maxiter=maxiter,
                       record=True)
         cond = float(scaled_cond(self.compiled.J(out.x, t, self.parameter_values), self.length_scale, self.xscale)[0])
+        from .first_point import degrees_hint, far_guesses, unsolved
+
         if out.converged[0]:
+            x = out.x[:, 0]
+            far = [(u, g) for u, g in far_guesses(self, x0) if abs(x[self.unknowns.index(u)] - g) > 1.0]
+            if far:
+                found = ", ".join(f"{u} = {math.degrees(x[self.unknowns.index(u)]):.6g}°" for u, _ in far)
+                warn(GuessWarning(f"{self.name}: {degrees_hint(far)}; Newton converged at input "
+                                  f"{math.degrees(input_value):.6g}° to {found}, more than 1 rad from it",
+                                  far=far, starts=[x[self.unknowns.index(u)] for u, _ in far]))
             return NewtonResult.from_batch(out, 0, cond, f"converged in {out.iterations[0]} iterations")
-        from .first_point import unsolved
 
         return unsolved(self, float(input_value), x0, out, cond)  # says why, and warns
 

@@ -120,6 +120,10 @@ def test_a_rate_name_already_taken_is_named():
         linkages.four_bar(4, 1, 3, 3).add_quantities({"omega_theta3": ("theta3", "angle")})
     with pytest.raises(numkin.InputError, match="'mu': its rate 'omega_mu' is already the name of the quantity omega_mu"):
         linkages.four_bar(4, 1, 3, 3).add_quantities({"omega_mu": ("theta3", "length")}).add_quantities(MU)
+    with pytest.raises(numkin.InputError, match=r"name at least one of the derived quantities .*\['mu'\]"):
+        analytic.derived_kinematics(mech.sweep(np.radians([0.0])), 1.0, names=[])
+    with pytest.raises(numkin.InputError, match=r"name at least one of the points"):
+        analytic.point_kinematics(linkages.slider_crank(80, 200).sweep(np.radians([0.0])), 1.0, points=[])
     with pytest.raises(numkin.InputError, match="has no derived quantities"):
         analytic.derived_kinematics(linkages.four_bar(4, 1, 3, 3).sweep(np.radians([0.0])), 1.0)
 
