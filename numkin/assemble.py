@@ -301,7 +301,7 @@ def _build_loops(scene: Scene):
 
 
 def _loops_model(scene: Scene):
-    """The scene's loops, input, dimension symbols and points as sympy objects (see :meth:`Mechanism.from_model`)."""
+    """The scene's loops, input, dimension symbols and points as sympy objects (see :meth:`numkin.cached_model.CachedModel.from_model`)."""
     import sympy as sp
 
     from .loops import Loop

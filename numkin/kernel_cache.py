@@ -15,7 +15,7 @@ Three kinds of entry share one folder, each a small JSON file:
   what a sweep, the derivatives and a drawing need to know about it (names of
   the unknowns, angles, loops and parameters, the Jacobian's zero pattern,
   the length symbols). A bundle that is found lets
-  :meth:`numkin.Mechanism.from_model` build the mechanism without importing
+  :meth:`numkin.cached_model.CachedModel.from_model` build the mechanism without importing
   sympy; its sympy expressions are derived only when someone asks for them.
 
 Both keys also hold the versions of numkin, sympy, numpy and Python and a

@@ -191,7 +191,7 @@ def build(spec: LinkageSpec, model: Callable, values, **options):
 
     ``model()`` writes the linkage's loops with its dimensions as symbols
     (``(loops, input, parameter symbols, points)``, see
-    :meth:`numkin.Mechanism.from_model`); ``values`` are the dimensions in the
+    :meth:`numkin.cached_model.CachedModel.from_model`); ``values`` are the dimensions in the
     order of those symbols. The cache key is the linkage's name and the
     source of the module that defines ``model``, so a second build of the
     linkage, in this run or a later one, needs no sympy.
