@@ -66,7 +66,7 @@ import math
 
 import numpy as np
 
-from .compiled import jacobian_rows, rates as rates_of, vector_function
+from .compiled import jacobian_rows, rates as rates_of
 from .conditioning import (
     CHANGE_COND,
     DIGITS_RTOL,
@@ -78,7 +78,7 @@ from .conditioning import (
     lost_digits,
     warn_lost_digits,
 )
-from .errors import InputError, warn
+from .errors import warn
 from .quantities import input_quantity, unknown_quantities
 from .units import input_rates
 from .complex_solve import COMPLEX_STEP, complex_positions, complex_step, complex_tangent

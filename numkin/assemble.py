@@ -453,7 +453,7 @@ def scene_quantities(scene: Scene, mech, *, all_unknowns: bool = False, all_poin
         orders = [k for k, kind in enumerate(QUANTITIES) if scene.wants(kind)]
     every = catalogue(mech, sorted(orders), points=bool(points)).values()  # by order, then unknown or point
     out = {}
-    derived = [(d, False) for d in getattr(mech, "derived", {})]
+    derived = [(d, False) for d in mech.derived]
     for of, is_point in [(u, False) for u in unknowns] + derived + [(p, True) for p in points]:
         for q in every:
             if q.of == of and q.is_point == is_point:

@@ -111,6 +111,7 @@ class CachedModel:
         if "point_kernel" in kept:
             self._loaded = {"point_function": import_function(kept["point_kernel"], functions)}
         self.__dict__["_on_compile"] = self.compiled.__dict__["_on_compile"] = lambda: self._keep(key)
+        self.add_quantities(self.__dict__.pop("_declared"))
         return self
 
     def _materialize(self) -> None:

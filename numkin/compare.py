@@ -153,9 +153,10 @@ def _resolve(mech, quantity) -> Quantity:
     if quantity in catalog:
         return catalog[quantity]
     hint = ""
-    if quantity in mech.unknowns or quantity in getattr(mech, "derived", {}):
+    if quantity in mech.unknowns or quantity in mech.derived:
         velocity, acceleration = (catalog[n] for n in catalogue(mech, (1, 2), points=False) if catalog[n].of == quantity)
-        hint = f" (for the unknown {quantity!r} use {velocity.name!r} or {acceleration.name!r})"
+        what = "unknown" if quantity in mech.unknowns else "quantity"
+        hint = f" (for the {what} {quantity!r} use {velocity.name!r} or {acceleration.name!r})"
     raise InputError(f"unknown quantity {quantity!r} for {mech.name}{hint}; valid: {sorted(catalog)}")
 
 
@@ -225,7 +226,7 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
                          f"{target.kind} is 0, so no scheme's error can be compared; give the input's speed")
 
     # the signal and its exact theta-derivatives
-    if name in getattr(mech, "derived", {}) and not target.is_point:
+    if name in mech.derived and not target.is_point:
         y, d1, d2 = derived_derivatives(sweep, name)[name]
         is_angle = target.dimension == "angle"
     elif not target.is_point:

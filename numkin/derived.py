@@ -28,7 +28,7 @@ from typing import Any, Mapping
 
 from .errors import InputError
 
-__all__ = ["Derived", "DIMENSIONS", "read_quantities", "taken_names", "names_of", "bind"]
+__all__ = ["Derived", "DIMENSIONS", "FUNCTIONS", "read_quantities", "taken_names", "names_of", "bind"]
 
 #: What a derived quantity's value is: an angle (rad) or a length (the mechanism's length unit).
 DIMENSIONS = ("angle", "length")
@@ -95,14 +95,10 @@ def read_quantities(spec, taken: Mapping[str, str], owner: str = "mechanism", kn
         if isinstance(expression, bool) or not (isinstance(expression, str) and expression.strip()
                                                  or hasattr(expression, "free_symbols")):
             raise InputError(f"{where}: the expression must be a string or a sympy expression, got {expression!r}")
+        used = {str(s) for s in expression.free_symbols} if hasattr(expression, "free_symbols") else None
         if isinstance(expression, str):
-            try:
-                ast.parse(expression.replace("^", "**").strip(), mode="eval")
-            except SyntaxError:
-                raise InputError(f"{where}: cannot read the expression {expression!r}") from None
+            used = _names_in(expression, where)
         if known is not None:
-            used = ({str(s) for s in expression.free_symbols} if hasattr(expression, "free_symbols")
-                    else set(re.findall(r"[A-Za-z_][A-Za-z0-9_]*", expression)) - FUNCTIONS)
             strange = sorted(used - set(known))
             if strange:
                 raise InputError(f"{where} names {strange}, which the mechanism does not have: it may use "
@@ -110,14 +106,42 @@ def read_quantities(spec, taken: Mapping[str, str], owner: str = "mechanism", kn
         for own in names_of(name, dimension):
             if own in taken:
                 raise InputError(f"{where} is already the name of {taken[own]}" if own == name else
-                                 f"{where}: its rate {own!r} is already the name of {taken[own]}")
+                                 f"{where}: its name {own!r} is already the name of {taken[own]}")
+        taken.update({own: f"the quantity {name}" for own in names_of(name, dimension)})  # and within one call
         out[name] = Derived(name, expression, dimension)
     return out
 
 
+#: What an expression string may be made of: numbers, names, arithmetic and calls of functions.
+_NODES = (ast.Expression, ast.BinOp, ast.UnaryOp, ast.Call, ast.Name, ast.Constant, ast.Load, ast.Add, ast.Sub,
+          ast.Mult, ast.Div, ast.Pow, ast.USub, ast.UAdd)
+
+
+def _names_in(expression: str, where: str) -> set:
+    """The names an expression string uses besides :data:`FUNCTIONS`; refuses what is not arithmetic."""
+    try:
+        tree = ast.parse(expression.replace("^", "**").strip(), mode="eval")
+    except SyntaxError:
+        raise InputError(f"{where}: cannot read the expression {expression!r}") from None
+    for node in ast.walk(tree):
+        if not isinstance(node, _NODES) or isinstance(node, ast.Constant) and not isinstance(node.value, (int, float)) \
+                or isinstance(node, ast.Call) and not (isinstance(node.func, ast.Name) and node.func.id in FUNCTIONS):
+            raise InputError(f"{where}: the expression {expression!r} is not arithmetic of numbers, names and "
+                             f"the functions {', '.join(sorted(FUNCTIONS - {'pi', 'E'}))}")
+    return {node.id for node in ast.walk(tree) if isinstance(node, ast.Name)} - FUNCTIONS
+
+
 def names_of(name: str, dimension: str) -> tuple:
-    """The names of a derived quantity and its two rates (``mu``, ``omega_mu``, ``alpha_mu``)."""
-    return (name, f"omega_{name}", f"alpha_{name}") if dimension == "angle" else (name, f"v_{name}", f"a_{name}")
+    """The names of a quantity and its two rates, and for an angle its scene name in degrees.
+
+    Examples
+    --------
+    >>> names_of("mu", "angle"), names_of("s", "length")
+    (('mu', 'omega_mu', 'alpha_mu', 'mu_deg'), ('s', 'v_s', 'a_s'))
+    """
+    if dimension == "angle":
+        return name, f"omega_{name}", f"alpha_{name}", f"{name}_deg"
+    return name, f"v_{name}", f"a_{name}"
 
 
 def taken_names(unknowns, angles, input_name, parameters, points) -> dict:
@@ -125,7 +149,7 @@ def taken_names(unknowns, angles, input_name, parameters, points) -> dict:
     taken = {input_name: "the input", **{p: "a parameter" for p in parameters}}
     for u in unknowns:
         for own in names_of(u, "angle" if u in angles else "length"):
-            taken[own] = "an unknown" if own == u else f"a rate of the unknown {u}"
+            taken[own] = "an unknown" if own == u else f"a quantity of the unknown {u}"
     for p in points:
         for prefix in ("", "v", "a"):
             for axis in "xy":
@@ -159,6 +183,9 @@ def bind(mechanism, derived: Derived):
                          f"{[str(u) for u in mechanism.unknown_symbols]}, the input {mechanism.input_symbol} "
                          f"and the parameters {[str(p) for p in mechanism.parameters]}")
     expr = expr.xreplace({s: symbols[str(s)] for s in expr.free_symbols})  # a name means the loops' own symbol
+    if not expr.free_symbols & {*mechanism.unknown_symbols, mechanism.input_symbol}:
+        raise InputError(f"{where}: {derived.expression!r} depends on no unknown and not on the input: it is a "
+                         "constant, with no motion to differentiate")
     if expr.has(sp.I) or expr.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
         raise InputError(f"{where}: the expression {derived.expression!r} is not a finite real expression")
     return expr

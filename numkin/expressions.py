@@ -26,6 +26,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 import weakref
 
 import numpy as np
@@ -33,7 +34,7 @@ import numpy as np
 from .analytic import check_sweep, derivatives, input_rates, label_frame, scalar_attr
 from .compiled import vector_function
 from .derived import bind
-from .errors import InputError
+from .errors import InputError, warn
 from .quantities import Quantity, input_quantity, point_quantities
 
 __all__ = ["point_derivatives", "point_kinematics", "derived_values", "derived_derivatives", "derived_kinematics",
@@ -88,19 +89,37 @@ def expression_functions(mech, key, expressions, rates: bool = True):
             + sp.diff(f, t)
             for f in first
         ]
+        # |e| differentiates to sign(e) e' and a Dirac delta at e = 0: its value everywhere else is 0
+        first, second = ([r.replace(sp.DiracDelta, lambda *_: sp.S.Zero) for r in rows] for rows in (first, second))
         varying = [*q, *dq, *d2q, t]
         args = [*q, *dq, *d2q, t, *params]
         cache[key] = tuple(vector_function(rows, args, varying) for rows in (exprs, first, second))
     return cache[key]
 
 
-def _evaluate(sweep, key, expressions, rows: int):
-    """Values and theta-derivatives of ``rows`` expressions over a sweep: three (rows, N) arrays."""
+def _evaluate(sweep, key, expressions, names: list, rates: bool = True):
+    """Values (and theta-derivatives) of the expressions named ``names`` over a sweep: (rows, N) arrays.
+
+    Values that are not finite where the unknowns are (an expression outside its
+    domain, ``sqrt`` of a negative number) are warned of, naming the quantity and the input.
+    """
     mech, t, q = check_sweep(sweep)
-    functions = expression_functions(mech, key, expressions)
-    dq, d2q = derivatives(sweep)
-    args = (*q, *dq, *d2q, t, *mech.parameter_values)
-    return [np.broadcast_to(np.asarray(f(*args), dtype=float).reshape(rows, -1), (rows, t.size)) for f in functions]
+    functions = expression_functions(mech, key, expressions, rates)
+    args = (*q, t, *mech.parameter_values)
+    if rates:
+        dq, d2q = derivatives(sweep)
+        args = (*q, *dq, *d2q, t, *mech.parameter_values)
+    rows = len(names)
+    with np.errstate(all="ignore"):
+        out = [np.broadcast_to(np.asarray(f(*args), dtype=float).reshape(rows, -1), (rows, t.size)) for f in functions]
+    solved = np.all(np.isfinite(q), axis=0)
+    for name, values in zip(names, out[0]):
+        bad = np.flatnonzero(~np.isfinite(values) & solved)
+        if bad.size:
+            warn(f"{mech.name}: {name} is not finite at {bad.size} of {t.size} inputs, first at input "
+                 f"{math.degrees(t[bad[0]]):.6g}°: its expression is undefined there (outside its domain)",
+                 RuntimeWarning)
+    return out
 
 
 def _names(mech, wanted, have, what: str, how: str) -> list:
@@ -145,8 +164,8 @@ def point_derivatives(sweep, points=None) -> dict:
     """
     mech = check_sweep(sweep)[0]
     names = _names(mech, points, list(mech.points), "points", "points=")
-    P, dP, d2P = _evaluate(sweep, ("points", tuple(names)),
-                           lambda: [c for name in names for c in mech.points[name]], 2 * len(names))
+    P, dP, d2P = _evaluate(sweep, ("points", tuple(names)), lambda: [c for name in names for c in mech.points[name]],
+                           [f"{axis}_{name}" for name in names for axis in "xy"])
     return {name: (P[2 * k : 2 * k + 2], dP[2 * k : 2 * k + 2], d2P[2 * k : 2 * k + 2]) for k, name in enumerate(names)}
 
 
@@ -213,13 +232,23 @@ def derived_derivatives(sweep, names=None) -> dict:
     """
     mech = check_sweep(sweep)[0]
     names, chosen, key = _derived(mech, names)
-    e, de, d2e = _evaluate(sweep, key, lambda: [bind(mech, d) for d in chosen], len(chosen))
+    e, de, d2e = _evaluate(sweep, key, lambda: [bind(mech, d) for d in chosen], names)
     return {name: (e[k], de[k], d2e[k]) for k, name in enumerate(names)}
 
 
 def derived_values(sweep, names=None) -> dict:
-    """Values of derived quantities over a sweep, name -> (N,) array (rad or length unit); nothing is
-    differentiated.
+    """Values of derived quantities over a sweep; nothing is differentiated.
+
+    Parameters
+    ----------
+    sweep : Sweep
+    names : str or sequence of str, optional
+        Names of the mechanism's derived quantities (default: all of them).
+
+    Returns
+    -------
+    dict
+        name -> (N,) array (rad or the length unit).
 
     Examples
     --------
@@ -229,17 +258,14 @@ def derived_values(sweep, names=None) -> dict:
     >>> print(np.degrees(derived_values(mech.sweep(np.radians([0.0, 90.0])))["mu"]).round(4))
     [60.     86.8153]
     """
-    mech, t, q = check_sweep(sweep)
-    names, chosen, key = _derived(mech, names)
-    (f,) = expression_functions(mech, key, lambda: [bind(mech, d) for d in chosen], rates=False)
-    e = np.broadcast_to(np.asarray(f(*q, t, *mech.parameter_values), dtype=float).reshape(len(chosen), -1),
-                        (len(chosen), t.size))
+    names, chosen, key = _derived(check_sweep(sweep)[0], names)
+    (e,) = _evaluate(sweep, key, lambda: [bind(sweep.mechanism, d) for d in chosen], names, rates=False)
     return {name: e[k] for k, name in enumerate(names)}
 
 
 def _derived(mech, names):
     """The names asked for, their :class:`~numkin.derived.Derived` and their cache key."""
-    names = _names(mech, names, list(getattr(mech, "derived", {})), "derived quantities", "quantities=")
+    names = _names(mech, names, list(mech.derived), "derived quantities", "quantities=")
     chosen = [mech.derived[n] for n in names]
     return names, chosen, ("derived", tuple((d.name, str(d.expression), d.dimension) for d in chosen))
 

@@ -132,8 +132,7 @@ class Mechanism(CachedModel):
             self.input_symbol,
             list(self.parameters),
         )
-        for derived in self.derived.values():
-            bind(self, derived)  # what an expression names is checked now, not at first use
+        self.add_quantities(self.__dict__.pop("_declared"))
 
     def _setup(self, model: dict, values: list, *, name, guess, guess_input, links, ground, length_unit,
                length_scale, assembly_check, branch, quantities=None) -> None:
@@ -186,7 +185,7 @@ class Mechanism(CachedModel):
         self.guess_input = guess_input
         self.parameter_values = np.array(values, dtype=float)
         self.derived = {}
-        self.add_quantities(quantities)
+        self._declared = quantities  # declared by add_quantities once the model can be read
 
     def add_quantities(self, quantities) -> "Mechanism":
         """Declare derived quantities ``{name: (expression, "angle" or "length")}``; returns the mechanism.
@@ -201,9 +200,8 @@ class Mechanism(CachedModel):
         taken.update({own: f"the quantity {d.name}" for d in self.derived.values() for own in names_of(d.name, d.dimension)})
         known = [*self.unknowns, self.input_name, *(p for p, _, _ in model["parameters"])]
         new = read_quantities(quantities, taken, self.name, known)
-        if new and "_model" not in self.__dict__ and "compiled" in self.__dict__:
-            for derived in new.values():
-                bind(self, derived)
+        for derived in new.values():
+            bind(self, derived)  # what an expression names, and whether it moves, checked now, not at first use
         self.derived = {**self.derived, **new}
         return self
 

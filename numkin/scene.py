@@ -153,8 +153,9 @@ Quantity names (for ``[[check]]``, ``--at``, JSON): an angle unknown's position
 
 A derived quantity of ``[mechanism.quantities]`` (:mod:`numkin.derived`) is
 named like an unknown (``mu_deg``, ``omega_mu``, ``alpha_mu`` for an angle;
-``s``, ``v_s``, ``a_s`` for a length), always reported, compared by
-``[compare]`` and checked by ``[[check]]``. Its expression uses the
+``s``, ``v_s``, ``a_s`` for a length), always reported in the tables,
+compared by ``[compare]`` and checked by ``[[check]]`` (``[report]`` and the
+figures study unknowns only). Its expression uses the
 mechanism's own symbols: the unknowns, the input and the dimensions of a
 mechanism of loops; for a ready-made linkage its unknowns (table below), its
 input and its parameters (a four-bar's ``r1`` to ``r4``; a misspelt name is

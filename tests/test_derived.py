@@ -106,20 +106,50 @@ def test_a_loop_mechanism_reads_names_as_its_own_symbols():
     ({"mu": "theta4"}, r"must be \(expression, 'angle' or 'length'\)"),
     ({"2mu": ("theta4", "angle")}, "a quantity's name is a letter"),
     (["mu"], "quantities must be a mapping"),
+    ({"mu": ("theta3 > 1", "angle")}, "is not arithmetic"),
+    ({"mu": ("[theta3]", "angle")}, "is not arithmetic"),
+    ({"mu": ("theta3 + sqrt(-1)", "angle")}, "not a finite real expression"),
+    ({"k": ("r1 + r2", "length")}, "depends on no unknown and not on the input: it is a constant"),
+    ({"k": ("pi", "angle")}, "it is a constant"),
 ])
 def test_a_wrong_declaration_is_named(spec, message):
     with pytest.raises(numkin.InputError, match=message):
         linkages.four_bar(4, 1, 3, 3).add_quantities(spec)
 
 
+def test_numbers_written_with_exponents_and_an_absolute_value():
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"mu": ("abs(theta4 - theta3) + 1e-3 - 1E-3", "angle")})
+    kin = analytic.derived_kinematics(mech.sweep(np.radians([90.0])), 10.0)
+    # |mu| = mu where mu > 0: the same value and rates as mu (sign(mu) mu', and no Dirac delta away from 0)
+    mp.mp.dps = 30
+    assert kin["mu"][0] == pytest.approx(float(_mu_closed_form(mp.pi / 2)), abs=1e-13)
+    assert kin["omega_mu"][0] == pytest.approx(10 * float(mp.diff(_mu_closed_form, mp.pi / 2)), abs=1e-10)
+    assert kin["alpha_mu"][0] == pytest.approx(100 * float(mp.diff(_mu_closed_form, mp.pi / 2, 2)), abs=1e-8)
+
+
+def test_a_value_outside_its_domain_is_warned_of_by_name():
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"sq": ("sqrt(theta4 - 2)", "angle")})
+    sweep = mech.sweep(np.radians(np.arange(0.0, 361.0)))  # theta4 < 2 rad on part of the turn
+    with pytest.warns(RuntimeWarning, match=r"sq is not finite at \d+ of 361 inputs, first at input [\d.]+°"):
+        values = analytic.derived_values(sweep)["sq"]
+    np.testing.assert_array_equal(np.isnan(values), sweep["theta4"] < 2)
+
+
 def test_a_rate_name_already_taken_is_named():
     mech = linkages.four_bar(4, 1, 3, 3).add_quantities(MU)
     with pytest.raises(numkin.InputError, match="'mu' is already the name of the quantity mu"):
         mech.add_quantities(MU)
-    with pytest.raises(numkin.InputError, match="'omega_theta3' is already the name of a rate of the unknown theta3"):
+    with pytest.raises(numkin.InputError, match="'omega_theta3' is already the name of a quantity of the unknown"):
         linkages.four_bar(4, 1, 3, 3).add_quantities({"omega_theta3": ("theta3", "angle")})
-    with pytest.raises(numkin.InputError, match="'mu': its rate 'omega_mu' is already the name of the quantity omega_mu"):
+    with pytest.raises(numkin.InputError, match="'mu': its name 'omega_mu' is already the name of the quantity omega_mu"):
         linkages.four_bar(4, 1, 3, 3).add_quantities({"omega_mu": ("theta3", "length")}).add_quantities(MU)
+    # within one declaration too, and a scene's name in degrees
+    with pytest.raises(numkin.InputError, match="'omega_mu' is already the name of the quantity mu"):
+        linkages.four_bar(4, 1, 3, 3).add_quantities({**MU, "omega_mu": ("r4*cos(theta4)", "length")})
+    with pytest.raises(numkin.InputError, match="'theta4_deg' is already the name of a quantity of the unknown theta4"):
+        linkages.four_bar(4, 1, 3, 3).add_quantities({"theta4_deg": ("r4*cos(theta4)", "length")})
+    with pytest.raises(numkin.InputError, match="'mu_deg' is already the name of the quantity mu"):
+        linkages.four_bar(4, 1, 3, 3).add_quantities({**MU, "mu_deg": ("r4*cos(theta4)", "length")})
     with pytest.raises(numkin.InputError, match=r"name at least one of the derived quantities .*\['mu'\]"):
         analytic.derived_kinematics(mech.sweep(np.radians([0.0])), 1.0, names=[])
     with pytest.raises(numkin.InputError, match=r"name at least one of the points"):
