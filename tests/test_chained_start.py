@@ -1,0 +1,50 @@
+"""The chained homework's first point: Newton starts from the circle-intersection position nearest the guess."""
+
+import math
+
+import numpy as np
+import pytest
+
+from numkin import linkages
+from numkin.linkages.chained_four_bars import _nearest
+
+DIMS = (7.0, 1.94, 6.86, 2.36, 1.25, 2.39, 1.87, 1.26, math.radians(149.0))
+GUESS = {"phi": math.radians(45.0), "psi": math.radians(60.0), "beta": math.radians(30.0), "gamma": math.radians(270.0)}
+
+
+def _closes(x, theta):
+    """Both loops' residuals (complex), written out from the homework's loop form."""
+    f1, i1, c1, o1, f2, i2, c2, o2, off = DIMS
+    phi, psi, beta, gamma = x
+    one = o1 * np.exp(1j * phi) + c1 * np.exp(1j * psi) - i1 * np.exp(1j * theta) - f1
+    two = o2 * np.exp(1j * beta) + c2 * np.exp(1j * gamma) - i2 * np.exp(1j * (phi + off)) - f2
+    return abs(one), abs(two)
+
+
+@pytest.mark.parametrize("theta", [0.0, 0.7, 2.0, 4.5])
+def test_nearest_position_closes_both_loops(theta):
+    x = _nearest(list(GUESS.values()), theta, DIMS)
+    assert max(_closes(x, theta)) < 1e-13
+
+
+def test_default_start_selects_the_assembly_newton_selects_from_the_homework_guess():
+    mech = linkages.chained_four_bars()
+    inputs = np.radians(np.arange(0.0, 361.0))
+    default = mech.sweep(inputs)             # Newton from the closed-form position
+    from_guess = mech.sweep(inputs, guess=GUESS)   # Newton from the homework's guesses themselves
+    np.testing.assert_allclose(default.values, from_guess.values, rtol=0, atol=1e-13)
+    np.testing.assert_array_equal(default.iterations[1:], from_guess.iterations[1:])
+    assert default.iterations[0] < from_guess.iterations[0]
+
+
+def test_the_other_branch_is_chosen_by_a_guess_near_it():
+    g = list(GUESS.values())
+    x = _nearest(g, 0.0, DIMS)
+    # at theta = 0 linkage 1 is symmetric about its base line: its other assembly is (-phi, -psi)
+    other = _nearest([-x[0], -x[1], x[2], x[3]], 0.0, DIMS)
+    assert other[:2] == pytest.approx([-x[0], -x[1]], abs=1e-12)
+    assert max(_closes(other, 0.0)) < 1e-13
+
+
+def test_a_loop_that_cannot_close_gives_no_start():
+    assert _nearest(list(GUESS.values()), 0.0, (7.0, 1.94, 1.0, 1.0, *DIMS[4:])) is None
