@@ -48,3 +48,17 @@ def test_the_other_branch_is_chosen_by_a_guess_near_it():
 
 def test_a_loop_that_cannot_close_gives_no_start():
     assert _nearest(list(GUESS.values()), 0.0, (7.0, 1.94, 1.0, 1.0, *DIMS[4:])) is None
+
+
+def test_other_dimensions_start_on_the_circle_intersection_nearest_the_guess():
+    # fixed1 = 7.1: Newton from the homework's guesses themselves wanders to the assembly phi = -19.5 deg; the
+    # default start is the one nearest the guesses (sum of angular distances), as the closed-form tests choose it
+    f1, i1, c1, o1 = 7.1, 1.94, 6.86, 2.36
+    sweep = linkages.chained_four_bars(fixed1=f1).sweep(np.radians([0.0, 1.0]))
+    # at theta = 0 linkage 1 is a triangle on its base line: cos(phi) from the law of cosines, phi = +-acos
+    phi = math.acos((o1**2 + (f1 + i1) ** 2 - c1**2) / (2 * o1 * (f1 + i1)))
+    candidates = [(s * phi, math.atan2(-s * o1 * math.sin(phi), f1 + i1 - o1 * math.cos(phi))) for s in (1, -1)]
+    miss = [abs(math.remainder(p - GUESS["phi"], 2 * math.pi)) + abs(math.remainder(q - GUESS["psi"], 2 * math.pi))
+            for p, q in candidates]
+    nearest = candidates[int(np.argmin(miss))]
+    assert sweep.values[:2, 0] == pytest.approx(nearest, abs=1e-12)

@@ -67,7 +67,7 @@ def chained_four_bars(
 
 def _two_angles(a, b, px, py, u0, v0):
     """``(u, v)`` with ``a e^{iu} + b e^{iv} = px + i py`` (circle intersection), the solution nearer
-    ``(u0, v0)`` (angular distance), each angle on the turn of its guess; None if no triangle closes.
+    ``(u0, v0)`` (sum of the angular distances), each angle on the turn of its guess; None if no triangle closes.
 
     Examples
     --------
@@ -86,8 +86,8 @@ def _two_angles(a, b, px, py, u0, v0):
         u = math.atan2(py, px) + sign * math.acos(c)
         v = math.atan2(py - a * math.sin(u), px - a * math.cos(u))
         du, dv = math.remainder(u - u0, 2 * math.pi), math.remainder(v - v0, 2 * math.pi)
-        if best is None or du * du + dv * dv < best[0]:
-            best = (du * du + dv * dv, u0 + du, v0 + dv)
+        if best is None or abs(du) + abs(dv) < best[0]:
+            best = (abs(du) + abs(dv), u0 + du, v0 + dv)
     return [best[1], best[2]]
 
 
