@@ -133,7 +133,7 @@ def solve_start(ctx: Continuation, t0: float, guess, maxiter: int):
     g = mech.default_guess if guess is None else guess
     ctx.started_on_default = guess is None
     # a ready-made linkage's position nearest its default guess, in closed form (numkin.linkages.base.build)
-    refine = getattr(mech, "start_near", None) if guess is None else None
+    refine = mech.__dict__.get("start_near") if guess is None else None  # (no __getattr__ for the others)
     if guess is None and g is not None and not callable(g) and mech.guess_input is not None and mech.guess_input != t0:
         tg = float(mech.guess_input)
         x_g, _, v = _solve_first(ctx, tg, guess_vector(mech, g, tg), maxiter, note=" (the default guess's input)",
