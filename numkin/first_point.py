@@ -201,13 +201,13 @@ def _where(t0, note):
 def _solve_first(ctx, t0, x_guess, maxiter, note="", refine=None):
     """Newton from the guess at t0, the angles reduced to the guess's turn, then polished.
 
-    ``refine(guess, t0)``, if given, is a start for Newton nearer the position the
+    ``refine(mechanism, guess, t0)``, if given, is a start for Newton nearer the position the
     guess selects (or None: Newton starts from the guess); the guess's turn and
     the degrees hints are still the guess's own.
     """
     mech = ctx.mech
     guess = x_guess.tolist()
-    start = None if refine is None or far_guesses(mech, guess) else refine(guess, t0)
+    start = None if refine is None or far_guesses(mech, guess) else refine(mech, guess, t0)
     x, status, it, res, v = ctx.newton1(guess if start is None else start, t0, maxiter, cond_max=COND_MAX)
     far = far_guesses(mech, guess)
     if status != "converged" and (status != "singular" or not res <= FAR):

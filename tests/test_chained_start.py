@@ -62,3 +62,11 @@ def test_other_dimensions_start_on_the_circle_intersection_nearest_the_guess():
             for p, q in candidates]
     nearest = candidates[int(np.argmin(miss))]
     assert sweep.values[:2, 0] == pytest.approx(nearest, abs=1e-12)
+
+
+def test_the_start_reads_the_dimensions_as_they_are_at_the_sweep():
+    inputs = np.radians(np.arange(0.0, 91.0, 5.0))
+    changed = linkages.chained_four_bars()
+    changed.parameter_values[4] = 1.3  # fixed2, after the build
+    fresh = linkages.chained_four_bars(fixed2=1.3)
+    np.testing.assert_array_equal(changed.sweep(inputs).values, fresh.sweep(inputs).values)

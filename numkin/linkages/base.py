@@ -196,10 +196,12 @@ def build(spec: LinkageSpec, model: Callable, values, *, start_near: Callable | 
     source of the module that defines ``model``, so a second build of the
     linkage, in this run or a later one, needs no sympy.
 
-    ``start_near(guess, input) -> list or None``, kept as the mechanism's
-    ``start_near``, is the position nearest the default guess (a list in
-    unknown order, rad) in closed form: a sweep's first point starts Newton
-    there instead of at the guess (:func:`numkin.first_point.solve_start`).
+    ``start_near(mechanism, guess, input) -> list or None``, kept as the
+    mechanism's ``start_near``, is the position nearest the default guess (a
+    list in unknown order, rad) in closed form, from the mechanism's
+    ``parameter_values`` (in the order of ``values``): a sweep's first point
+    starts Newton there instead of at the guess
+    (:func:`numkin.first_point.solve_start`).
     """
     import sys
 

@@ -61,8 +61,13 @@ def chained_four_bars(
         SPEC, _model, [f1, i1, c1, o1, f2, i2, c2, o2, off],
         name="chained four-bars", guess={"phi": g[0], "psi": g[1], "beta": g[2], "gamma": g[3]},
         guess_input=0.0, length_unit=length_unit, length_scale=max(f1, i1, c1, o1, f2, i2, c2, o2),
-        start_near=lambda guess, theta: _nearest(guess, theta, (f1, i1, c1, o1, f2, i2, c2, o2, off)),
+        start_near=_start,
     )
+
+
+def _start(mech, guess, theta):
+    """:func:`_nearest` with the mechanism's dimensions as they are now (see :func:`~numkin.linkages.base.build`)."""
+    return _nearest(guess, theta, mech.parameter_values.tolist())
 
 
 def _two_angles(a, b, px, py, u0, v0):
