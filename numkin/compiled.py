@@ -99,7 +99,7 @@ def _stacked(moving: list, fixed: list, f_moving, f_fixed):
     return f
 
 
-def hoist_fixed_terms(exprs, unknowns):
+def hoist_fixed_terms(exprs, unknowns, inputs=()):
     """Rewrite expressions so that a Newton solve recomputes only what depends on the unknowns.
 
     Two rewrites, both exact up to rounding:
@@ -109,10 +109,23 @@ def hoist_fixed_terms(exprs, unknowns):
       theorem when ``sin(a)`` or ``cos(a)`` occurs anyway, so no new
       transcendental function of the unknowns is evaluated;
     * every function call free of the unknowns (``cos(theta)``,
-      ``cos(offset)``) is replaced by a symbol ``_numkin_fixed<k>``.
+      ``cos(offset)``) is replaced by a symbol ``_numkin_fixed<k>``;
+    * then, in every sum, the terms free of the unknowns are gathered into
+      one symbol where they hold ``inputs`` or a replaced call and take an
+      operation to form (``r2*cos(theta2) - r1``), and so is a whole
+      expression free of the unknowns that holds them: formed once per
+      sweep, not at every Newton iteration.
 
     Returns ``(new expressions, symbols, their expressions)``: evaluate the
     latter once per sweep and pass them as extra arguments.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> t, a, b, r1, r2 = sp.symbols("t a b r1 r2")
+    >>> exprs, names, fixed = hoist_fixed_terms([r2 * sp.cos(t) + sp.cos(a) - r1, sp.sin(b)], [a, b], [t])
+    >>> exprs, names, fixed
+    ([_numkin_fixed1 + cos(a), sin(b)], [_numkin_fixed1], [-r1 + r2*cos(t)])
     """
     import sympy as sp
 
@@ -141,7 +154,39 @@ def hoist_fixed_terms(exprs, unknowns):
     names = [sp.Symbol(f"_numkin_fixed{k}") for k in range(len(fixed))]
     if fixed:
         exprs = [e.xreplace(dict(zip(fixed, names))) for e in exprs]
-    return exprs, names, fixed
+    back = dict(zip(names, fixed))
+    groups: dict = {}
+
+    moving = set(inputs) | set(names)
+
+    def varies(e) -> bool:
+        """Free of the unknowns, holding the input or a replaced call, and an operation to form."""
+        return not e.is_Atom and not (e.free_symbols & unknowns) and bool(e.free_symbols & moving)
+
+    def gathered(e):
+        if e.is_Atom:
+            return e
+        args = [gathered(a) for a in e.args]
+        if isinstance(e, sp.Add):
+            free = [a for a in args if not (a.free_symbols & unknowns)]
+            rest = [a for a in args if a.free_symbols & unknowns]
+            group = sp.Add(*free)
+            if rest and varies(group):
+                return sp.Add(symbol_of(group), *rest)
+        return e.func(*args) if args != list(e.args) else e
+
+    def symbol_of(group):
+        if group not in groups:
+            groups[group] = sp.Symbol(f"_numkin_fixed{len(names) + len(groups)}")
+        return groups[group]
+
+    exprs = [symbol_of(e) if varies(e) else gathered(e) for e in exprs]
+    for group, name in groups.items():
+        names.append(name)
+        fixed.append(group.xreplace(back))
+    used = set().union(*(e.free_symbols for e in exprs))
+    kept = [k for k, name in enumerate(names) if name in used]  # a call now only inside a gathered sum goes
+    return exprs, [names[k] for k in kept], [fixed[k] for k in kept]
 
 
 def scalar_function(exprs, args):
@@ -339,7 +384,7 @@ class CompiledMechanism:
         """Residual-and-Jacobian rows compiled for many points, with what does not change
         during a Newton solve taken out: see :func:`hoist_fixed_terms`."""
         exprs = list(self.residuals) + list(self.jacobian_matrix)
-        exprs, names, fixed = hoist_fixed_terms(exprs, self.unknowns)
+        exprs, names, fixed = hoist_fixed_terms(exprs, self.unknowns, [self.input_symbol])
         rows = _lambdify(tuple(exprs), (*self.unknowns, self.input_symbol, *names, *self.parameters), "numpy", True)
         terms = _lambdify(tuple(fixed), (self.input_symbol, *self.parameters), "numpy", True) if fixed else None
         return rows, terms
