@@ -478,9 +478,14 @@ def newton(
     >>> round(float(res.x[0]), 10)
     0.7390851332
     """
-    x0 = np.atleast_1d(np.asarray(x0, dtype=float if not np.iscomplexobj(x0) else complex))
-    if x0.ndim != 1:
-        raise InputError(f"x0 must be a 1-D guess, got shape {x0.shape}")
+    if x0 is None or isinstance(x0, (str, bytes, dict)):
+        raise InputError(f"x0 must be the guess, a number or a sequence of numbers, got {x0!r}")
+    try:
+        x0 = np.atleast_1d(np.asarray(x0, dtype=float if not np.iscomplexobj(x0) else complex))
+    except (TypeError, ValueError):
+        raise InputError(f"x0 must be the guess, a number or a sequence of numbers, got {x0!r}") from None
+    if x0.ndim != 1 or not x0.size:
+        raise InputError(f"x0 must be a 1-D guess of at least one unknown, got shape {x0.shape}")
     if not np.all(np.isfinite(x0)):
         raise InputError(f"x0 has a non-finite entry at index {int(np.flatnonzero(~np.isfinite(x0))[0])}")
     tol = check_tol(tol)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from numkin import ConvergenceWarning, linkages, newton
+from numkin import ConvergenceWarning, InputError, linkages, newton
 from numkin.newton import has_converged
 from numkin.newton import NewtonResult
 
@@ -304,3 +304,15 @@ def test_scaled_cond_of_a_complex_step_jacobian_is_the_real_ones():
     big = real + 0.5j * rng.normal(size=real.shape)
     np.testing.assert_allclose(scaled_cond(big, 4.0, xscale), np.linalg.cond(big * xscale[None, None, :] / 4.0),
                                rtol=1e-12)
+
+
+@pytest.mark.parametrize("x0, fragment", [
+    ([], "at least one unknown"),
+    (None, "a number or a sequence of numbers, got None"),
+    ("1.0", "a number or a sequence of numbers"),
+    ([[1.0, 2.0]], "1-D guess"),
+    ([1.0, math.inf], "non-finite entry at index 1"),
+])
+def test_a_guess_that_is_not_one_is_named(x0, fragment):
+    with pytest.raises(InputError, match=fragment):
+        newton(lambda v: v, x0)
