@@ -49,11 +49,15 @@ _RATES = """sweep : Sweep
     alpha : float, str or array_like, default 0
         Input angular acceleration (rad/s^2, or a string with units)."""
 
+#: The change-point parameter every function here shares.
+_CHANGE = """at_change_point : {"nan", "continue"}, default "nan"
+        Rates at a change point, as in :func:`numkin.analytic.derivatives`."""
+
 
 def _shared(*functions) -> None:
     """Write the shared parameters into the functions' docstrings (their ``%(rates)s``)."""
     for function in functions:
-        function.__doc__ = function.__doc__.replace("%(rates)s", _RATES)
+        function.__doc__ = function.__doc__.replace("%(rates)s", _RATES).replace("%(change)s", _CHANGE)
 
 
 def expression_functions(mech, key, expressions, rates: bool = True):
@@ -97,7 +101,7 @@ def expression_functions(mech, key, expressions, rates: bool = True):
     return cache[key]
 
 
-def _evaluate(sweep, key, expressions, names: list, rates: bool = True):
+def _evaluate(sweep, key, expressions, names: list, rates: bool = True, at_change_point: str = "nan"):
     """Values (and theta-derivatives) of the expressions named ``names`` over a sweep: (rows, N) arrays.
 
     Values that are not finite where the unknowns are (an expression outside its
@@ -107,7 +111,7 @@ def _evaluate(sweep, key, expressions, names: list, rates: bool = True):
     functions = expression_functions(mech, key, expressions, rates)
     args = (*q, t, *mech.parameter_values)
     if rates:
-        dq, d2q = derivatives(sweep)
+        dq, d2q = derivatives(sweep, at_change_point=at_change_point)
         args = (*q, *dq, *d2q, t, *mech.parameter_values)
     rows = len(names)
     with np.errstate(all="ignore"):
@@ -138,7 +142,7 @@ def _names(mech, wanted, have, what: str, how: str) -> list:
 
 
 # --------------------------------------------------------------------------- points
-def point_derivatives(sweep, points=None) -> dict:
+def point_derivatives(sweep, points=None, *, at_change_point: str = "nan") -> dict:
     """Positions of named points and their first and second derivatives with respect to the input.
 
     Parameters
@@ -146,6 +150,7 @@ def point_derivatives(sweep, points=None) -> dict:
     sweep : Sweep
     points : str or sequence of str, optional
         Point names (default: all of ``sweep.mechanism.points``).
+    %(change)s
 
     Returns
     -------
@@ -165,11 +170,11 @@ def point_derivatives(sweep, points=None) -> dict:
     mech = check_sweep(sweep)[0]
     names = _names(mech, points, list(mech.points), "points", "points=")
     P, dP, d2P = _evaluate(sweep, ("points", tuple(names)), lambda: [c for name in names for c in mech.points[name]],
-                           [f"{axis}_{name}" for name in names for axis in "xy"])
+                           [f"{axis}_{name}" for name in names for axis in "xy"], at_change_point=at_change_point)
     return {name: (P[2 * k : 2 * k + 2], dP[2 * k : 2 * k + 2], d2P[2 * k : 2 * k + 2]) for k, name in enumerate(names)}
 
 
-def point_kinematics(sweep, omega, alpha=0.0, points=None):
+def point_kinematics(sweep, omega, alpha=0.0, points=None, *, at_change_point: str = "nan"):
     """Positions, velocities and accelerations of named points over a sweep.
 
     Parameters
@@ -177,6 +182,7 @@ def point_kinematics(sweep, omega, alpha=0.0, points=None):
     %(rates)s
     points : str or sequence of str, optional
         Point names (default: all named points of the mechanism).
+    %(change)s
 
     Returns
     -------
@@ -196,7 +202,7 @@ def point_kinematics(sweep, omega, alpha=0.0, points=None):
     """
     mech, t, _ = check_sweep(sweep)
     w, a = input_rates(omega, alpha, t.size)
-    data = point_derivatives(sweep, points)
+    data = point_derivatives(sweep, points, at_change_point=at_change_point)
     columns = []
     for name, (P, dP, d2P) in data.items():
         for pair, v in zip(point_quantities(mech, name), (P, w * dP, w**2 * d2P + a * dP)):
@@ -205,7 +211,7 @@ def point_kinematics(sweep, omega, alpha=0.0, points=None):
 
 
 # --------------------------------------------------------------------------- derived quantities
-def derived_derivatives(sweep, names=None) -> dict:
+def derived_derivatives(sweep, names=None, *, at_change_point: str = "nan") -> dict:
     """Values of derived quantities and their first and second derivatives with respect to the input.
 
     Parameters
@@ -214,6 +220,7 @@ def derived_derivatives(sweep, names=None) -> dict:
     names : str or sequence of str, optional
         Names of the mechanism's derived quantities (default: all of
         ``sweep.mechanism.derived``).
+    %(change)s
 
     Returns
     -------
@@ -232,7 +239,7 @@ def derived_derivatives(sweep, names=None) -> dict:
     """
     mech = check_sweep(sweep)[0]
     names, chosen, key = _derived(mech, names)
-    e, de, d2e = _evaluate(sweep, key, lambda: [bind(mech, d) for d in chosen], names)
+    e, de, d2e = _evaluate(sweep, key, lambda: [bind(mech, d) for d in chosen], names, at_change_point=at_change_point)
     return {name: (e[k], de[k], d2e[k]) for k, name in enumerate(names)}
 
 
@@ -270,7 +277,7 @@ def _derived(mech, names):
     return names, chosen, ("derived", tuple((d.name, str(d.expression), d.dimension) for d in chosen))
 
 
-def derived_kinematics(sweep, omega, alpha=0.0, names=None):
+def derived_kinematics(sweep, omega, alpha=0.0, names=None, *, at_change_point: str = "nan"):
     """Values, rates and accelerations of derived quantities over a sweep.
 
     Parameters
@@ -278,6 +285,7 @@ def derived_kinematics(sweep, omega, alpha=0.0, names=None):
     %(rates)s
     names : str or sequence of str, optional
         Derived quantities (default: all the mechanism's).
+    %(change)s
 
     Returns
     -------
@@ -299,7 +307,7 @@ def derived_kinematics(sweep, omega, alpha=0.0, names=None):
     mech, t, _ = check_sweep(sweep)
     w, a = input_rates(omega, alpha, t.size)
     columns = []
-    for name, (e, de, d2e) in derived_derivatives(sweep, names).items():
+    for name, (e, de, d2e) in derived_derivatives(sweep, names, at_change_point=at_change_point).items():
         common = dict(length_unit=mech.length_unit, input_name=mech.input_name)
         for order, v in enumerate((e, w * de, w**2 * d2e + a * de)):
             q = Quantity(name, order, mech.derived[name].dimension, source="solved" if order == 0 else "analytic",
@@ -322,4 +330,4 @@ def _frame(mech, t, w, a, columns):
     return frame
 
 
-_shared(point_kinematics, derived_kinematics)
+_shared(point_derivatives, point_kinematics, derived_derivatives, derived_kinematics)

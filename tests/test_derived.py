@@ -135,6 +135,23 @@ def test_a_value_outside_its_domain_is_warned_of_by_name():
     np.testing.assert_array_equal(np.isnan(values), sweep["theta4"] < 2)
 
 
+def test_at_a_change_point_the_rates_continue_the_kept_branch_as_the_unknowns_do():
+    """Crossed anti-parallelogram 5/2/5/2 at 180 deg (tests/test_analytic.py derives theta3' = 4/7,
+    theta4' = -3/7 there by hand): mu' = theta4' - theta3' = -1; NaN unless asked to continue."""
+    import warnings
+
+    mech = linkages.four_bar(5, 2, 5, 2, branch="crossed").add_quantities(MU)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sweep = mech.sweep(np.radians(np.arange(1.0, 360.0)), on_singular="report")
+        k = int(np.argmin(np.abs(sweep.inputs - np.pi)))
+        assert np.isnan(analytic.derived_derivatives(sweep)["mu"][1][k])
+        _, de, _ = analytic.derived_derivatives(sweep, at_change_point="continue")["mu"]
+        kin = analytic.derived_kinematics(sweep, 2.0, at_change_point="continue")
+    assert de[k] == pytest.approx(-1.0, abs=1e-6)
+    assert kin["omega_mu"][k] == pytest.approx(-2.0, abs=1e-5)
+
+
 def test_a_rate_name_already_taken_is_named():
     mech = linkages.four_bar(4, 1, 3, 3).add_quantities(MU)
     with pytest.raises(numkin.InputError, match="'mu' is already the name of the quantity mu"):
