@@ -140,8 +140,8 @@ def array(x, name: str, grid=FULL_TURN, *, forward: bool = False) -> np.ndarray:
         values = np.append(values, [np.nan, np.nan])
     elif values.size == count - 2:  # interior points only, e.g. (y[2:] - y[:-2]) / (2h)
         values = np.concatenate([[np.nan], values, [np.nan]])
-    last = -2 if forward else -1
-    bad = np.flatnonzero(~np.isfinite(values[1:last])) + 1
+    first, last = (0, -2) if forward else (1, -1)  # a forward formula is defined at 0°
+    bad = np.flatnonzero(~np.isfinite(values[first:last])) + first
     if bad.size:  # NaN at the two ends is allowed: the checks compare interior angles
         where = _grid_angles(grid)[bad[0]]
         raise AssertionError(

@@ -256,6 +256,8 @@ def test_the_forward_difference_applied_twice_is_read_from_the_start():
     kc.series("d2y", twice, forward_twice, rtol=1e-9, forward=True, alternatives=named)
     padded = np.append(twice, [np.nan, np.nan])  # undefined at 359 and 360 deg, neither checked
     kc.series("d2y", padded, forward_twice, rtol=1e-9, forward=True, alternatives=named)
+    padded[0] = np.nan  # a forward formula is defined at 0 deg: NaN there is a failed value
+    assert "θ = 0°" in _fails(kc.array, padded, "d2y", forward=True)
     # read as interior points (the centred reading), the same values are the centred second difference
     assert "centred second difference" in _fails(kc.series, "d2y", twice, forward_twice, rtol=1e-9,
                                                  alternatives=named)
