@@ -3,11 +3,9 @@
 Algorithm
 ---------
 1. Solve at the first input from the guess (Newton, up to ``maxiter`` steps,
-   refusing near-singular Jacobians; a ready-made linkage may start Newton
-   from its default guess at the nearest position found in closed form, its
-   ``start_near``); the angles are then reduced to the guess's turn and
-   polished by further Newton steps, so the first point is as accurate as
-   every other.
+   refusing near-singular Jacobians); the angles are then reduced to the
+   guess's turn and polished by further Newton steps, so the first point is
+   as accurate as every other.
 2. March sequentially to *nodes*, grid points about ``max_step`` apart (30°
    by default): each step predicts with the tangent ``q' = -J^-1 dF/dt``
    (and the previous point and its tangent, a cubic, or the previous point

@@ -132,16 +132,13 @@ def solve_start(ctx: Continuation, t0: float, guess, maxiter: int):
     mech = ctx.mech
     g = mech.default_guess if guess is None else guess
     ctx.started_on_default = guess is None
-    # a ready-made linkage's position nearest its default guess, in closed form (numkin.linkages.base.build)
-    refine = mech.__dict__.get("start_near") if guess is None else None  # (no __getattr__ for the others)
     if guess is None and g is not None and not callable(g) and mech.guess_input is not None and mech.guess_input != t0:
         tg = float(mech.guess_input)
-        x_g, _, v = _solve_first(ctx, tg, guess_vector(mech, g, tg), maxiter, note=" (the default guess's input)",
-                                 refine=refine)
+        x_g, _, v = _solve_first(ctx, tg, guess_vector(mech, g, tg), maxiter, note=" (the default guess's input)")
         d, o = ctx.local1(v)
         x, _, _, iters = ctx.march(tg, x_g, d, o, t0)
         return x, iters, ctx.eval1(x, t0)
-    return _solve_first(ctx, t0, guess_vector(mech, g, t0), maxiter, refine=refine)
+    return _solve_first(ctx, t0, guess_vector(mech, g, t0), maxiter)
 
 
 def _dependent(ctx, x, t0) -> bool:
@@ -198,17 +195,11 @@ def _where(t0, note):
     return f"input {deg_text(t0, 3)}{note}"
 
 
-def _solve_first(ctx, t0, x_guess, maxiter, note="", refine=None):
-    """Newton from the guess at t0, the angles reduced to the guess's turn, then polished.
-
-    ``refine(mechanism, guess, t0)``, if given, is a start for Newton nearer the position the
-    guess selects (or None: Newton starts from the guess); the guess's turn and
-    the degrees hints are still the guess's own.
-    """
+def _solve_first(ctx, t0, x_guess, maxiter, note=""):
+    """Newton from the guess at t0, the angles reduced to the guess's turn, then polished."""
     mech = ctx.mech
     guess = x_guess.tolist()
-    start = None if refine is None or far_guesses(mech, guess) else refine(mech, guess, t0)
-    x, status, it, res, v = ctx.newton1(guess if start is None else start, t0, maxiter, cond_max=COND_MAX)
+    x, status, it, res, v = ctx.newton1(guess, t0, maxiter, cond_max=COND_MAX)
     far = far_guesses(mech, guess)
     if status != "converged" and (status != "singular" or not res <= FAR):
         impossible = never_closes(mech)

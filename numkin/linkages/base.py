@@ -186,7 +186,7 @@ def pair(name: str, value) -> tuple[float, float]:
     return finite(f"{name}[0]", x), finite(f"{name}[1]", y)
 
 
-def build(spec: LinkageSpec, model: Callable, values, *, start_near: Callable | None = None, **options):
+def build(spec: LinkageSpec, model: Callable, values, **options):
     """The mechanism of a ready-made linkage, through the kernel cache.
 
     ``model()`` writes the linkage's loops with its dimensions as symbols
@@ -195,13 +195,6 @@ def build(spec: LinkageSpec, model: Callable, values, *, start_near: Callable | 
     order of those symbols. The cache key is the linkage's name and the
     source of the module that defines ``model``, so a second build of the
     linkage, in this run or a later one, needs no sympy.
-
-    ``start_near(mechanism, guess, input) -> list or None``, kept as the
-    mechanism's ``start_near``, is the position nearest the default guess (a
-    list in unknown order, rad) in closed form, from the mechanism's
-    ``parameter_values`` (in the order of ``values``): a sweep's first point
-    starts Newton there instead of at the guess
-    (:func:`numkin.first_point.solve_start`).
     """
     import sys
 
@@ -210,8 +203,6 @@ def build(spec: LinkageSpec, model: Callable, values, *, start_near: Callable | 
 
     key = kernel_cache.bundle_key(f"linkage {spec.name}", _module_digest(sys.modules[model.__module__].__file__))
     mech = Mechanism.from_model(key, model, values, links=spec.links, ground=spec.ground, **options)
-    if start_near is not None:
-        mech.start_near = start_near
     return finish(mech, spec)
 
 

@@ -34,11 +34,7 @@ def chained_four_bars(
     offset : float
         alpha - phi, rad.
     guess1, guess2 : pair of float
-        The homework's starting guesses (phi, psi) and (beta, gamma) at theta = 0, rad
-        (the mechanism's default guess). A sweep from the default guess starts
-        Newton at the position of each linkage nearest its guess, found by
-        circle intersection (each angle on its guess's turn); a guess more
-        than a turn from zero is used as given (and named as likely degrees).
+        The homework's starting guesses (phi, psi) and (beta, gamma) at theta = 0, rad.
 
     Returns
     -------
@@ -61,59 +57,7 @@ def chained_four_bars(
         SPEC, _model, [f1, i1, c1, o1, f2, i2, c2, o2, off],
         name="chained four-bars", guess={"phi": g[0], "psi": g[1], "beta": g[2], "gamma": g[3]},
         guess_input=0.0, length_unit=length_unit, length_scale=max(f1, i1, c1, o1, f2, i2, c2, o2),
-        start_near=_start,
     )
-
-
-def _start(mech, guess, theta):
-    """:func:`_nearest` with the mechanism's dimensions as they are now (see :func:`~numkin.linkages.base.build`)."""
-    return _nearest(guess, theta, mech.parameter_values.tolist())
-
-
-def _two_angles(a, b, px, py, u0, v0):
-    """``(u, v)`` with ``a e^{iu} + b e^{iv} = px + i py`` (circle intersection), the solution nearer
-    ``(u0, v0)`` (sum of the angular distances), each angle on the turn of its guess; None if no triangle closes.
-
-    Examples
-    --------
-    >>> u, v = _two_angles(3.0, 4.0, 5.0, 0.0, 1.0, -0.5)
-    >>> round(math.degrees(u), 4), round(math.degrees(v), 4)
-    (53.1301, -36.8699)
-    """
-    d = math.hypot(px, py)
-    if not d > 0:
-        return None
-    c = (a * a + d * d - b * b) / (2 * a * d)
-    if not -1.0 <= c <= 1.0:
-        return None
-    best = None
-    for sign in (1.0, -1.0):
-        u = math.atan2(py, px) + sign * math.acos(c)
-        v = math.atan2(py - a * math.sin(u), px - a * math.cos(u))
-        du, dv = math.remainder(u - u0, 2 * math.pi), math.remainder(v - v0, 2 * math.pi)
-        if best is None or abs(du) + abs(dv) < best[0]:
-            best = (abs(du) + abs(dv), u0 + du, v0 + dv)
-    return [best[1], best[2]]
-
-
-def _nearest(guess, theta, dims):
-    """The position of both linkages at ``theta`` nearest ``guess = [phi, psi, beta, gamma]`` (rad), each
-    angle on its guess's turn, by circle intersections, linkage 1 first; None if one cannot close there.
-
-    Examples
-    --------
-    >>> g = [math.radians(a) for a in (45.0, 60.0, 30.0, 270.0)]
-    >>> dims = (7.0, 1.94, 6.86, 2.36, 1.25, 2.39, 1.87, 1.26, math.radians(149.0))
-    >>> [round(math.degrees(a), 4) for a in _nearest(g, 0.0, dims)]
-    [24.3814, -8.1645, 64.9621, 207.5917]
-    """
-    f1, i1, c1, o1, f2, i2, c2, o2, off = dims
-    one = _two_angles(o1, c1, f1 + i1 * math.cos(theta), i1 * math.sin(theta), guess[0], guess[1])
-    if one is None:
-        return None
-    alpha = one[0] + off
-    two = _two_angles(o2, c2, f2 + i2 * math.cos(alpha), i2 * math.sin(alpha), guess[2], guess[3])
-    return None if two is None else one + two
 
 
 def _model():
@@ -157,8 +101,7 @@ SPEC = LinkageSpec(
     input="theta",
     unknowns=(("phi", "angle"), ("psi", "angle"), ("beta", "angle"), ("gamma", "angle")),
     length_unit="in",
-    guess="the homework's guesses at theta = 0: (phi, psi) = (45°, 60°), (beta, gamma) = (30°, 270°); "
-          "a sweep's Newton starts at the circle-intersection position nearest them",
+    guess="the homework's guesses at theta = 0: (phi, psi) = (45°, 60°), (beta, gamma) = (30°, 270°)",
     points=("C", "B", "A", "D", "E", "F", "G"),
     links=(("D", "A"), ("A", "B"), ("B", "C"), ("C", "E"), ("E", "F"), ("F", "G")),
     ground=("C", "D", "G"),
