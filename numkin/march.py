@@ -219,16 +219,6 @@ class Continuation:
                 x[k] = ref[k] + math.remainder(x[k] - ref[k], TWO_PI)
         return x, moved
 
-    def correct(self, x_pred, t, maxiter=CORRECTOR_ITERATIONS):
-        """Newton from a prediction; the angles taken nearest the prediction (polished again if moved)."""
-        x, status, it, res, v = self.newton1(x_pred, t, maxiter)
-        if status == "converged":
-            x, moved = self.nearest_turn(x, x_pred)
-            if moved:
-                x, status, it2, res, v = self.newton1(x, t, maxiter)
-                it += it2
-        return x, status, it, res, v
-
     def local1(self, v):
         """Tangent dq/dt and loop orientations at a solved point; (None, None) if its Jacobian is singular."""
         if v is None:
@@ -472,8 +462,8 @@ class Continuation:
             if dt < min_step or t_new == t:
                 self.fail(t0, x0, t, x, t_new, x, "singular", "singular", 0, math.nan)
             x_pred = self.predict1(t, x, d, t_prev, x_prev, t_new, rate, d_prev)
-            # self.correct(x_pred, t_new), with the nearest turn looked for only where an angle moved by
-            # more than half a turn (angles are scaled by one: a smaller distance moves none)
+            # Newton from the prediction, the angles then taken on the prediction's turn: looked for only
+            # where an angle moved by more than half a turn (angles are scaled by one: a smaller distance moves none)
             if newton1 is not None:
                 x_new, status, it, res, v, evals = newton1(fjt, x_pred, t_new, pt, CORRECTOR_ITERATIONS, fscale, tol,
                                                            floor, MATH_ERRORS, None)
@@ -538,24 +528,6 @@ class Continuation:
             )
         self.last_previous = (t_prev, x_prev, d_prev) if t_prev is not None else None
         return x, d, o, iters
-
-    @staticmethod
-    def trend(t, d, t_prev, d_prev, t_new):
-        """The tangent expected at ``t_new``: ``d`` extrapolated linearly through the previous point's
-        tangent ``d_prev`` (when that point is at most :data:`TREND_REACH` steps back), else ``d``."""
-        if d_prev is None or t_prev is None:
-            return d
-        r = (t_new - t) / (t - t_prev)
-        if not 0.0 < r <= TREND_REACH:
-            return d
-        return [a + (a - b) * r for a, b in zip(d, d_prev)]
-
-    def kinked(self, d, d_new, rate) -> bool:
-        """Whether the tangent ``d_new`` differs from the one expected, ``d`` (:meth:`trend`), by more than
-        :data:`MAX_TANGENT_TURN` (1 + ``|dq/dt|``)."""
-        if d_new is None:
-            return False
-        return self.distance(d_new, d) > MAX_TANGENT_TURN * (1.0 + rate)
 
     def fail(self, t0, x0, t, x, t_next, x_try, status, reason, iterations, res):
         """Explain why the continuation cannot go from t to t_next, and raise.

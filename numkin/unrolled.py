@@ -12,7 +12,11 @@ arrays at many), with the identically zero entries left out.
 * :func:`unrolled_newton_batch` -- the Newton iteration on whole arrays;
 * :func:`unrolled_local` -- at one solved point: tangent, orientations and the
   largest condition number, from one pass over the blocks;
-* :func:`scaled_distance` -- the largest scaled difference of two points;
+* :func:`scaled_distance`, :func:`scaled_size` -- the largest scaled difference
+  of two points, the largest scaled entry of one; :func:`max_lines` -- the
+  largest of a few floats written out as comparisons (``max()``'s result, NaN
+  included);
+* :func:`unrolled_kink` -- whether the tangent turned faster than the march allows;
 * :func:`cond2` -- the 2-norm condition number of a 2 x 2 matrix, closed form.
 
 Examples
@@ -430,8 +434,8 @@ def unrolled_kink(n, weights, turn, reach):
     ``rate``), scaled by ``weights`` (a tuple).
 
     The tangent expected is ``d`` extrapolated linearly through ``d_prev`` (the tangent at ``t_prev``)
-    when ``t_prev`` is at most ``reach`` steps back, else ``d``: the same numbers as
-    :meth:`numkin.march.Continuation.trend` followed by :meth:`numkin.march.Continuation.kinked`.
+    when ``t_prev`` is at most ``reach`` steps back, else ``d`` (the march's test of a tangent that turned
+    too fast, :data:`numkin.march.MAX_TANGENT_TURN` and :data:`numkin.march.TREND_REACH`).
 
     Examples
     --------

@@ -187,7 +187,6 @@ def test_block_condition_numbers_and_orientations_in_one_pass_match_numpy(build)
     col = np.asarray(bs.xscale) / bs.fscale
     rows = [J[:, i // bs.n, i % bs.n] for i in range(bs.n * bs.n)]
     cond, signs = bs.cond_signs(rows, t.size)
-    np.testing.assert_array_equal(bs.cond(rows, t.size), cond)
     for k, (a, b) in enumerate(bs.blocks):
         np.testing.assert_allclose(cond[k], np.linalg.cond(J[:, a:b, a:b] * col[None, None, a:b]), rtol=1e-12)
         np.testing.assert_array_equal(signs[k], np.sign(np.linalg.det(J[:, a:b, a:b])))
