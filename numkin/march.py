@@ -103,7 +103,7 @@ class Continuation:
         self.predict1 = unrolled_predict(self.n, None if self.unit_scale else tuple(self.inv_xs))
         self.distance = scaled_distance(self.n, tuple(self.inv_xs))  # max |a - b| / xscale of two points
         self.size = scaled_size(self.n, tuple(self.inv_xs))  # max |a| / xscale of a point or tangent
-        #: :meth:`trend` and :meth:`kinked` in one written-out function
+        #: whether a tangent turned faster than :data:`MAX_TANGENT_TURN` allows (:func:`numkin.unrolled.unrolled_kink`)
         self.kinked1 = unrolled_kink(self.n, tuple(self.inv_xs), MAX_TANGENT_TURN, TREND_REACH)
         self._fjt = comp.scalar_FJT
         self._newton1 = self.blocks.newton1 if self.symbolic else None
