@@ -109,7 +109,8 @@ def tables(result) -> dict:
         if mech.derived:
             from .expressions import derived_values
 
-            derived = derived_values(sweep)
+            dk = result.derived_kinematics  # holds the values when the scene differentiated: compiled once
+            derived = {n: dk[n].to_numpy() for n in mech.derived} if dk is not None else derived_values(sweep)
             derived_positions = [q for q in quantities if q.of in derived and not q.is_point and q.order == 0]
             for label, values in _columns(result, derived_positions, lambda q: derived[q.of]).items():
                 frame[label] = values
