@@ -21,7 +21,7 @@ from .errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning
 from .march import FAR, TWO_PI, Continuation, deg_text
 from .newton import COND_MAX, is_singular
 
-__all__ = ["solve_start", "guess_vector", "far_guesses", "degrees_hint", "unsolved", "never_closes"]
+__all__ = ["solve_start", "guess_vector", "far_guesses", "still_far", "degrees_hint", "unsolved", "never_closes"]
 
 
 def far_guesses(mech, guess) -> list:
@@ -36,6 +36,19 @@ def far_guesses(mech, guess) -> list:
     [('theta3', 60.0)]
     """
     return [(u, float(g)) for u, g in zip(mech.unknowns, guess) if u in mech.angles and abs(g) > TWO_PI]
+
+
+def still_far(mech, far, x) -> list:
+    """The entries ``(name, guess)`` of ``far`` (:func:`far_guesses`) whose solution in ``x`` is more than
+    1 rad from the guess: what a guess in degrees, which Newton still solved, is warned of.
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> still_far(linkages.four_bar(4, 1, 3, 3), [("theta3", 60.0)], [0.5, 2.0])
+    [('theta3', 60.0)]
+    """
+    return [(name, value) for name, value in far if abs(x[mech.unknowns.index(name)] - value) > 1.0]
 
 
 def degrees_hint(far) -> str:
@@ -244,7 +257,7 @@ def _solve_first(ctx, t0, x_guess, maxiter, note=""):
     if moved:  # reduced to the guess's turn, then polished there
         x, status, it2, _, v = ctx.newton1(x, t0, maxiter, cond_max=COND_MAX)
         it += it2
-    far = [(name, value) for name, value in far if abs(x[mech.unknowns.index(name)] - value) > 1.0]
+    far = still_far(mech, far, x)
     if far:
         where = _where(t0, note)
         starts = ", ".join(f"{name} at {math.degrees(x[mech.unknowns.index(name)]):.6g}°" for name, _ in far)

@@ -195,10 +195,10 @@ class Mechanism(CachedModel):
         See :mod:`numkin.derived`.
         """
         model = self._description
-        taken = taken_names(self.unknowns, self.angles, self.input_name, [p for p, _, _ in model["parameters"]],
-                            model["points"])
+        params = [p for p, _, _ in model["parameters"]]
+        taken = taken_names(self.unknowns, self.angles, self.input_name, params, model["points"])
         taken.update({own: f"the quantity {d.name}" for d in self.derived.values() for own in names_of(d.name, d.dimension)})
-        known = [*self.unknowns, self.input_name, *(p for p, _, _ in model["parameters"])]
+        known = [*self.unknowns, self.input_name, *params]
         new = read_quantities(quantities, taken, self.name, known)
         for derived in new.values():
             bind(self, derived)  # what an expression names, and whether it moves, checked now, not at first use
@@ -346,11 +346,11 @@ class Mechanism(CachedModel):
         out = iterate(F, J, x0[:, None], fscale=self.length_scale, xscale=self.xscale, tol=tol, maxiter=maxiter,
                       record=True)
         cond = float(scaled_cond(self.compiled.J(out.x, t, self.parameter_values), self.length_scale, self.xscale)[0])
-        from .first_point import degrees_hint, far_guesses, unsolved
+        from .first_point import degrees_hint, far_guesses, still_far, unsolved
 
         if out.converged[0]:
             x = out.x[:, 0]
-            far = [(u, g) for u, g in far_guesses(self, x0) if abs(x[self.unknowns.index(u)] - g) > 1.0]
+            far = still_far(self, far_guesses(self, x0), x)
             if far:
                 found = ", ".join(f"{u} = {math.degrees(x[self.unknowns.index(u)]):.6g}°" for u, _ in far)
                 warn(GuessWarning(f"{self.name}: {degrees_hint(far)}; Newton converged at input "

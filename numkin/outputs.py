@@ -107,10 +107,7 @@ def tables(result) -> dict:
     if "positions" in wanted:
         frame = sweep.to_frame()
         if mech.derived:
-            from .expressions import derived_values
-
-            dk = result.derived_kinematics  # holds the values when the scene differentiated: compiled once
-            derived = {n: dk[n].to_numpy() for n in mech.derived} if dk is not None else derived_values(sweep)
+            derived = result.derived_positions()
             derived_positions = [q for q in quantities if q.of in derived and not q.is_point and q.order == 0]
             for label, values in _columns(result, derived_positions, lambda q: derived[q.of]).items():
                 frame[label] = values

@@ -146,6 +146,17 @@ class SceneResult:
             return bool(self.suite["as expected"].all())
         return all(c.passed for c in self.checks)
 
+    def derived_positions(self) -> dict:
+        """Values of the derived quantities over the sweep, name -> (N,): from :attr:`derived_kinematics`
+        when the scene differentiated, else evaluated once (nothing differentiated)."""
+        if self.derived_kinematics is not None:
+            return {name: self.derived_kinematics[name].to_numpy() for name in self.mechanism.derived}
+        if "_derived_values" not in self.__dict__:
+            from .expressions import derived_values
+
+            self.__dict__["_derived_values"] = derived_values(self.sweep)
+        return self.__dict__["_derived_values"]
+
     def value(self, name: str, at_deg: float) -> float:
         """One quantity (see the module docstring for names) at an input angle (degrees)."""
         return _evaluate(self, at_deg).values[name]
@@ -453,7 +464,8 @@ def _evaluate(result: SceneResult, at_deg: float, check: dict | None = None, *, 
     if mech.derived and dk is None:  # a position-only scene: the values alone, nothing differentiated
         from .expressions import derived_values
 
-        derived = {name: v[j] for name, v in derived_values(sub).items()}
+        values_at = result.derived_positions() if on_grid else derived_values(sub)
+        derived = {name: v[j] for name, v in values_at.items()}
     xy = mech.point_coordinates(sub.values[:, j : j + 1], sub.inputs[j : j + 1]) if scene.points else {}
     values, units = {}, {}
     for key, q in scene_quantities(scene, mech, all_unknowns=every).items():
