@@ -147,7 +147,7 @@ class SceneResult:
         return all(c.passed for c in self.checks)
 
     def derived_positions(self) -> dict:
-        """Values of the derived quantities over the sweep, name -> (N,): from :attr:`derived_kinematics`
+        """Values of the derived quantities over the sweep, name -> (N,): from ``derived_kinematics``
         when the scene differentiated, else evaluated once (nothing differentiated)."""
         if self.derived_kinematics is not None:
             return {name: self.derived_kinematics[name].to_numpy() for name in self.mechanism.derived}
