@@ -76,8 +76,9 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
     fine_mask.fill(True)
     fine_mask[nodes] = False
     uniform = every is not None and N <= CHUNK
-    # every column's left and right node (a node is its own left node, at s = 0)
-    k = np.arange(N) // every if uniform else np.searchsorted(nodes, np.arange(N), side="right") - 1
+    # every column's left node (a node is its own left node, at s = 0); on an even grid only
+    # the rarer tests below need it
+    k = None if uniform else np.searchsorted(nodes, np.arange(N), side="right") - 1
     # the round-off floor of the residual: sines of the largest angles and inputs of the sweep
     big = float(np.maximum.reduce(np.abs(X.take(nodes, axis=1)), axis=None) * max(ctx.inv_xs))
     ctx.floor = residual_floor([big], max(abs(float(t[0])), abs(float(t[-1]))))
@@ -98,11 +99,11 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
         terms = (alpha, beta) if quintic_pays(gap, ctx.inv_xs) else None
     for c0 in range(0, N, CHUNK):
         c = slice(c0, min(N, c0 + CHUNK))
-        fm, kc, tc = fine_mask[c], k[c], t[c]
+        fm, tc = fine_mask[c], t[c]
         if uniform:
             x_pred = hermite_uniform(t.take(nodes), X, D, every, terms)
         else:
-            x_pred = hermite(tc, t, X, D, None, nodes, kc, terms)
+            x_pred = hermite(tc, t, X, D, None, nodes, k[c], terms)
         x, converged, it, f, jac_c = ctx.newton_batch(x_pred.copy(), tc, fm, overwrite=True)
         # accept a point if Newton converged on the turn of its prediction, the correction is
         # small and no loop changed orientation
@@ -122,6 +123,8 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
             for kk in range(O.shape[0]):
                 okc &= o[kk] == On[kk, 0]
         else:
+            k = np.arange(N) // every if k is None else k
+            kc = k[c]
             a = nodes.take(kc)
             b = nodes.take(np.minimum(kc + 1, nodes.size - 1))
             Oa, Ob = O.take(a, axis=1), O.take(b, axis=1)
@@ -144,6 +147,7 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
         if not np.maximum.reduce(steps, axis=None) < math.pi:  # (a NaN is no jump: looked at as a jump would be)
             jump = np.flatnonzero((steps if len(rows) == 1 else steps.max(axis=0)) >= math.pi)
             if jump.size:
+                k = np.arange(N) // every if k is None else k
                 ok &= ~(fine_mask & np.isin(k, k.take(jump)))
     if cond is None:
         cond = _conds(ctx, jac, N)
@@ -161,6 +165,7 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
     # and the orientation test nothing to trust: its segments are marched.
     bad_nodes = (~(cond.take(nodes) <= COND_TANGENT)).nonzero()[0]
     if bad_nodes.size:
+        k = np.arange(N) // every if k is None else k
         ok &= ~(fine_mask & (np.isin(k, bad_nodes) | np.isin(k + 1, bad_nodes)))
     redo = (~ok).nonzero()[0]
     if redo.size:

@@ -175,9 +175,16 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
             from tqdm.auto import tqdm
 
             pairs = tqdm(pairs, total=nodes.size - 1, desc=mech.name, unit="node")
+        xs, ds, os_ = [], [], []  # the nodes' solutions, written into the columns at once
         for a, b in pairs:
             x, d, o, iters[b] = ctx.march(float(t[a]), x, d, o, float(t[b]), ctx.last_previous)
-            X[:, b], D[:, b], O[:, b] = x, d, o
+            xs.append(x)
+            ds.append(d if d is not None else [math.nan] * n)
+            os_.append(o)
+        if xs:
+            X[:, nodes[1:]] = np.array(xs).T
+            D[:, nodes[1:]] = np.array(ds).T
+            O[:, nodes[1:]] = np.array(os_).T
 
         ctx.raise_pending()  # a change point passed in the last step of the march
         every = int(nodes[1]) if evenly and nodes.size > 1 else 0

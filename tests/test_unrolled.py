@@ -44,7 +44,14 @@ def test_local_matches_the_general_solve_and_condition_numbers(sizes, data):
         full = np.array(J).reshape(n, n)
         for a, b in bs.blocks:  # only the lower-triangular blocks count
             full[a:b, b:] = 0.0
-        np.testing.assert_allclose(full @ np.array(d), rhs, atol=1e-6 * (1 + np.abs(full).max() * np.abs(d).max()))
+        # a backward-stable solve: |J d - rhs| small against 1 + |J| |d| + |rhs| (entries are at most 10),
+        # in units of the largest |d| (of 1 at least) so that a near-singular block's huge tangent
+        # cannot overflow the tolerance
+        s = max(1.0, float(np.abs(d).max()))
+        ds, rs = np.array(d) / s, np.array(rhs) / s
+        atol = 1e-10 * (1.0 + np.abs(rs).max() + n * np.abs(full).max() * np.abs(ds).max())
+        assert math.isfinite(atol)
+        np.testing.assert_allclose(full @ ds, rs, rtol=0.0, atol=atol)
 
 
 def test_local_condition_number_is_numpys_of_the_scaled_block():
