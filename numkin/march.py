@@ -433,7 +433,7 @@ class Continuation:
         step = min(self.max_step, abs(span))
         if previous is None:
             step = min(step, 0.5 * self.max_step)  # the first predictor is linear: start shorter
-        min_step = 1e-9 * max(1.0, abs(span))
+        min_step = 1e-9 * abs(span)  # (relative: a sweep over a tiny span is marched as any other)
         crossing_step = max(CROSSING_STEP, 64 * min_step)
         t, x, d, o = t0, x0, d0, o0
         t_prev, x_prev = previous[:2] if previous is not None else (None, None)

@@ -417,3 +417,15 @@ def test_guess_in_degrees_is_warned_about():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         m.sweep(np.radians(np.arange(0.0, 31.0)), guess=(0.5, 2.1))  # a guess in rad: no warning
+
+
+@pytest.mark.parametrize("h", [1e-10, 1e-12, 1e-14])
+def test_a_sweep_over_a_tiny_span_is_solved_not_taken_for_a_toggle(h):
+    # eleven inputs h apart at 30 deg: the whole sweep spans 10 h, below 1e-9 rad; the march's
+    # smallest step is relative to the span, and the slider-crank is nowhere near a limit position there
+    inputs = math.radians(30.0) + h * np.arange(11)
+    sweep = linkages.slider_crank(80, 200, -30).sweep(inputs)
+    t3, x = slider_closed_form(inputs, 80, 200, -30)
+    np.testing.assert_allclose(sweep["theta3"], t3, atol=1e-14)
+    np.testing.assert_allclose(sweep["x"], x, atol=1e-11)
+    assert not sweep.events
