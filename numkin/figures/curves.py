@@ -79,8 +79,11 @@ def position(sweep, names: Sequence[str] | None = None):
                 ax.legend(loc="best")
         axes[-1, 0].set_xlabel(input_label(sweep))
         degree_ticks(axes[-1, 0], x)
-        title = ", ".join(sym(n) for n in names)
-        axes[0, 0].set_title(f"{mechanism_title(sweep.mechanism)}: {title} against {sym(input_name(sweep))}")
+        title = f"{', '.join(sym(n) for n in names)} against {sym(input_name(sweep))}"
+        head = mechanism_title(sweep.mechanism)
+        # a long title on two lines (the width of its text, symbols counted as one character each)
+        plain = len(head) + len(names) * 4 + 10
+        axes[0, 0].set_title(f"{head}\n{title}" if plain > 78 else f"{head}: {title}")
     return fig
 
 
@@ -371,9 +374,10 @@ def slider(sweep, name: str | None = None, *, analytic=None, finite: Mapping | N
         if not lengths:
             raise InputError(f"{sweep.mechanism.name} has no length unknown (slider) to draw")
         name = "x" if "x" in lengths else lengths[0]
+    what = "" if name in derived_of(sweep) else "slider "  # a derived length is no slider
     return kinematics(
         sweep, name, analytic=analytic, finite=finite, check_angles=check_angles,
-        title=f"{mechanism_title(sweep.mechanism)}: slider {sym(name)}, $v$, $a$",
+        title=f"{mechanism_title(sweep.mechanism)}: {what}{sym(name)}, $v$, $a$",
     )
 
 
