@@ -24,24 +24,13 @@ import numkin  # noqa: E402
 from numkin import figures, linkages  # noqa: E402
 from numkin.analytic import kinematics as analytic_kinematics  # noqa: E402
 from numkin.kinematics import finite_difference  # noqa: E402
+from test_derived import _mu_closed_form as _mu_mp  # noqa: E402  (theta4 - theta3 by circle intersection, mpmath)
 
 OMEGA = 10.0  # rad/s
 MU = {"mu": ("theta4 - theta3", "angle")}
 
 
 # ----------------------------------------------------------------------------- references
-def _mu_mp(t, ground=4, crank=1, coupler=3, rocker=3):
-    """theta4 - theta3 of the open four-bar: the coupler and rocker circles intersected (mpmath)."""
-    ax, ay = crank * mp.cos(t), crank * mp.sin(t)
-    dx, dy = ground - ax, -ay
-    d = mp.sqrt(dx**2 + dy**2)
-    along = (coupler**2 - rocker**2 + d**2) / (2 * d)
-    h = mp.sqrt(coupler**2 - along**2)
-    bx = ax + (along * dx - h * dy) / d
-    by = ay + (along * dy + h * dx) / d
-    return mp.atan2(by, bx - ground) - mp.atan2(by - ay, bx - ax)
-
-
 def _mu(t: np.ndarray) -> np.ndarray:
     mp.mp.dps = 30
     return np.array([float(_mu_mp(mp.mpf(float(x)))) for x in np.atleast_1d(t)])

@@ -63,6 +63,13 @@ def _is_frame(frame) -> bool:
     return hasattr(frame, "columns") and hasattr(frame, "attrs") and hasattr(frame, "iloc")
 
 
+def _each_frame(mapping: Mapping, parameter: str, where: str) -> None:
+    """Every value of a mapping must be a DataFrame (named by its key)."""
+    for key, frame in mapping.items():
+        if not _is_frame(frame):
+            raise InputError(f"{where}: {parameter}[{key!r}] must be a DataFrame, got {got(frame)}")
+
+
 def need_frame(frame, parameter: str, where: str, *, optional: bool = True) -> None:
     """`frame` must be a pandas DataFrame (or None when `optional`)."""
     if frame is None and optional or _is_frame(frame):
@@ -80,9 +87,7 @@ def need_frames(frames, parameter: str, where: str, *, optional: bool = True) ->
     if not isinstance(frames, Mapping):
         raise InputError(f"{where}: {parameter} must map scheme names to DataFrames "
                          f"({{'centred': numkin.kinematics.finite_difference(...)}}), got {got(frames)}")
-    for key, frame in frames.items():
-        if not _is_frame(frame):
-            raise InputError(f"{where}: {parameter}[{key!r}] must be a DataFrame, got {got(frame)}")
+    _each_frame(frames, parameter, where)
 
 
 def _is_number(value) -> bool:
@@ -128,9 +133,7 @@ def need_tables(tables, parameter: str, where: str) -> None:
     if not isinstance(tables, Mapping):
         raise InputError(f"{where}: {parameter} must be a DataFrame or a mapping of names to DataFrames, "
                          f"got {got(tables)}")
-    for key, table in tables.items():
-        if not _is_frame(table):
-            raise InputError(f"{where}: {parameter}[{key!r}] must be a DataFrame, got {got(table)}")
+    _each_frame(tables, parameter, where)
 
 
 def need_figure(fig, where: str) -> None:
