@@ -12,6 +12,8 @@ import warnings
 import mpmath as mp
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 pytest.importorskip("matplotlib")
 
@@ -141,6 +143,32 @@ def test_position_derivative_and_difference_of_a_derived_angle(four_bar):
     k = np.arange(1, 360)
     expected = np.abs((mu[k + 1] - mu[k - 1]) / (2 * h) - (mu[k + 1] - mu[k]) / h)
     np.testing.assert_allclose(np.asarray(delta, dtype=float)[k], expected, atol=1e-8)
+
+
+@settings(max_examples=12, deadline=None)
+@given(crank=st.floats(0.5, 1.5), coupler=st.floats(3.5, 5.0), rocker=st.floats(3.0, 4.0),
+       schemes=st.sampled_from([("centred", "second_difference"), ("forward", "forward_of_forward"),
+                                ("five_point", "five_point_second"), ("spectral", "spectral_second")]),
+       turn=st.booleans())
+def test_schemes_on_a_difference_of_unknowns_are_the_differences_of_their_estimates(crank, coupler, rocker,
+                                                                                  schemes, turn):
+    """The schemes are linear: applied to mu = theta4 - theta3 they give the frame's estimates of theta4 minus
+    those of theta3, on a full turn (periodic) or an open arc, with an accelerating input; for every valid
+    crank-rocker."""
+    from numkin.figures.series import with_rates
+
+    mech = linkages.four_bar(4.5, crank, coupler, rocker).add_quantities(MU)
+    stop = 360.0 if turn or schemes[0] == "spectral" else 200.0
+    sweep = mech.sweep(np.radians(np.arange(0.0, stop + 1.0, 5.0)))
+    frame = finite_difference(sweep, 7.0, 2.0, method=schemes[0], second_method=schemes[1])
+    exact = analytic_kinematics(sweep, 7.0, 2.0)
+    with_mu, finite = with_rates(sweep, "mu", exact, {"fd": frame})
+    for rate in ("omega", "alpha"):
+        for got_, ref in ((finite["fd"], frame), (with_mu, exact)):
+            np.testing.assert_allclose(got_[f"{rate}_mu"], ref[f"{rate}_theta4"] - ref[f"{rate}_theta3"],
+                                       rtol=1e-9, atol=1e-9)
+    assert finite["fd"].attrs["periodic"] == frame.attrs["periodic"]
+    assert "omega_mu" not in frame.columns  # the given frames are copied, not changed
 
 
 def test_a_derived_quantity_the_mechanism_lacks_is_named_with_the_ones_it_has(four_bar):
