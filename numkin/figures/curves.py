@@ -9,8 +9,9 @@ import numpy as np
 
 from ..errors import InputError
 from .labels import (
-    check_points, check_unknown, deg_text, degree_ticks, derived_of, frame_column, frame_input, input_label, input_name,
-    is_angle, length_unit, mechanism_title, quantity_labels, rate_columns, sig5, sym, tex, uniform_step, unit_of,
+    check_points, check_unknown, deg_text, degree_ticks, derived_of, frame_column, frame_input, input_label,
+    input_name, is_angle, length_unit, mechanism_title, quantity_labels, rate_columns, sig5, sym, tex, uniform_step,
+    unit_of,
 )
 from .arguments import need_angles, need_frame, need_frames, need_names, need_sweep
 from .ends import END_LABEL, end_mask, frame_ends, scheme_reach
@@ -59,7 +60,10 @@ def position(sweep, names: Sequence[str] | None = None):
     need_names(names, "names", "position")
     if isinstance(names, str):
         names = [names]
-    names = [*sweep.unknowns, *derived_of(sweep)] if names is None else [check_unknown(sweep, n, "position: names") for n in names]
+    if names is None:
+        names = [*sweep.unknowns, *derived_of(sweep)]
+    else:
+        names = [check_unknown(sweep, n, "position: names") for n in names]
     if not names:
         raise InputError("names: no unknown to draw")
     groups: dict[str, list[str]] = {}
@@ -70,7 +74,8 @@ def position(sweep, names: Sequence[str] | None = None):
         fig, axes = new_figure(len(groups), 1, sharex=True, size=(6.4, 2.2 + 2.0 * len(groups)))
         for ax, (unit, group) in zip(axes[:, 0], groups.items()):
             for k, n in enumerate(group):
-                y = np.degrees(sampled(sweep, n)) if unit == "deg" else sampled(sweep, n)
+                y = sampled(sweep, n)
+                y = np.degrees(y) if unit == "deg" else y
                 ax.plot(x, y, color=CYCLE[k % len(CYCLE)], label=sym(n))
             what = "angle" if unit == "deg" else "length"
             ax.set_ylabel(f"{sym(group[0])} [{unit}]" if len(group) == 1
@@ -298,7 +303,8 @@ def kinematics(
     units = [unit_of(lab) for lab in labels]
     x = np.degrees(sweep.inputs)
     checks = check_points(check_angles, sweep.inputs)
-    pos = np.degrees(sampled(sweep, name)) if is_angle(sweep, name) else sampled(sweep, name)
+    pos = sampled(sweep, name)
+    pos = np.degrees(pos) if is_angle(sweep, name) else pos
     box = {"boxstyle": "square,pad=0.3", "facecolor": "white", "edgecolor": "0.7", "alpha": 0.9}
     with style():
         fig, axes = new_figure(3, 1, sharex=True, size=(8.4, 7.6))

@@ -200,7 +200,8 @@ def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
 
     need_figure(fig, "save")
     if not isinstance(path_stem, (str, Path)) or not str(path_stem).strip():
-        raise InputError(f"save: path_stem must be a file path without its extension (str or Path), got {got(path_stem)}")
+        raise InputError(f"save: path_stem must be a file path without its extension (str or Path), "
+                         f"got {got(path_stem)}")
     need_names(formats, "formats", "save")
     if isinstance(formats, str):
         formats = (formats,)
