@@ -375,7 +375,9 @@ def render_figures(result: SceneResult, out_dir, *, formats=("png", "svg"), prog
     work-precision, roundoff, Newton) are computed here, only those asked for,
     with the scene's ``[report]`` settings, and kept in ``result.report``;
     nothing is timed (the work-precision figure plots exact work counts), so
-    the figures are the same bytes on every run.
+    the figures are the same bytes on every run. A figure of a derived
+    quantity (``kinematics:mu``) is drawn from what the scene computed: its
+    values, ``result.derived_kinematics`` and the comparisons of its rates.
     """
     from . import figures as fig
 

@@ -26,13 +26,15 @@ formats), :mod:`~numkin.figures.curves` (curves against the input),
 :mod:`numkin.animate`), :mod:`~numkin.figures.dispatch` (figures by name),
 :mod:`~numkin.figures.ticks` (log axes labelled ``10⁻¹²`` in the tick font),
 :mod:`~numkin.figures.ends` (which values of an open grid come from one-sided
-end stencils, drawn and labelled apart) and :mod:`~numkin.figures.registries`
-(scheme families and dimension lines).
+end stencils, drawn and labelled apart), :mod:`~numkin.figures.series` (the
+values and rates of a derived quantity, drawn as an unknown's),
+:mod:`~numkin.figures.arguments` (the kind of each argument, checked at the
+entry) and :mod:`~numkin.figures.registries` (scheme families and dimension lines).
 
 =========================  ======================================================  ====================
 name                       figure                                                  needs
 =========================  ======================================================  ====================
-``position``               unknowns against the input                              sweep
+``position``               unknowns and derived quantities against the input       sweep
 ``derivative``             dq/dθ by forward and centred differences                sweep (uniform step)
 ``difference``             Δ = ``|centred − forward|``, d²q/dθ² on twin axes       sweep (uniform step)
 ``kinematics``             q, q̇, q̈ against θ: schemes, analytic, check points      analytic and/or finite
@@ -48,6 +50,26 @@ name                       figure                                               
 A scene names a figure as ``"name"`` or ``"name:unknown"`` (``"kinematics:beta"``),
 see :func:`parse_spec`; :func:`caption` says what the file of one draws.
 
+Derived quantities
+------------------
+A derived quantity of the mechanism (``mu = theta4 - theta3``, declared with
+:meth:`numkin.Mechanism.add_quantities` or a scene's ``[mechanism.quantities]``)
+is drawn wherever an unknown is: ``"kinematics:mu"``, ``"position:mu"``,
+``"slider:s"`` of a length, or ``figures.kinematics(sweep, "mu", ...)``. Its
+values come from its expression at the solved unknowns (an angle unwrapped
+and drawn in degrees, labelled with its symbol and unit); its exact rates
+from :func:`numkin.analytic.derived_kinematics` (a scene's, or at the
+analytic frame's input speed); its finite-difference rates are the
+schemes of each frame applied to its sampled values, as for an unknown
+(:mod:`numkin.figures.series`).
+
+Arguments
+---------
+Each figure function checks the kind of its arguments first: a string
+where a Sweep belongs, a number for a list of names or a DataFrame for a
+mapping of them raises :class:`numkin.InputError` naming the argument
+(:mod:`numkin.figures.arguments`).
+
 Examples
 --------
 >>> import numpy as np
@@ -56,6 +78,12 @@ Examples
 >>> fig = figures.position(sweep, ["theta4"])
 >>> [p.suffix for p in figures.save(fig, "/tmp/numkin-doc-theta4")]
 ['.png', '.svg']
+>>> mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"mu": ("theta4 - theta3", "angle")})
+>>> fig = figures.position(mech.sweep(np.radians(np.arange(0, 361))), "mu")
+>>> fig.axes[0].get_ylabel()
+'$\\\\mu$ [deg]'
+>>> figures.save(fig, "/tmp/numkin-doc-mu", ["png"])[0].name
+'numkin-doc-mu.png'
 """
 
 from __future__ import annotations

@@ -9,10 +9,13 @@ import numpy as np
 
 from ..errors import InputError
 from .labels import (
-    check_points, check_unknown, deg_text, degree_ticks, frame_column, frame_input, input_label, input_name,
-    is_angle, length_unit, mechanism_title, quantity_labels, rate_columns, sig5, sym, tex, uniform_step, unit_of,
+    check_points, check_unknown, deg_text, degree_ticks, derived_of, frame_column, frame_input, input_label,
+    input_name, is_angle, length_unit, mechanism_title, quantity_labels, rate_columns, sig5, sym, tex, uniform_step,
+    unit_of,
 )
+from .arguments import need_angles, need_frame, need_frames, need_names, need_sweep
 from .ends import END_LABEL, end_mask, frame_ends, scheme_reach
+from .series import sampled, with_rates
 from .style import CYCLE, SOURCE_STYLE, new_figure, shared_doc, source_label, source_style, style
 
 __all__ = ["acceleration_comparison", "derivative", "difference", "kinematics", "position", "slider"]
@@ -33,13 +36,16 @@ def _plot_estimate(ax, x, y, ends, label: str, style_: dict) -> None:
 
 @shared_doc
 def position(sweep, names: Sequence[str] | None = None):
-    """Unknowns against the input angle (angles in degrees, lengths in the sweep's unit).
+    """Unknowns and derived quantities against the input angle (angles in degrees, lengths in the sweep's unit).
 
     Parameters
     ----------
     sweep : Sweep
-    names : sequence of str, optional
-        Unknowns to draw; default all. Angles and lengths go to separate panels.
+    names : str or sequence of str, optional
+        Unknowns, or derived quantities of the mechanism (``"mu"``, see
+        :meth:`numkin.Mechanism.add_quantities`), to draw; default all the
+        unknowns, then the derived quantities. Angles and lengths go to
+        separate panels.
 
     {{returns_figure}}
 
@@ -50,9 +56,14 @@ def position(sweep, names: Sequence[str] | None = None):
     >>> figures.save(fig, "/tmp/numkin-doc-phi", ["png"])[0].name
     'numkin-doc-phi.png'
     """
+    need_sweep(sweep, "position")
+    need_names(names, "names", "position")
     if isinstance(names, str):
         names = [names]
-    names = list(sweep.unknowns) if names is None else [check_unknown(sweep, n) for n in names]
+    if names is None:
+        names = [*sweep.unknowns, *derived_of(sweep)]
+    else:
+        names = [check_unknown(sweep, n, "position: names") for n in names]
     if not names:
         raise InputError("names: no unknown to draw")
     groups: dict[str, list[str]] = {}
@@ -63,7 +74,8 @@ def position(sweep, names: Sequence[str] | None = None):
         fig, axes = new_figure(len(groups), 1, sharex=True, size=(6.4, 2.2 + 2.0 * len(groups)))
         for ax, (unit, group) in zip(axes[:, 0], groups.items()):
             for k, n in enumerate(group):
-                y = np.degrees(sweep[n]) if unit == "deg" else sweep[n]
+                y = sampled(sweep, n)
+                y = np.degrees(y) if unit == "deg" else y
                 ax.plot(x, y, color=CYCLE[k % len(CYCLE)], label=sym(n))
             what = "angle" if unit == "deg" else "length"
             ax.set_ylabel(f"{sym(group[0])} [{unit}]" if len(group) == 1
@@ -72,8 +84,11 @@ def position(sweep, names: Sequence[str] | None = None):
                 ax.legend(loc="best")
         axes[-1, 0].set_xlabel(input_label(sweep))
         degree_ticks(axes[-1, 0], x)
-        title = ", ".join(sym(n) for n in names)
-        axes[0, 0].set_title(f"{mechanism_title(sweep.mechanism)}: {title} against {sym(input_name(sweep))}")
+        title = f"{', '.join(sym(n) for n in names)} against {sym(input_name(sweep))}"
+        head = mechanism_title(sweep.mechanism)
+        # a long title on two lines (the width of its text, symbols counted as one character each)
+        plain = len(head) + len(names) * 4 + 10
+        axes[0, 0].set_title(f"{head}\n{title}" if plain > 78 else f"{head}: {title}")
     return fig
 
 
@@ -86,7 +101,7 @@ def _derivative_units(sweep, name: str) -> tuple[str, str]:
 
 @shared_doc
 def derivative(sweep, name: str, schemes: Sequence[str] = ("forward", "centred")):
-    """dq/dθ of one unknown by finite differences of the sweep, all schemes on one graph.
+    """dq/dθ of one unknown or derived quantity by finite differences of the sweep, all schemes on one graph.
 
     Derivatives are per radian of input (``h`` = the sweep's step in rad),
     with the open-grid stencils of :mod:`numkin.derivatives`: each scheme's
@@ -111,7 +126,9 @@ def derivative(sweep, name: str, schemes: Sequence[str] = ("forward", "centred")
     """
     from .. import derivatives as fd
 
-    check_unknown(sweep, name)
+    need_sweep(sweep, "derivative")
+    check_unknown(sweep, name, "derivative: name")
+    need_names(schemes, "schemes", "derivative")
     h = uniform_step(sweep)
     if isinstance(schemes, str):
         schemes = [schemes]
@@ -122,13 +139,14 @@ def derivative(sweep, name: str, schemes: Sequence[str] = ("forward", "centred")
             raise InputError(f"schemes: {s!r} estimates a second derivative; give first-derivative schemes")
         resolved.append(sch.name)
     x = np.degrees(sweep.inputs)
+    y = sampled(sweep, name)
     t, ti = tex(name), tex(input_name(sweep))
     unit, _ = _derivative_units(sweep, name)
     with style():
         fig, axes = new_figure()
         ax = axes[0, 0]
         for k, s in enumerate(resolved):
-            _plot_estimate(ax, x, fd.differentiate(sweep[name], h, method=s), end_mask(x.size, scheme_reach([s])),
+            _plot_estimate(ax, x, fd.differentiate(y, h, method=s), end_mask(x.size, scheme_reach([s])),
                            source_label(s), source_style(s, k))
         ax.axhline(0.0, color="black", linewidth=0.5)
         ax.set_xlabel(input_label(sweep))
@@ -164,9 +182,10 @@ def difference(sweep, name: str):
     """
     from .. import derivatives as fd
 
-    check_unknown(sweep, name)
+    need_sweep(sweep, "difference")
+    check_unknown(sweep, name, "difference: name")
     h = uniform_step(sweep)
-    y = sweep[name]
+    y = sampled(sweep, name)
     # interior points only: there every curve is the stencil its label names (no one-sided end stencils)
     delta = np.abs(fd.centred(y, h) - fd.forward(y, h))
     delta[end_mask(delta.size, scheme_reach(["centred", "forward"]))] = np.nan
@@ -218,7 +237,7 @@ def kinematics(
     check_angles: Iterable[float] = (),
     title: str | None = None,
 ):
-    """Position, velocity and acceleration of one unknown against the input angle.
+    """Position, velocity and acceleration of one unknown or derived quantity against the input angle.
 
     Three panels: the unknown from the sweep; its velocity and acceleration
     from each finite-difference scheme and from the analytic solution,
@@ -227,11 +246,20 @@ def kinematics(
     own (see :mod:`numkin.figures.ends`), and a check value taken from one
     says so.
 
+    A derived quantity of the mechanism (``"mu"``, see
+    :meth:`numkin.Mechanism.add_quantities`) is drawn as an unknown is: its
+    values from its expression at the solved unknowns (an angle unwrapped
+    and in degrees); its exact rates from
+    :func:`numkin.analytic.derived_kinematics` at the analytic frame's input
+    speed, unless the frame holds them already; its finite-difference rates
+    by each frame's own schemes applied to its sampled values (see
+    :func:`numkin.figures.series.with_rates`).
+
     Parameters
     ----------
     sweep : Sweep
     name : str
-        The unknown (``"beta"``, ``"x"``).
+        The unknown (``"beta"``, ``"x"``) or derived quantity (``"mu"``).
     analytic : DataFrame, optional
         From :func:`numkin.analytic.kinematics`: columns ``omega_<name>``,
         ``alpha_<name>`` (angles) or ``v_<name>``, ``a_<name>`` (lengths).
@@ -253,8 +281,12 @@ def kinematics(
     >>> figures.save(fig, "/tmp/numkin-doc-beta", ["png"])[0].suffix
     '.png'
     """
-    check_unknown(sweep, name)
-    finite = dict(finite or {})
+    need_sweep(sweep, "kinematics")
+    check_unknown(sweep, name, "kinematics: name")
+    need_frame(analytic, "analytic", "kinematics")
+    need_frames(finite, "finite", "kinematics")
+    need_angles(check_angles, "check_angles", "kinematics")
+    analytic, finite = with_rates(sweep, name, analytic, finite)
     vcol, acol = rate_columns(sweep, name)
     # the sources of each panel: every frame that holds its column, analytic last (drawn on top)
     panels = []
@@ -271,7 +303,8 @@ def kinematics(
     units = [unit_of(lab) for lab in labels]
     x = np.degrees(sweep.inputs)
     checks = check_points(check_angles, sweep.inputs)
-    pos = np.degrees(sweep[name]) if is_angle(sweep, name) else sweep[name]
+    pos = sampled(sweep, name)
+    pos = np.degrees(pos) if is_angle(sweep, name) else pos
     box = {"boxstyle": "square,pad=0.3", "facecolor": "white", "edgecolor": "0.7", "alpha": 0.9}
     with style():
         fig, axes = new_figure(3, 1, sharex=True, size=(8.4, 7.6))
@@ -329,8 +362,8 @@ def slider(sweep, name: str | None = None, *, analytic=None, finite: Mapping | N
            check_angles: Iterable[float] = ()):
     """x, v and a of a slider (a length unknown) against the input angle.
 
-    :func:`kinematics` for a length unknown: the first one of the sweep
-    when `name` is not given.
+    :func:`kinematics` for a length unknown (or a length-valued derived
+    quantity): the first length unknown of the sweep when `name` is not given.
 
     {{example_figures}}
     >>> from numkin.analytic import kinematics
@@ -341,20 +374,22 @@ def slider(sweep, name: str | None = None, *, analytic=None, finite: Mapping | N
     >>> figures.save(fig, "/tmp/numkin-doc-slider", ["png"])[0].suffix
     '.png'
     """
+    need_sweep(sweep, "slider")
     if name is None:
         lengths = [n for n in sweep.unknowns if not is_angle(sweep, n)]
         if not lengths:
             raise InputError(f"{sweep.mechanism.name} has no length unknown (slider) to draw")
         name = "x" if "x" in lengths else lengths[0]
+    what = "" if name in derived_of(sweep) else "slider "  # a derived length is no slider
     return kinematics(
         sweep, name, analytic=analytic, finite=finite, check_angles=check_angles,
-        title=f"{mechanism_title(sweep.mechanism)}: slider {sym(name)}, $v$, $a$",
+        title=f"{mechanism_title(sweep.mechanism)}: {what}{sym(name)}, $v$, $a$",
     )
 
 
 @shared_doc
 def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
-    """Numerical against analytic acceleration of one unknown, and the error of each scheme.
+    """Numerical against analytic acceleration of one unknown or derived quantity, and the error of each scheme.
 
     Top: the acceleration by each finite-difference scheme and the
     analytic one; bottom: the absolute error of each scheme (log scale).
@@ -365,7 +400,8 @@ def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
     ----------
     sweep : Sweep
     name : str
-        The unknown (``"x"`` for a piston).
+        The unknown (``"x"`` for a piston) or a derived quantity, whose
+        rates are added to the frames as :func:`kinematics` does.
     analytic : DataFrame
         From :func:`numkin.analytic.kinematics`.
     finite : mapping of str to DataFrame
@@ -384,9 +420,13 @@ def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
     >>> figures.save(fig, "/tmp/numkin-doc-piston", ["png"])[0].suffix
     '.png'
     """
-    check_unknown(sweep, name)
+    need_sweep(sweep, "acceleration_comparison")
+    check_unknown(sweep, name, "acceleration_comparison: name")
+    need_frame(analytic, "analytic", "acceleration_comparison")
+    need_frames(finite, "finite", "acceleration_comparison")
     if analytic is None or not finite:
         raise InputError(f"acceleration of {name!r}: needs both the analytic frame and finite-difference frames")
+    analytic, finite = with_rates(sweep, name, analytic, finite)
     _, acol = rate_columns(sweep, name)
     _, _, alabel = quantity_labels(sweep, name)
     unit = unit_of(alabel)

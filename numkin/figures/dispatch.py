@@ -13,7 +13,9 @@ from ..errors import InputError, warn
 from .curves import acceleration_comparison, derivative, difference, kinematics, position, slider
 from .drawing import mechanism
 from .error_plots import convergence, jacobian_of, newton_residuals, roundoff, work_precision
-from .labels import check_points, check_unknown, input_name, is_angle, rate_columns, table_column
+from .arguments import need_names, need_result
+from .labels import check_points, check_unknown, derived_of, input_name, is_angle, rate_columns, table_column
+from .series import with_rates
 from .style import METADATA, gc_paused, save
 
 __all__ = ["CAPTIONS", "FIGURES", "FigureSkipped", "caption", "parse_spec", "render"]
@@ -64,7 +66,7 @@ CAPTIONS: dict[str, tuple[str, ...]] = {
     "newton": ("Newton's scaled residual per iteration, one curve per Jacobian",),
 }
 
-#: Figures that take an unknown (``"name:unknown"``).
+#: Figures that take an unknown or a derived quantity (``"name:unknown"``).
 _WITH_UNKNOWN = ("position", "derivative", "difference", "kinematics", "slider", "acceleration")
 
 class FigureSkipped(UserWarning):
@@ -81,10 +83,12 @@ def parse_spec(spec: str) -> tuple[str, str | None]:
     """Split a figure name of a scene: ``"kinematics:beta"`` -> ``("kinematics", "beta")``.
 
     The name may be written with ``_`` for ``-`` (``work_precision``). The
-    part after ``:`` is an unknown (``position``, ``derivative``,
-    ``difference``, ``kinematics``, ``slider``, ``acceleration``) or the
-    input angle in degrees (``mechanism:30``); the table figures take none.
-    Does not import matplotlib.
+    part after ``:`` is an unknown or a derived quantity of the mechanism
+    (``kinematics:mu`` of a ``[mechanism.quantities]`` entry ``mu``) for
+    ``position``, ``derivative``, ``difference``, ``kinematics``, ``slider``
+    and ``acceleration``, or the input angle in degrees (``mechanism:30``);
+    the table figures take none. Whether the mechanism has that unknown is
+    checked when the figure is drawn. Does not import matplotlib.
 
     Raises
     ------
@@ -167,6 +171,7 @@ class _Data:
         if self.analytic is None:
             k = getattr(result, "kinematics", None)
             self.analytic = k if hasattr(k, "columns") else None
+        self.analytic = _joined(self.analytic, getattr(result, "derived_kinematics", None), self.sweep)
         finite = getattr(result, "finite", None)
         self.finite = dict(finite) if finite else _frames_from_comparisons(getattr(result, "comparisons", None),
                                                                             self.sweep)
@@ -191,7 +196,7 @@ class _Data:
             return check_unknown(sweep, arg)
         wanted = (lambda n: is_angle(sweep, n)) if kind == "angle" else (lambda n: not is_angle(sweep, n))
         for cand in (self.quantity, *self.unknowns):
-            if cand in sweep.unknowns and wanted(cand):
+            if (cand in sweep.unknowns or cand in derived_of(sweep)) and wanted(cand):
                 return cand
         pool = [n for n in sweep.unknowns if wanted(n)]
         if kind == "length" and "x" in pool:
@@ -205,6 +210,27 @@ class _Data:
             if key in self.tables:
                 return self.tables[key]
         raise _Missing(f"no '{keys[0]}' table in the result (numkin.report makes it)")
+
+
+def _joined(analytic, derived, sweep):
+    """The analytic kinematics with the columns of :func:`numkin.analytic.derived_kinematics` beside them.
+
+    Either may be absent; the derived frame's columns are joined only when
+    it lies on the same inputs (it always does in a scene's result).
+    """
+    if not hasattr(derived, "columns"):
+        return analytic
+    if analytic is None:
+        return derived
+    if sweep is None or len(derived) != len(analytic):
+        return analytic
+    new = [c for c in derived.columns if c not in analytic.columns]
+    if not new:
+        return analytic
+    out = analytic.copy()
+    for c in new:
+        out[c] = derived[c].to_numpy()
+    return out
 
 
 def _scheme_columns(table, inp: str, unit) -> list:
@@ -259,7 +285,8 @@ def _build(kind: str, arg, d: _Data):
     """(figure, file stem) for one figure, or raise _Missing."""
     if kind == "position":
         sweep = d.need_sweep()
-        names = [check_unknown(sweep, arg)] if arg else [n for n in d.unknowns if n in sweep.unknowns] or None
+        chosen = [n for n in d.unknowns if n in sweep.unknowns]
+        names = [check_unknown(sweep, arg)] if arg else [*chosen, *derived_of(sweep)] if chosen else None
         return position(sweep, names), "position" + (f"-{arg}" if arg else "")
     if kind in ("derivative", "difference"):
         sweep = d.need_sweep()
@@ -272,22 +299,24 @@ def _build(kind: str, arg, d: _Data):
         sweep = d.need_sweep()
         name = d.unknown(arg, "angle" if kind == "kinematics" else "length")
         vcol, acol = rate_columns(sweep, name)
-        frames = [f for f in [d.analytic, *d.finite.values()] if f is not None]
+        analytic, finite = with_rates(sweep, name, d.analytic, d.finite)
+        frames = [f for f in [analytic, *finite.values()] if f is not None]
         if not any(vcol in f.columns or acol in f.columns for f in frames):
             raise _Missing(f"no velocity or acceleration of {name!r} in the result (ask for them in the scene)")
         fn = kinematics if kind == "kinematics" else slider
         checks = check_points(d.check_angles, sweep.inputs, strict=False)  # a scene's checks on the turn drawn
-        return fn(sweep, name, analytic=d.analytic, finite=d.finite, check_angles=checks), f"{kind}-{name}"
+        return fn(sweep, name, analytic=analytic, finite=finite, check_angles=checks), f"{kind}-{name}"
     if kind == "acceleration":
         sweep = d.need_sweep()
         name = d.unknown(arg, "length")
         _, acol = rate_columns(sweep, name)
-        if d.analytic is None or acol not in d.analytic.columns:
+        analytic, finite = with_rates(sweep, name, d.analytic, d.finite)
+        if analytic is None or acol not in analytic.columns:
             raise _Missing(f"no analytic {acol} in the result (ask for accelerations in the scene)")
-        finite = {k: f for k, f in d.finite.items() if acol in f.columns}
+        finite = {k: f for k, f in finite.items() if acol in f.columns}
         if not finite:
             raise _Missing(f"no finite-difference {acol} in the result (give second-derivative schemes)")
-        return acceleration_comparison(sweep, name, d.analytic, finite), f"acceleration-{name}"
+        return acceleration_comparison(sweep, name, analytic, finite), f"acceleration-{name}"
     if kind == "mechanism":
         sweep = d.need_sweep()
         if not sweep.mechanism.points or not sweep.mechanism.links:
@@ -315,7 +344,9 @@ def render(result, names: Sequence[str] | None = None, out_dir=".", formats: Seq
     ----------
     result : object
         Duck-typed: ``sweep`` (Sweep), and as available ``analytic`` (or
-        ``kinematics``: the DataFrame of :func:`numkin.analytic.kinematics`),
+        ``kinematics``: the DataFrame of :func:`numkin.analytic.kinematics`;
+        the columns of ``derived_kinematics``, the DataFrame of
+        :func:`numkin.analytic.derived_kinematics`, are joined to it),
         ``finite`` (scheme -> DataFrame of
         :func:`numkin.kinematics.finite_difference`; else taken from
         ``comparisons``, quantity -> :class:`numkin.compare.Comparison`),
@@ -326,7 +357,10 @@ def render(result, names: Sequence[str] | None = None, out_dir=".", formats: Seq
         ``scene.report["quantity"]`` / ``scene.unknowns`` for the default
         unknown.
     names : sequence of str, optional
-        Figure names (see :func:`parse_spec`); default the result's.
+        Figure names (see :func:`parse_spec`); default the result's. An
+        unknown named in them may be a derived quantity of the mechanism
+        (``"kinematics:mu"``): drawn as an unknown is, see
+        :func:`numkin.figures.kinematics`.
     out_dir : str or Path
         Folder of the files ``<figure>[-<unknown>].<format>``.
     formats : sequence of str
@@ -357,6 +391,8 @@ def render(result, names: Sequence[str] | None = None, out_dir=".", formats: Seq
     >>> [p.name for p in figures.render(result, out_dir="/tmp/numkin-doc-render")]
     ['mechanism.png', 'mechanism.svg']
     """
+    need_result(result, "render")
+    need_names(names, "names", "render")
     if names is None:
         names = getattr(result, "figures", None)
         if names is None:
@@ -366,6 +402,7 @@ def render(result, names: Sequence[str] | None = None, out_dir=".", formats: Seq
     specs = [(spec, *parse_spec(spec)) for spec in names]
     if isinstance(formats, str):
         formats = (formats,)
+    need_names(formats, "formats", "render")
     bad = [f for f in formats if str(f).lower().lstrip(".") not in METADATA]
     if bad or not formats:
         raise InputError(

@@ -385,6 +385,12 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
     >>> figures.save(fig, "/tmp/numkin-doc-qr-v", ["png"])[0].suffix
     '.png'
     """
+    from .arguments import need_angle, need_names, need_sweep
+
+    need_sweep(sweep, "mechanism")
+    need_angle(at, "at", "mechanism")
+    need_names(traces, "traces", "mechanism")
+    need_names(arrow_points, "arrow_points", "mechanism")
     mech = sweep.mechanism
     if not mech.points or not mech.links:
         raise InputError(f"{mech.name} has no named points and links to draw")

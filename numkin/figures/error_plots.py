@@ -8,6 +8,7 @@ import re
 import numpy as np
 
 from ..errors import InputError
+from .arguments import need_names, need_table, need_tables
 from .labels import sym, table_column
 from .registries import is_second_derivative
 from .style import CYCLE, marker_style, new_figure, shared_doc, source_label, source_style, style
@@ -148,6 +149,8 @@ def convergence(table, *, error: str = "max abs error"):
     >>> figures.save(fig, "/tmp/numkin-doc-convergence", ["png"])[0].suffix
     '.png'
     """
+    need_table(table, "table", "convergence")
+    need_names(error, "error", "convergence")
     what = "convergence table"
     hcol = table_column(table, "h [", what)
     ecol = table_column(table, error, what)
@@ -258,6 +261,10 @@ def work_precision(table, *, work: str = "work", time: str | None = None, error:
     >>> figures.work_precision(wp, time="sweep + derivative time").axes[0].get_xlabel()
     'sweep + derivative time [ms] (varies between runs)'
     """
+    need_table(table, "table", "work_precision")
+    need_names(work, "work", "work_precision")
+    need_names(time, "time", "work_precision")
+    need_names(error, "error", "work_precision")
     what = "work-precision table"
     if time is not None:
         xcol = table_column(table, time, what)
@@ -353,6 +360,7 @@ def roundoff(table):
     >>> figures.save(figures.roundoff(ro), "/tmp/numkin-doc-roundoff", ["png"])[0].suffix
     '.png'
     """
+    need_table(table, "table", "roundoff")
     what = "round-off table"
     scol = table_column(table, "scheme", what)
     steps = table.attrs.get("steps") or {}
@@ -446,6 +454,7 @@ def newton_residuals(tables):
     >>> figures.save(fig, "/tmp/numkin-doc-newton", ["png"])[0].suffix
     '.png'
     """
+    need_tables(tables, "tables", "newton_residuals")
     if hasattr(tables, "columns"):
         if "Jacobian" in tables.columns:
             tables = {str(j): sub for j, sub in _groups(tables, "Jacobian")}

@@ -21,7 +21,7 @@ from ..errors import InputError
 from ..quantities import GREEK, tex
 
 __all__ = [
-    "GREEK", "check_points", "check_unknown", "deg_text", "degree_ticks", "frame_column", "frame_input",
+    "GREEK", "check_points", "check_unknown", "deg_text", "derived_of", "degree_ticks", "frame_column", "frame_input",
     "input_label", "input_name", "is_angle", "length_text", "length_unit", "mechanism_title", "no_negative_zero", "quantity_labels", "rate_columns",
     "sig5", "sym", "table_column", "tex", "uniform_step", "unit_of", "value_text",
 ]
@@ -63,9 +63,28 @@ def input_label(sweep) -> str:
     return f"{sym(input_name(sweep))} [deg]"
 
 
+def derived_of(sweep) -> dict:
+    """The derived quantities of the sweep's mechanism, name -> :class:`~numkin.derived.Derived` (see
+    :meth:`numkin.Mechanism.add_quantities`); empty when it declares none."""
+    return dict(getattr(sweep.mechanism, "derived", None) or {})
+
+
 def is_angle(sweep, name: str) -> bool:
-    """Whether an unknown of the sweep is an angle (else a length)."""
-    return name in sweep.mechanism.angles
+    """Whether an unknown or derived quantity of the sweep is an angle (else a length).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> mech = linkages.slider_crank(80, 200).add_quantities({"mu": ("theta3 + theta", "angle")})
+    >>> sweep = mech.sweep(np.radians([0.0, 1.0]))
+    >>> is_angle(sweep, "theta3"), is_angle(sweep, "x"), is_angle(sweep, "mu")
+    (True, False, True)
+    """
+    if name in sweep.mechanism.angles:
+        return True
+    derived = derived_of(sweep).get(name)
+    return derived is not None and derived.dimension == "angle"
 
 
 def length_unit(sweep) -> str:
@@ -74,7 +93,8 @@ def length_unit(sweep) -> str:
 
 
 def _quantities(sweep, name: str):
-    """The position, velocity and acceleration :class:`~numkin.quantities.Quantity` of an unknown."""
+    """The position, velocity and acceleration :class:`~numkin.quantities.Quantity` of an unknown or
+    derived quantity."""
     from ..quantities import Quantity
 
     mech = sweep.mechanism
@@ -84,7 +104,7 @@ def _quantities(sweep, name: str):
 
 
 def quantity_labels(sweep, name: str) -> tuple[str, str, str]:
-    """Axis labels of position, velocity and acceleration of an unknown, with units.
+    """Axis labels of position, velocity and acceleration of an unknown or derived quantity, with units.
 
     Units from :class:`~numkin.quantities.Quantity`; angles drawn in degrees.
 
@@ -104,7 +124,8 @@ def quantity_labels(sweep, name: str) -> tuple[str, str, str]:
 
 
 def rate_columns(sweep, name: str) -> tuple[str, str]:
-    """Velocity and acceleration column names of an unknown in the kinematics frames (Quantity names)."""
+    """Velocity and acceleration column names of an unknown or derived quantity in the kinematics frames
+    (Quantity names: ``omega_mu``, ``alpha_mu`` of an angle, ``v_s``, ``a_s`` of a length)."""
     _, vel, acc = _quantities(sweep, name)
     return vel.name, acc.name
 
@@ -168,11 +189,32 @@ def degree_ticks(ax, degrees: np.ndarray) -> None:
     ax.set_xlim(float(np.nanmin(degrees)), float(np.nanmax(degrees))) if span > 0 else None
 
 
-def check_unknown(sweep, name: str) -> str:
-    """`name`, if it is an unknown of the sweep; else a ValueError listing them."""
-    if name not in sweep.unknowns:
+def check_unknown(sweep, name: str, parameter: str = "name") -> str:
+    """`name`, if it is an unknown of the sweep or a derived quantity of its mechanism; else an
+    :class:`~numkin.InputError` listing them (`parameter`: the argument that gave it, named when it
+    is not a string).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> sweep = linkages.four_bar(4, 1, 3, 3).add_quantities({"mu": ("theta4 - theta3", "angle")}).sweep([0.0])
+    >>> check_unknown(sweep, "mu")
+    'mu'
+    >>> try:
+    ...     check_unknown(sweep, "nu")
+    ... except ValueError as error:
+    ...     print(str(error).split("; ")[1])
+    unknowns are ['theta3', 'theta4'], derived quantities ['mu']
+    """
+    if not isinstance(name, str):
+        raise InputError(f"{parameter} must be the name of an unknown or derived quantity (a string such as "
+                         f"{sweep.unknowns[0]!r}), got {type(name).__name__} {name!r}")
+    derived = list(derived_of(sweep))
+    if name not in sweep.unknowns and name not in derived:
+        also = f", derived quantities {derived}" if derived else ""
         raise InputError(
-            f"{name!r} is not an unknown of {sweep.mechanism.name}; unknowns are {list(sweep.unknowns)}"
+            f"{name!r} is not an unknown of {sweep.mechanism.name}; unknowns are {list(sweep.unknowns)}{also}"
         )
     return name
 

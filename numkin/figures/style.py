@@ -196,6 +196,13 @@ def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
     """
     import matplotlib
 
+    from .arguments import got, need_figure, need_names
+
+    need_figure(fig, "save")
+    if not isinstance(path_stem, (str, Path)) or not str(path_stem).strip():
+        raise InputError(f"save: path_stem must be a file path without its extension (str or Path), "
+                         f"got {got(path_stem)}")
+    need_names(formats, "formats", "save")
     if isinstance(formats, str):
         formats = (formats,)
     fmts = [str(f).lower().lstrip(".") for f in formats]

@@ -1,0 +1,391 @@
+"""Derived quantities in figures: what is plotted checked against closed forms derived here (the four-bar
+by circle intersection, the slider-crank's gap by hand), a scene's figure of a derived quantity rendered
+twice to the same bytes, and the figure functions naming a wrong kind of argument."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import types
+import warnings
+
+import mpmath as mp
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+pytest.importorskip("matplotlib")
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (only to check that no figure is left open)
+
+import numkin  # noqa: E402
+from numkin import figures, linkages  # noqa: E402
+from numkin.analytic import kinematics as analytic_kinematics  # noqa: E402
+from numkin.kinematics import finite_difference  # noqa: E402
+from test_derived import _mu_closed_form as _mu_mp  # noqa: E402  (theta4 - theta3 by circle intersection, mpmath)
+
+OMEGA = 10.0  # rad/s
+MU = {"mu": ("theta4 - theta3", "angle")}
+
+
+# ----------------------------------------------------------------------------- references
+def _mu(t: np.ndarray) -> np.ndarray:
+    mp.mp.dps = 30
+    return np.array([float(_mu_mp(mp.mpf(float(x)))) for x in np.atleast_1d(t)])
+
+
+def line(ax, label):
+    """(x, y) of the line labelled `label` on an axes."""
+    for ln in ax.get_lines():
+        if ln.get_label() == label:
+            return np.asarray(ln.get_xdata(), dtype=float), np.asarray(ln.get_ydata(), dtype=float)
+    raise AssertionError(f"no line {label!r}; lines: {[ln.get_label() for ln in ax.get_lines()]}")
+
+
+@pytest.fixture(autouse=True)
+def no_open_figures():
+    yield
+    plt.close("all")
+
+
+@pytest.fixture(scope="module")
+def four_bar():
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities(
+        {**MU, "wrapped": ("atan2(sin(theta4 - theta3 + 2), cos(theta4 - theta3 + 2))", "angle")})
+    sweep = mech.sweep(np.radians(np.arange(0.0, 361.0)))
+    finite = {
+        "forward": finite_difference(sweep, OMEGA, method="forward", second_method="forward_of_forward"),
+        "centred": finite_difference(sweep, OMEGA),
+    }
+    return types.SimpleNamespace(sweep=sweep, analytic=analytic_kinematics(sweep, OMEGA), finite=finite)
+
+
+# ----------------------------------------------------------------------------- an angle
+def test_kinematics_of_the_transmission_angle_against_the_circle_intersection(four_bar):
+    sweep = four_bar.sweep
+    fig = figures.kinematics(sweep, "mu", analytic=four_bar.analytic, finite=four_bar.finite,
+                             check_angles=[math.radians(90)])
+    ax0, ax1, ax2 = fig.axes[:3]
+    assert [ax.get_ylabel() for ax in (ax0, ax1, ax2)] == ["$\\mu$ [deg]", "$\\omega_{\\mu}$ [rad/s]",
+                                                           "$\\alpha_{\\mu}$ [rad/s²]"]
+    x, y = ax0.get_lines()[0].get_data()
+    np.testing.assert_allclose(x, np.arange(0.0, 361.0), rtol=0, atol=1e-12)
+    t = np.radians(x)
+    mu = _mu(t)
+    np.testing.assert_allclose(y, np.degrees(mu), atol=1e-10)
+    assert y[90] == pytest.approx(86.8153, abs=5e-5)  # the value derived.py's example prints
+
+    # exact rates against mpmath derivatives of the closed form
+    mp.mp.dps = 30
+    at = [0, 37, 90, 181, 300]
+    d1 = np.array([float(mp.diff(_mu_mp, mp.radians(d))) for d in at])
+    d2 = np.array([float(mp.diff(_mu_mp, mp.radians(d), 2)) for d in at])
+    np.testing.assert_allclose(line(ax1, "analytic")[1][at], OMEGA * d1, atol=1e-9)
+    np.testing.assert_allclose(line(ax2, "analytic")[1][at], OMEGA**2 * d2, atol=1e-7)
+
+    # the schemes applied to the sampled values: the same differences of the closed form, taken here
+    h = math.radians(1.0)
+    up, down = np.roll(mu[:-1], -1), np.roll(mu[:-1], 1)  # one turn: periodic, the last row repeats the first
+    centred = np.append((up - down) / (2 * h), 0.0)
+    centred[-1] = centred[0]
+    second = np.append((up - 2 * mu[:-1] + down) / h**2, 0.0)
+    second[-1] = second[0]
+    forward = np.append((up - mu[:-1]) / h, 0.0)
+    forward[-1] = forward[0]
+    np.testing.assert_allclose(line(ax1, "centred")[1], OMEGA * centred, atol=1e-8)
+    np.testing.assert_allclose(line(ax1, "forward")[1], OMEGA * forward, atol=1e-8)
+    # each frame's second scheme on the acceleration panel, under the frame's name
+    np.testing.assert_allclose(line(ax2, "centred")[1], OMEGA**2 * second, atol=1e-5)
+    # and they err as their orders say: forward O(h), centred O(h^2)
+    err_forward = np.max(np.abs(line(ax1, "forward")[1][at] - OMEGA * d1))
+    err_centred = np.max(np.abs(line(ax1, "centred")[1][at] - OMEGA * d1))
+    assert err_centred < 1e-3 * OMEGA < err_forward
+    # the check angle's values are written beside the panels
+    texts = " ".join(t.get_text() for ax in fig.axes for t in ax.texts)
+    assert "$\\mu$(90°) = 86.815 deg" in texts
+
+
+def test_a_wrapped_angle_is_drawn_and_differenced_unwrapped(four_bar):
+    """atan2(...) of mu + 2 rad jumps from +180° to -180°: drawn continuous, its rates those of mu."""
+    sweep = four_bar.sweep
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # unwrapped quietly, as the unknowns' angles are continuous
+        fig = figures.kinematics(sweep, "wrapped", analytic=four_bar.analytic, finite=four_bar.finite)
+    _, y = fig.axes[0].get_lines()[0].get_data()
+    assert np.max(np.abs(np.diff(y))) < 5.0
+    offset = y - np.degrees(_mu(sweep.inputs)) - math.degrees(2.0)
+    np.testing.assert_allclose(offset, np.round(offset[0] / 360) * 360, atol=1e-9)  # one whole-turn offset
+    ref = figures.kinematics(sweep, "mu", analytic=four_bar.analytic, finite=four_bar.finite)
+    for j, label in ((1, "centred"), (1, "analytic"), (2, "centred"), (2, "forward"), (2, "analytic")):
+        np.testing.assert_allclose(line(fig.axes[j], label)[1], line(ref.axes[j], label)[1], atol=1e-7)
+
+
+def test_position_derivative_and_difference_of_a_derived_angle(four_bar):
+    sweep = four_bar.sweep
+    fig = figures.position(sweep)  # by default the unknowns and then the derived quantities
+    assert [ln.get_label() for ln in fig.axes[0].get_lines()] == ["$\\theta_{3}$", "$\\theta_{4}$", "$\\mu$",
+                                                                 "$\\mathrm{wrapped}$"]
+    _, y = line(fig.axes[0], "$\\mu$")
+    mu = _mu(sweep.inputs)
+    np.testing.assert_allclose(y, np.degrees(mu), atol=1e-10)
+    fig = figures.derivative(sweep, "mu")
+    assert fig.axes[0].get_ylabel() == "$d\\mu/d\\theta_{2}$ [rad/rad]"
+    h = math.radians(1.0)
+    x, forward = line(fig.axes[0], "forward")
+    interior = np.isfinite(forward)
+    np.testing.assert_allclose(forward[interior], ((mu[1:] - mu[:-1]) / h)[interior[:-1]], atol=1e-8)
+    fig = figures.difference(sweep, "mu")
+    _, delta = fig.axes[0].get_lines()[0].get_data()
+    k = np.arange(1, 360)
+    expected = np.abs((mu[k + 1] - mu[k - 1]) / (2 * h) - (mu[k + 1] - mu[k]) / h)
+    np.testing.assert_allclose(np.asarray(delta, dtype=float)[k], expected, atol=1e-8)
+
+
+@settings(max_examples=12, deadline=None)
+@given(crank=st.floats(0.5, 1.5), coupler=st.floats(3.5, 5.0), rocker=st.floats(3.0, 4.0),
+       schemes=st.sampled_from([("centred", "second_difference"), ("forward", "forward_of_forward"),
+                                ("five_point", "five_point_second"), ("spectral", "spectral_second")]),
+       turn=st.booleans())
+def test_schemes_on_a_difference_of_unknowns_are_the_differences_of_their_estimates(crank, coupler, rocker,
+                                                                                  schemes, turn):
+    """The schemes are linear: applied to mu = theta4 - theta3 they give the frame's estimates of theta4 minus
+    those of theta3, on a full turn (periodic) or an open arc, with an accelerating input; for every valid
+    crank-rocker."""
+    from numkin.figures.series import with_rates
+
+    mech = linkages.four_bar(4.5, crank, coupler, rocker).add_quantities(MU)
+    stop = 360.0 if turn or schemes[0] == "spectral" else 200.0
+    sweep = mech.sweep(np.radians(np.arange(0.0, stop + 1.0, 5.0)))
+    frame = finite_difference(sweep, 7.0, 2.0, method=schemes[0], second_method=schemes[1])
+    exact = analytic_kinematics(sweep, 7.0, 2.0)
+    with_mu, finite = with_rates(sweep, "mu", exact, {"fd": frame})
+    for rate in ("omega", "alpha"):
+        for got_, ref in ((finite["fd"], frame), (with_mu, exact)):
+            np.testing.assert_allclose(got_[f"{rate}_mu"], ref[f"{rate}_theta4"] - ref[f"{rate}_theta3"],
+                                       rtol=1e-9, atol=1e-9)
+    assert finite["fd"].attrs["periodic"] == frame.attrs["periodic"]
+    assert "omega_mu" not in frame.columns  # the given frames are copied, not changed
+
+
+def test_a_derived_quantity_the_mechanism_lacks_is_named_with_the_ones_it_has(four_bar):
+    with pytest.raises(numkin.InputError, match=r"'nu' is not an unknown .*derived quantities \['mu', 'wrapped'\]"):
+        figures.kinematics(four_bar.sweep, "nu", analytic=four_bar.analytic)
+
+
+# ----------------------------------------------------------------------------- a length
+def test_a_length_quantity_of_the_slider_crank_against_its_hand_derivation():
+    r, rod = 80.0, 200.0
+    mech = linkages.slider_crank(r, rod).add_quantities({"gap": ("x - r*cos(theta)", "length")})
+    sweep = mech.sweep(np.radians(np.arange(0.0, 181.0)))
+    w, alpha = 600 * 2 * math.pi / 60, 3.0
+    exact = analytic_kinematics(sweep, "600 rpm", alpha=alpha)
+    fd = {"centred": finite_difference(sweep, "600 rpm", alpha=alpha)}
+    fig = figures.slider(sweep, "gap", analytic=exact, finite=fd)
+    assert [ax.get_ylabel() for ax in fig.axes[:3]] == ["$\\mathrm{gap}$ [mm]", "$v_{\\mathrm{gap}}$ [mm/s]",
+                                                        "$a_{\\mathrm{gap}}$ [mm/s²]"]
+    assert fig.axes[0].get_title().endswith("offset 0 mm): $\\mathrm{gap}$, $v$, $a$")  # a length, not a slider
+    # by hand: gap = sqrt(l^2 - r^2 sin^2), gap' = -r^2 s c / gap, gap'' = -r^2 cos 2t / gap - (r^2 s c)^2 / gap^3
+    t = sweep.inputs
+    s, c = np.sin(t), np.cos(t)
+    g = np.sqrt(rod**2 - (r * s) ** 2)
+    g1 = -(r**2) * s * c / g
+    g2 = -(r**2) * np.cos(2 * t) / g - (r**2 * s * c) ** 2 / g**3
+    np.testing.assert_allclose(fig.axes[0].get_lines()[0].get_ydata(), g, rtol=1e-12)
+    np.testing.assert_allclose(line(fig.axes[1], "analytic")[1], w * g1, atol=1e-8)
+    np.testing.assert_allclose(line(fig.axes[2], "analytic")[1], w**2 * g2 + alpha * g1, atol=1e-6)
+    # centred differences of the sampled gap on the open grid 0..180 deg: the interior, by hand
+    h = math.radians(1.0)
+    _, v = line(fig.axes[1], "centred")
+    np.testing.assert_allclose(v[1:-1], w * (g[2:] - g[:-2]) / (2 * h), atol=1e-7)
+    assert np.isnan(v[0]) and np.isnan(v[-1])  # the one-sided end stencils are markers of their own
+    ends = line(fig.axes[1], "centred: one-sided end stencil")[1]
+    np.testing.assert_allclose(ends, w * np.array([(-3 * g[0] + 4 * g[1] - g[2]) / (2 * h),
+                                                   (3 * g[-1] - 4 * g[-2] + g[-3]) / (2 * h)]), atol=1e-7)
+    _, a = line(fig.axes[2], "centred")  # the frame's second difference, with alpha times its centred one
+    np.testing.assert_allclose(a[1:-1], w**2 * (g[2:] - 2 * g[1:-1] + g[:-2]) / h**2
+                               + alpha * (g[2:] - g[:-2]) / (2 * h), atol=1e-5)
+    # beside the piston's x on one length panel
+    fig = figures.position(sweep, ["x", "gap"])
+    assert len(fig.axes) == 1 and fig.axes[0].get_ylabel() == "length $x$, $\\mathrm{gap}$ [mm]"
+    # the acceleration figure compares it as it does an unknown
+    fig = figures.acceleration_comparison(sweep, "gap", exact, fd)
+    _, err = line(fig.axes[1], "centred")
+    ref = np.abs(w**2 * (g[2:] - 2 * g[1:-1] + g[:-2]) / h**2 + alpha * (g[2:] - g[:-2]) / (2 * h)
+                 - (w**2 * g2 + alpha * g1)[1:-1])
+    np.testing.assert_allclose(err[1:-1], ref, rtol=1e-6, atol=1e-6)
+
+
+# ----------------------------------------------------------------------------- a scene
+SCENE = """
+[scene]
+description = "transmission angle"
+
+[mechanism]
+linkage = "four_bar"
+
+[mechanism.dimensions]
+ground = 4
+crank = 1
+coupler = 3
+rocker = 3
+
+[mechanism.quantities]
+mu = { expression = "theta4 - theta3", dimension = "angle" }
+reach = { expression = "r3*cos(theta3) + r4", dimension = "length" }
+
+[input]
+speed = "10 rad/s"
+step_deg = 2
+
+[output]
+quantities = ["position", "velocity", "acceleration"]
+figures = FIGURES
+
+[compare]
+schemes = ["forward", "centred"]
+second_schemes = ["second_difference"]
+
+[[check]]
+at_deg = 90
+"""
+
+WANTED = '["kinematics:mu", "position:mu", "slider:reach"]'
+
+
+def _scene(tmp_path, figures_=WANTED):
+    from numkin.scene import load_scene
+
+    path = tmp_path / "mu.toml"
+    path.write_text(SCENE.replace("FIGURES", figures_))
+    return load_scene(str(path))
+
+
+def test_a_scene_renders_the_figures_of_its_derived_quantities(tmp_path):
+    """The scene pipeline's figures (render_figures) of a derived angle and length, twice: the same bytes."""
+    from numkin.scene import render_figures, run_scene
+
+    scene = _scene(tmp_path)
+    result = run_scene(dataclasses.replace(scene, figures=()))
+    result.scene = scene
+    runs = []
+    for k in range(2):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # nothing skipped
+            runs.append(render_figures(result, tmp_path / f"run{k}"))
+        assert plt.get_fignums() == []
+    assert sorted(p.name for p in runs[0]) == sorted(
+        f"{stem}.{ext}" for stem in ("kinematics-mu", "position-mu", "slider-reach") for ext in ("png", "svg"))
+    for a, b in zip(runs[0], runs[1]):
+        assert a.read_bytes() == b.read_bytes(), a.name
+    svg = next(p for p in runs[0] if p.name == "kinematics-mu.svg").read_text()
+    assert "forward" in svg and "centred" in svg and "second difference" in svg
+
+
+def test_a_scene_draws_the_scheme_values_it_compared(tmp_path, monkeypatch):
+    """The scene's curves are its comparisons' and its derived kinematics' columns, the same numbers."""
+    from numkin.figures import dispatch
+    from numkin.scene import render_figures, run_scene
+
+    scene = _scene(tmp_path, '["kinematics:mu"]')
+    result = run_scene(dataclasses.replace(scene, figures=()))
+    result.scene = scene
+    drawn = []
+
+    def spy(*args, _real=dispatch.kinematics, **kwargs):
+        drawn.append(_real(*args, **kwargs))
+        return drawn[-1]
+
+    monkeypatch.setattr(dispatch, "kinematics", spy)
+    render_figures(result, tmp_path / "out", formats=("png",))
+    (fig,) = drawn
+    compared = result.comparisons["omega_mu"].table
+    np.testing.assert_array_equal(line(fig.axes[1], "centred")[1], compared["centred [rad/s]"].to_numpy())
+    np.testing.assert_array_equal(line(fig.axes[1], "analytic")[1], result.derived_kinematics["omega_mu"].to_numpy())
+    np.testing.assert_array_equal(line(fig.axes[2], "second difference")[1],
+                                  result.comparisons["alpha_mu"].table["second_difference [rad/s^2]"].to_numpy())
+    t = result.sweep.inputs[::15]
+    np.testing.assert_allclose(fig.axes[0].get_lines()[0].get_ydata()[::15], np.degrees(_mu(t)), atol=1e-10)
+
+
+@pytest.mark.xfail(strict=True, raises=numkin.NumkinError,
+                   reason="the scene's name check (numkin.assemble) accepts only unknowns in [output] figures")
+def test_numkin_run_of_a_scene_with_a_derived_figure_writes_it_twice_the_same(tmp_path):
+    from numkin.scene import run_scene
+
+    scene = _scene(tmp_path, '["kinematics:mu"]')
+    first = run_scene(scene, out=tmp_path / "a")
+    second = run_scene(scene, out=tmp_path / "b")
+    names = sorted(p.name for p in first.written)
+    assert names == ["kinematics-mu.png", "kinematics-mu.svg"]
+    for a, b in zip(sorted(first.written), sorted(second.written)):
+        assert a.read_bytes() == b.read_bytes()
+
+
+# ----------------------------------------------------------------------------- wrong arguments
+def _wrong_calls(sweep, exact, fd):
+    return [
+        (lambda: figures.position("sweep", ["theta3"]), r"position: sweep must be a numkin Sweep.*got str 'sweep'"),
+        (lambda: figures.position(sweep.mechanism), r"position: sweep must be a numkin Sweep.*a Mechanism: give "
+                                                    r"mechanism.sweep\(inputs\)"),
+        (lambda: figures.position(sweep, 3), r"position: names must be a name or a list of names \(str\), got int 3"),
+        (lambda: figures.position(sweep, ["mu", 4]), r"position: names must be .*got list \['mu', 4\]"),
+        (lambda: figures.derivative(sweep, 3), r"derivative: name must be the name of an unknown or derived"),
+        (lambda: figures.derivative(sweep, "mu", schemes=2), r"derivative: schemes must be"),
+        (lambda: figures.difference(None, "mu"), r"difference: sweep must be a numkin Sweep \(Mechanism"),
+        (lambda: figures.kinematics(sweep, "mu", analytic="exact"),
+         r"kinematics: analytic must be a DataFrame.*got str 'exact'"),
+        (lambda: figures.kinematics(sweep, "mu", finite=fd["centred"]),
+         r"kinematics: finite must map scheme names to DataFrames, got one DataFrame"),
+        (lambda: figures.kinematics(sweep, "mu", finite=[fd["centred"]]),
+         r"kinematics: finite must map scheme names .*got list of 1 items"),
+        (lambda: figures.kinematics(sweep, "mu", finite={"centred": 1.0}),
+         r"kinematics: finite\['centred'\] must be a DataFrame, got float 1.0"),
+        (lambda: figures.kinematics(sweep, "mu", analytic=exact, check_angles="90"),
+         r"kinematics: check_angles must be input angles in rad \(numbers\), got str '90'"),
+        (lambda: figures.slider(42), r"slider: sweep must be a numkin Sweep"),
+        (lambda: figures.acceleration_comparison(sweep, "mu", exact, fd["centred"]),
+         r"acceleration_comparison: finite must map scheme names"),
+        (lambda: figures.mechanism("sweep"), r"mechanism: sweep must be a numkin Sweep"),
+        (lambda: figures.mechanism(sweep, "30"), r"mechanism: at must be an input angle in rad .*got str '30'"),
+        (lambda: figures.mechanism(sweep, 0.5, traces=7), r"mechanism: traces must be"),
+        (lambda: figures.convergence("table"), r"convergence: table must be a DataFrame from numkin.report"),
+        (lambda: figures.work_precision(3), r"work_precision: table must be a DataFrame"),
+        (lambda: figures.roundoff(None), r"roundoff: table must be a DataFrame"),
+        (lambda: figures.newton_residuals("newton"), r"newton_residuals: tables must be a DataFrame or a mapping"),
+        (lambda: figures.newton_residuals({"symbolic": 1}), r"newton_residuals: tables\['symbolic'\] must be"),
+        (lambda: figures.save("fig", "/tmp/x"), r"save: fig must be a matplotlib Figure"),
+        (lambda: figures.render("result"), r"render: result must be a SceneResult"),
+        (lambda: figures.render(types.SimpleNamespace(sweep=sweep), names=3), r"render: names must be"),
+        (lambda: figures.render(types.SimpleNamespace(sweep=sweep), names=["position"], formats=[1]),
+         r"render: formats must be"),
+    ]
+
+
+def test_figure_functions_name_a_wrong_argument(four_bar):
+    sweep = four_bar.sweep
+    for call, message in _wrong_calls(sweep, four_bar.analytic, four_bar.finite):
+        with pytest.raises(numkin.InputError, match=message):
+            call()
+    assert plt.get_fignums() == []
+
+
+def test_save_names_a_wrong_path(four_bar, tmp_path):
+    fig = figures.position(four_bar.sweep, "mu")
+    with pytest.raises(numkin.InputError, match=r"save: path_stem must be a file path .*got int 3"):
+        figures.save(fig, 3)
+    assert [p.name for p in figures.save(fig, tmp_path / "mu", ["png"])] == ["mu.png"]
+
+
+def test_render_draws_a_derived_quantity_from_the_frames_of_the_unknowns(four_bar, tmp_path):
+    """A duck-typed result holding only the unknowns' frames: the derived rates come from their speed and
+    schemes, the same numbers as figures.kinematics draws."""
+    result = types.SimpleNamespace(sweep=four_bar.sweep, analytic=four_bar.analytic, finite=four_bar.finite,
+                                   check_angles=[math.radians(90)], figures=["kinematics:mu", "acceleration:mu"])
+    written = figures.render(result, out_dir=tmp_path, formats=["svg"])
+    assert [p.name for p in written] == ["kinematics-mu.svg", "acceleration-mu.svg"]
+    again = figures.render(result, out_dir=tmp_path / "again", formats=["svg"])
+    assert [p.read_bytes() for p in written] == [p.read_bytes() for p in again]
