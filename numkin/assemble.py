@@ -383,9 +383,11 @@ def _check_names(scene: Scene, mech) -> None:
 
         for spec in scene.figures:
             kind, arg = parse_spec(spec)
-            if arg is not None and kind != "mechanism" and arg not in unknowns:
-                scene.fail("[output] figures", f"{spec!r}: '{arg}' is not an unknown{nearest(arg, unknowns)}; "
-                                               f"unknowns: {', '.join(unknowns)}")
+            named = [*unknowns, *mech.derived]  # a derived quantity is drawn as an unknown is
+            if arg is not None and kind != "mechanism" and arg not in named:
+                scene.fail("[output] figures", f"{spec!r}: '{arg}' is not an unknown or derived quantity"
+                                               f"{nearest(arg, named)}; unknowns: {', '.join(unknowns)}"
+                                               + (f"; derived quantities: {', '.join(mech.derived)}" if mech.derived else ""))
 
 
 def guess_values(scene: Scene, mech) -> dict | None:

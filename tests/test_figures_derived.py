@@ -311,8 +311,6 @@ def test_a_scene_draws_the_scheme_values_it_compared(tmp_path, monkeypatch):
     np.testing.assert_allclose(fig.axes[0].get_lines()[0].get_ydata()[::15], np.degrees(_mu(t)), atol=1e-10)
 
 
-@pytest.mark.xfail(strict=True, raises=numkin.NumkinError,
-                   reason="the scene's name check (numkin.assemble) accepts only unknowns in [output] figures")
 def test_numkin_run_of_a_scene_with_a_derived_figure_writes_it_twice_the_same(tmp_path):
     from numkin.scene import run_scene
 
