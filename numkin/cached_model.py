@@ -14,7 +14,7 @@ from typing import Callable
 
 from .compiled import CompiledMechanism, KernelNotKept, export_function, import_function
 from .errors import InputError
-from .loops import LazyPoints, Loop, SymbolName, as_symbol, describe
+from .loops import LazyPoints, Loop, SymbolName, as_symbol, describe, read_points
 
 __all__ = ["CachedModel"]
 
@@ -126,9 +126,8 @@ class CachedModel:
         self.input_symbol = as_symbol(input_symbol)
         self.parameters = dict(zip((as_symbol(s) for s in symbols), self.parameter_values.tolist()))
         self.unknown_symbols = [u for lp in self.loops for u in lp.unknowns]
-        import sympy as sp
-
-        self.points.resolved({k: tuple(sp.sympify(c) for c in v) for k, v in points.items()})
+        self.points.resolved(read_points(points, [*self.unknown_symbols, self.input_symbol, *self.parameters],
+                                         self.name))
 
     def _symbolic(self):
         """``(residuals, unknowns, input symbol, parameter symbols)`` for :class:`CompiledMechanism`."""

@@ -15,7 +15,7 @@ from typing import Callable, Iterable, Sequence
 from .errors import InputError
 
 __all__ = ["Loop", "as_symbol", "SymbolName", "LazyPoints", "describe", "check_lengths", "check_symbols",
-           "default_length_scale", "read_parameters"]
+           "default_length_scale", "read_parameters", "read_points", "check_point_names"]
 
 
 def as_symbol(name, among=()):
@@ -257,7 +257,8 @@ def describe(loops, input_symbol, parameters, points) -> dict:
     """What numkin needs to know about loops besides their compiled kernels, by names only (JSON data).
 
     ``{"input", "input_assumptions", "parameters": [[name, non-negative, sign undeclared], ...], "loops": [{"name",
-    "unknowns", "angles", "lengths", "links"}, ...], "points": [names]}``: the kernel cache keeps it so a
+    "unknowns", "angles", "lengths", "links"}, ...], "points": [names], "point_symbols":
+    {name: [names its coordinates use]}}``: the kernel cache keeps it so a
     mechanism can be checked and solved without sympy. ``lengths`` are the parameters in the loop's
     vector lengths, ``links`` those in the lengths of vectors that turn (whose angle holds the input or
     an unknown): a vector of fixed direction is an offset, which may have either sign.
@@ -282,7 +283,96 @@ def describe(loops, input_symbol, parameters, points) -> dict:
                    "links": sorted({str(s) for length, angle in lp.vector_symbols if angle & moving
                                     for s in length - set(lp.unknowns)})} for lp in loops],
         "points": [str(k) for k in (points or {})],
+        "point_symbols": {str(k): sorted({str(s) for c in xy for s in getattr(c, "free_symbols", ())})
+                          for k, xy in (points or {}).items()},
     }
+
+
+def read_points(points, among, owner: str = "mechanism") -> dict:
+    """Named points as ``{name: (x, y)}`` of sympy expressions in the mechanism's own symbols.
+
+    A coordinate is a sympy expression, a number or a string; a name in it
+    means the symbol of that name in ``among`` (the unknowns, the input and
+    the parameters), whatever its assumptions. A name that is none of them
+    is kept, for :func:`check_point_names` to refuse.
+
+    Raises
+    ------
+    InputError
+        If ``points`` is not a mapping of names to pairs, or a coordinate
+        cannot be read or is not finite and real; the message names the point.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> t = sp.Symbol("t", real=True)
+    >>> read_points({"P": ("2*cos(t)", 0)}, [t])["P"][0].free_symbols == {t}
+    True
+    >>> read_points({"P": "2*cos(t)"}, [t], "shadow")
+    Traceback (most recent call last):
+    ...
+    numkin.errors.InputError: shadow: point 'P' must be a pair (x, y) of expressions, got '2*cos(t)'
+    """
+    import sympy as sp
+
+    from .derived import names_in
+
+    if points is None:
+        return {}
+    if not isinstance(points, Mapping):
+        raise InputError(f"{owner}: points must be a mapping name -> (x, y), got {type(points).__name__} "
+                         f"{points!r:.60}")
+    symbols = {str(s): s for s in among}
+    out = {}
+    for name, xy in points.items():
+        where = f"{owner}: point {name!r}"
+        if not (isinstance(name, str) and name.isidentifier()):
+            raise InputError(f"{where}: a point's name is an identifier such as 'B' or 'O2'")
+        if isinstance(xy, (str, bytes)) or not hasattr(xy, "__len__") or len(xy) != 2:
+            raise InputError(f"{where} must be a pair (x, y) of expressions, got {xy!r:.60}")
+        coordinates = []
+        for axis, c in zip("xy", xy):
+            if isinstance(c, bool) or c is None:
+                raise InputError(f"{where} {axis}: {c!r} is not an expression")
+            if isinstance(c, str):
+                names_in(c, f"{where} {axis}")  # arithmetic only: sympy evaluates what it reads
+            try:
+                expr = sp.sympify(c, locals=dict(symbols), rational=False)
+            except (sp.SympifyError, SyntaxError, TypeError, ValueError) as error:
+                raise InputError(f"{where} {axis}: cannot read the expression {c!r:.60} "
+                                 f"({type(error).__name__})") from None
+            if not isinstance(expr, sp.Expr):
+                raise InputError(f"{where} {axis}: {c!r:.60} is not a number-valued expression")
+            expr = expr.xreplace({s: symbols[str(s)] for s in expr.free_symbols if str(s) in symbols})
+            if expr.has(sp.I, sp.zoo, sp.nan, sp.oo, -sp.oo):
+                raise InputError(f"{where} {axis}: {c!r:.60} is not a finite real expression")
+            coordinates.append(expr)
+        out[name] = tuple(coordinates)
+    return out
+
+
+def check_point_names(model: dict, owner: str = "mechanism") -> None:
+    """Every name a point's coordinates use is an unknown, the input or a parameter (:func:`describe`'s names).
+
+    Checked where a mechanism is built, from the sympy model or from the
+    kernel cache alike, so a misspelt name is refused there rather than
+    when the points are first computed.
+
+    Examples
+    --------
+    >>> model = {"input": "t", "parameters": [["r", True, False]], "loops": [{"unknowns": ["x"]}],
+    ...          "point_symbols": {"P": ["r", "tt"]}}
+    >>> check_point_names(model, "shadow")
+    Traceback (most recent call last):
+    ...
+    numkin.errors.InputError: shadow: point 'P' names ['tt'], which the mechanism does not have: it may use the unknowns ['x'], the input t and the parameters ['r']
+    """
+    from .derived import refuse_unknown_names
+
+    unknowns = [u for lp in model["loops"] for u in lp["unknowns"]]
+    params = [p for p, _, _ in model["parameters"]]
+    for name, used in model["point_symbols"].items():
+        refuse_unknown_names(f"{owner}: point {name!r}", used, unknowns, model["input"], params)
 
 
 def read_parameters(parameters, input_symbol, named=()) -> dict:
