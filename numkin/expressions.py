@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 import weakref
+from collections.abc import Iterable
 
 import numpy as np
 
@@ -126,12 +127,15 @@ def _evaluate(sweep, key, expressions, names: list, rates: bool = True, at_chang
     return out
 
 
-def _names(mech, wanted, have, what: str, how: str) -> list:
-    """The names asked for among ``have`` (all of them when ``wanted`` is None)."""
+def _names(mech, wanted, have, what: str, how: str, argument: str) -> list:
+    """The names asked for (the ``argument``) among ``have`` (all of them when ``wanted`` is None)."""
     if not have:
         raise InputError(f"{mech.name} has no {what} (give {how} when building the Mechanism)")
     if wanted is None:
         return list(have)
+    if not isinstance(wanted, (str, Iterable)):
+        raise InputError(f"{argument} must be a name or a list of names of the {what} of {mech.name} "
+                         f"{list(have)}, got {type(wanted).__name__} {wanted!r:.60}")
     names = [wanted] if isinstance(wanted, str) else list(wanted)
     if not names:
         raise InputError(f"name at least one of the {what} of {mech.name}: {list(have)}")
@@ -168,7 +172,7 @@ def point_derivatives(sweep, points=None, *, at_change_point: str = "nan") -> di
     [-80.   0.] [ -0. -80.]
     """
     mech = check_sweep(sweep)[0]
-    names = _names(mech, points, list(mech.points), "points", "points=")
+    names = _names(mech, points, list(mech.points), "points", "points=", "points")
     P, dP, d2P = _evaluate(sweep, ("points", tuple(names)), lambda: [c for name in names for c in mech.points[name]],
                            [f"{axis}_{name}" for name in names for axis in "xy"], at_change_point=at_change_point)
     return {name: (P[2 * k : 2 * k + 2], dP[2 * k : 2 * k + 2], d2P[2 * k : 2 * k + 2]) for k, name in enumerate(names)}
@@ -272,7 +276,7 @@ def derived_values(sweep, names=None) -> dict:
 
 def _derived(mech, names):
     """The names asked for, their :class:`~numkin.derived.Derived` and their cache key."""
-    names = _names(mech, names, list(mech.derived), "derived quantities", "quantities=")
+    names = _names(mech, names, list(mech.derived), "derived quantities", "quantities=", "names")
     chosen = [mech.derived[n] for n in names]
     return names, chosen, ("derived", tuple((d.name, str(d.expression), d.dimension) for d in chosen))
 

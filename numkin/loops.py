@@ -94,7 +94,11 @@ class Loop:
     def __init__(self, residuals: Sequence, unknowns: Sequence, *, name: str | None = None, angles=None):
         import sympy as sp
 
-        self.residuals = [sp.sympify(r) for r in residuals]
+        where = f"loop '{name}'" if name else "a loop"
+        for argument, value in (("residuals", residuals), ("unknowns", unknowns)):
+            if isinstance(value, (str, bytes)) or not isinstance(value, Iterable):
+                raise InputError(f"{where}: {argument} must be a list, got {type(value).__name__} {value!r:.60}")
+        self.residuals = [_expression(r, f"{where}: equation {k + 1}") for k, r in enumerate(residuals)]
         free = set().union(*(r.free_symbols for r in self.residuals))
         self.unknowns = [as_symbol(u, free) for u in unknowns]
         self.name = name or "-".join(str(u) for u in self.unknowns)
@@ -131,17 +135,18 @@ class Loop:
         """
         import sympy as sp
 
+        if isinstance(vectors, (str, bytes)) or not isinstance(vectors, Iterable):
+            where = f"loop {name!r}" if name else "a loop"
+            raise InputError(f"{where}: vectors must be a list of (length, angle) pairs, got {type(vectors).__name__} "
+                             f"{vectors!r:.60}")
         pairs = []
         for k, v in enumerate(vectors):
             try:
                 length, angle = v
             except (TypeError, ValueError):
                 raise InputError(f"vector {k} of loop '{name}' must be a (length, angle) pair, got {v!r}") from None
-            try:
-                pair = (sp.sympify(length), sp.sympify(angle))
-            except (sp.SympifyError, TypeError):
-                raise InputError(f"vector {k} of loop '{name}': {v!r} is not a (length, angle) pair of "
-                                 "expressions") from None
+            pair = (_expression(length, f"vector {k} of loop '{name}': its length"),
+                    _expression(angle, f"vector {k} of loop '{name}': its angle"))
             for what, expr in zip(("length", "angle"), pair):
                 if expr.has(sp.zoo, sp.oo, -sp.oo, sp.nan) or expr.has(sp.I):
                     raise InputError(f"vector {k} of loop '{name}': its {what} {expr} is not a finite real "
@@ -183,6 +188,27 @@ class Loop:
 
     def __repr__(self) -> str:
         return f"Loop({self.name!r}, unknowns={[str(u) for u in self.unknowns]})"
+
+
+def _expression(value, where: str):
+    """``value`` (a sympy expression, a number or an arithmetic string) as a sympy expression; an InputError
+    naming ``where`` if it is none (a string is read with :func:`numkin.derived.names_in` first: never run)."""
+    import sympy as sp
+
+    from .derived import names_in
+
+    if isinstance(value, bool) or value is None:
+        raise InputError(f"{where}: {value!r} is not an expression")
+    if isinstance(value, str):
+        names_in(value, where)
+    try:
+        expr = sp.sympify(value, rational=False)
+    except (sp.SympifyError, SyntaxError, TypeError, ValueError) as error:
+        raise InputError(f"{where}: cannot read {value!r:.60} as an expression ({type(error).__name__})") from None
+    if not isinstance(expr, sp.Expr):
+        raise InputError(f"{where}: {value!r:.60} is not a number-valued expression (an equation is written "
+                         "as lhs - rhs, which is 0)")
+    return expr
 
 
 class SymbolName(str):

@@ -63,7 +63,10 @@ class Mechanism(CachedModel):
         guessed branch.
     points : mapping, optional
         Named points ``name -> (x, y)`` as expressions of the unknowns, the
-        input and the parameters (for drawing and point kinematics).
+        input and the parameters (for drawing and point kinematics): sympy
+        expressions, numbers or strings, whose names mean the loops' own
+        symbols. A point that uses any other name is refused here, naming
+        the point and the name (:func:`numkin.loops.read_points`).
     links : sequence of sequences, optional
         Rigid links as sequences of point names (drawn as polylines).
     quantities : mapping, optional

@@ -182,8 +182,12 @@ kinds and defaults are read from its :class:`~numkin.linkages.LinkageSpec`);
 a dimension left out takes the linkage's default, converted to ``unit``.
 
 A mistake in a scene (an unknown key, with the nearest valid one suggested; a
-missing dimension; a bad unit; malformed TOML) raises :class:`SceneError`, a
-``ValueError`` whose one-line message names the file, the key and the value.
+missing dimension; a bad unit; malformed TOML; a point whose coordinates use
+a name that is not the input, a dimension or an unknown) raises
+:class:`SceneError`, a ``ValueError`` whose one-line message names the file,
+the key and the value. An argument of the wrong kind (``load_scene(None)``,
+``run_scene(..., out=<a file>)``) raises :class:`~numkin.errors.InputError`
+naming the argument and what was given, before anything is computed.
 
 Examples
 --------

@@ -306,3 +306,29 @@ def test_compare_quantities_name_the_mechanism_argument():
     with pytest.raises(InputError, match=r"^mechanism must be a numkin.Mechanism, got str 'four_bar'"):
         quantities("four_bar")
 
+
+
+# ------------------------------------------- point and derived rates, loops
+def test_point_and_derived_rates_name_an_argument_that_is_not_names():
+    from numkin import analytic
+
+    mech = linkages.slider_crank(80, 200).add_quantities({"gap": ("x - r*cos(theta)", "length")})
+    sweep = mech.sweep(np.radians([0.0, 10.0, 20.0]))
+    with pytest.raises(InputError, match=r"^points must be a name or a list of names of the points .* got int 3"):
+        analytic.point_kinematics(sweep, 1.0, points=3)
+    with pytest.raises(InputError, match=r"^names must be a name or a list of names of the derived .* got int 3"):
+        analytic.derived_kinematics(sweep, 1.0, names=3)
+
+
+@pytest.mark.parametrize("build, words", [
+    (lambda: Loop(None, [T3]), r"^a loop: residuals must be a list, got NoneType None"),
+    (lambda: Loop(["theta3 - 1"], "theta3", name="L"), r"^loop 'L': unknowns must be a list, got str"),
+    (lambda: Loop(["__import__('os').getcwd()"], [T3], name="L"), r"^loop 'L': equation 1: the expression .* is not arithmetic"),
+    (lambda: Loop([sp.Eq(T3, 1)], [T3], name="L"), r"^loop 'L': equation 1: .* is not a number-valued expression"),
+    (lambda: Loop.from_vectors(3, [T3], name="L"), r"^loop 'L': vectors must be a list of \(length, angle\) pairs"),
+    (lambda: Loop.from_vectors([("r.real", T3), (1, 0)], [T3], name="L"),
+     r"^vector 0 of loop 'L': its length: the expression 'r.real' is not arithmetic"),
+])
+def test_a_loop_names_what_is_not_an_expression(build, words):
+    with pytest.raises(InputError, match=words):
+        build()
