@@ -39,7 +39,7 @@ from .errors import InputError, warn
 from .quantities import Quantity, input_quantity, point_quantities
 
 __all__ = ["point_derivatives", "point_kinematics", "derived_values", "derived_derivatives", "derived_kinematics",
-           "expression_functions"]
+           "expression_functions", "warn_not_finite"]
 
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
@@ -117,14 +117,35 @@ def _evaluate(sweep, key, expressions, names: list, rates: bool = True, at_chang
     rows = len(names)
     with np.errstate(all="ignore"):
         out = [np.broadcast_to(np.asarray(f(*args), dtype=float).reshape(rows, -1), (rows, t.size)) for f in functions]
+    warn_not_finite(mech, names, out[0], q, t)
+    return out
+
+
+def warn_not_finite(mech, names, rows, q, t) -> None:
+    """Warn, naming the quantity and the first input, of values that are not finite where the unknowns ``q`` are.
+
+    ``rows[k]`` holds the values of ``names[k]`` at the inputs ``t`` (rad): an
+    expression outside its domain (``sqrt`` of a negative number) there.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from numkin import linkages
+    >>> mech = linkages.slider_crank(80, 200)
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warn_not_finite(mech, ["x_P"], np.array([[1.0, np.nan]]), np.zeros((2, 2)), np.radians([0.0, 10.0]))
+    >>> print(caught[0].message)
+    slider-crank (crank 80, rod 200, offset 0): x_P is not finite at 1 of 2 inputs, first at input 10°: its expression is undefined there (outside its domain)
+    """
+    t = np.asarray(t, dtype=float)
     solved = np.all(np.isfinite(q), axis=0)
-    for name, values in zip(names, out[0]):
+    for name, values in zip(names, rows):
         bad = np.flatnonzero(~np.isfinite(values) & solved)
         if bad.size:
             warn(f"{mech.name}: {name} is not finite at {bad.size} of {t.size} inputs, first at input "
                  f"{math.degrees(t[bad[0]]):.6g}°: its expression is undefined there (outside its domain)",
                  RuntimeWarning)
-    return out
 
 
 def _names(mech, wanted, have, what: str, how: str, argument: str) -> list:

@@ -508,11 +508,24 @@ class Mechanism(CachedModel):
         return self.compiled.point_function(exprs) if exprs else None
 
     def point_coordinates(self, x, inputs) -> dict:
-        """Coordinates of the named points, name -> (2, N) array."""
+        """Coordinates of the named points, name -> (2, N) array.
+
+        A coordinate that is not finite where the unknowns are (its
+        expression undefined there, ``sqrt`` of a negative number) is warned
+        of, naming the point's coordinate and the input
+        (:func:`numkin.expressions.warn_not_finite`).
+        """
         if not self.points:
             return {}
         t = np.asarray(inputs)
-        xy = self.point_function(*x, t, *self.parameter_values)
+        with np.errstate(all="ignore"):
+            xy = self.point_function(*x, t, *self.parameter_values)
+        if not np.all(np.isfinite(xy)):
+            from .expressions import warn_not_finite
+
+            names = [f"{axis}_{name}" for name in self.points for axis in "xy"]
+            rows = np.broadcast_to(np.asarray(xy).reshape(len(names), -1), (len(names), t.size))
+            warn_not_finite(self, names, rows, np.asarray(x), t)
         return {name: xy[2 * k : 2 * k + 2] for k, name in enumerate(self.points)}
 
     def check_assembly(self, inputs) -> None:

@@ -332,3 +332,13 @@ def test_point_and_derived_rates_name_an_argument_that_is_not_names():
 def test_a_loop_names_what_is_not_an_expression(build, words):
     with pytest.raises(InputError, match=words):
         build()
+
+
+def test_a_point_undefined_where_the_linkage_is_is_warned_of_by_name():
+    """sqrt(-a) of a positive parameter: not refused when built (its sign is a value's), warned of when computed."""
+    mech = four_bar(points={"B": ("sqrt(-a)", "b*sin(theta2)")})
+    sweep = mech.sweep(np.radians([0.0, 10.0]))
+    with pytest.warns(RuntimeWarning, match=r"^four-bar: x_B is not finite at 2 of 2 inputs, first at input 0°"):
+        xy = sweep.points()["B"]
+    assert np.isnan(xy[0]).all()
+    np.testing.assert_allclose(xy[1], np.sin(np.radians([0.0, 10.0])), rtol=0, atol=1e-15)
