@@ -184,6 +184,7 @@ def test_a_point_and_a_derived_quantity_are_refused_in_the_same_words():
     ({"B": ("__import__('os').getcwd()", 0)}, r"^four-bar: point 'B' x: the expression .* is not arithmetic"),
 ])
 def test_a_point_that_is_not_a_pair_of_expressions_is_named(points, words):
+    """(sqrt(-b) of b declared positive is i*sqrt(b): refused when built.)"""
     with pytest.raises(InputError, match=words):
         four_bar(points=points)
 
@@ -335,8 +336,8 @@ def test_a_loop_names_what_is_not_an_expression(build, words):
 
 
 def test_a_point_undefined_where_the_linkage_is_is_warned_of_by_name():
-    """sqrt(-a) of a positive parameter: not refused when built (its sign is a value's), warned of when computed."""
-    mech = four_bar(points={"B": ("sqrt(-a)", "b*sin(theta2)")})
+    """sqrt(b - a), b = 1 and a = 4: not refused when built (its sign is the values'), warned of when computed."""
+    mech = four_bar(points={"B": ("sqrt(b - a)", "b*sin(theta2)")})
     sweep = mech.sweep(np.radians([0.0, 10.0]))
     with pytest.warns(RuntimeWarning, match=r"^four-bar: x_B is not finite at 2 of 2 inputs, first at input 0°"):
         xy = sweep.points()["B"]
