@@ -343,3 +343,28 @@ def test_a_point_undefined_where_the_linkage_is_is_warned_of_by_name():
         xy = sweep.points()["B"]
     assert np.isnan(xy[0]).all()
     np.testing.assert_allclose(xy[1], np.sin(np.radians([0.0, 10.0])), rtol=0, atol=1e-15)
+
+
+# ------------------------------------------------------------- the command's --out
+@pytest.mark.parametrize("command", [["run", "homework"], ["report", "homework"], ["figures", "homework"]])
+def test_an_out_that_is_a_file_is_refused_before_any_work(capsys, tmp_path, monkeypatch, command):
+    from numkin import pipeline, report
+    from test_cli import one_line_error, run
+
+    monkeypatch.setattr(pipeline, "run_scene", lambda *a, **k: pytest.fail("computed although --out is a file"))
+    monkeypatch.setattr(report, "scene_report", lambda *a, **k: pytest.fail("computed although --out is a file"))
+    file = tmp_path / "results"
+    file.write_text("a file")
+    code, out, err = run(capsys, *command, "--out", str(file / "tables"))
+    assert code == 2 and out == ""
+    assert one_line_error(err) == f"numkin: error: --out: cannot make the folder '{file / 'tables'}': '{file}' is a file, not a folder"
+
+
+def test_animate_refuses_a_folder_for_its_gif(capsys, tmp_path):
+    from test_cli import one_line_error, run
+
+    folder = tmp_path / "mechanism.gif"
+    folder.mkdir()
+    code, _, err = run(capsys, "animate", "slider-crank", "--out", str(folder))
+    assert code == 2
+    assert one_line_error(err) == f"numkin: error: --out: '{folder}' is a folder; give the path of a .gif file"
