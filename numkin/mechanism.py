@@ -14,7 +14,7 @@ from typing import Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
-from .cached_model import CachedModel
+from .cached_model import CachedModel, count_message
 from .compiled import BlockStructure, CompiledMechanism, compiled_once
 from .derived import bind, names_of, read_quantities, taken_names
 from .errors import AssemblyError, ConvergenceError, GuessWarning, InputError, warn
@@ -158,7 +158,7 @@ class Mechanism(CachedModel):
         params = model["parameters"]
         check_point_names(model, name)  # from the sympy model or from the kernel cache alike
         if len(values) != len(params):
-            raise InputError(f"{name}: {len(values)} parameter values for {len(params)} parameters")
+            raise InputError(count_message(name, values, [p for p, _, _ in params]))
         values = [finite(f"parameter {p}", v) for (p, _, _), v in zip(params, values)]
         for (p, nonnegative, _), v in zip(params, values):
             if v < 0 and nonnegative:

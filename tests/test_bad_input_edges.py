@@ -368,3 +368,23 @@ def test_animate_refuses_a_folder_for_its_gif(capsys, tmp_path):
     code, _, err = run(capsys, "animate", "slider-crank", "--out", str(folder))
     assert code == 2
     assert one_line_error(err) == f"numkin: error: --out: '{folder}' is a folder; give the path of a .gif file"
+
+
+def test_from_model_names_its_arguments_and_says_a_count_alike_from_the_cache(tmp_path, monkeypatch):
+    monkeypatch.setenv(kernel_cache.ENV_VAR, str(tmp_path / "kernels"))
+    model = _model("r*cos(t)")
+    with pytest.raises(InputError, match=r"^key must be a string"):
+        Mechanism.from_model(None, model, [2.0])
+    with pytest.raises(InputError, match=r"^model must be a function"):
+        Mechanism.from_model("k", 3, [2.0])
+    with pytest.raises(InputError, match=r"^model\(\) must return \(loops, input, parameter symbols, points\), got 3"):
+        Mechanism.from_model("k", lambda: 3, [2.0])
+    with pytest.raises(InputError, match=r"^values must be the parameters' values .* got NoneType None"):
+        Mechanism.from_model("k", model, None)
+    messages = []
+    for _ in range(2):  # built from sympy, then (a bundle kept in between) from the cache
+        with pytest.raises(InputError) as caught:
+            Mechanism.from_model("a shadow", model, [], name="shadow")
+        messages.append(str(caught.value))
+        Mechanism.from_model("a shadow", model, [2.0], name="shadow", guess={"x": 1.0})
+    assert messages[0] == messages[1] == "shadow: 0 parameter values for 1 parameters ['r']"
