@@ -309,7 +309,7 @@ def describe(loops, input_symbol, parameters, points) -> dict:
                    "links": sorted({str(s) for length, angle in lp.vector_symbols if angle & moving
                                     for s in length - set(lp.unknowns)})} for lp in loops],
         "points": [str(k) for k in (points or {})],
-        "point_symbols": {str(k): sorted({str(s) for c in xy for s in getattr(c, "free_symbols", ())})
+        "point_symbols": {str(k): sorted({s.name for c in xy for s in getattr(c, "free_symbols", ())})
                           for k, xy in (points or {}).items()},
     }
 
@@ -348,7 +348,8 @@ def read_points(points, among, owner: str = "mechanism") -> dict:
     if not isinstance(points, Mapping):
         raise InputError(f"{owner}: points must be a mapping name -> (x, y), got {type(points).__name__} "
                          f"{points!r:.60}")
-    symbols = {str(s): s for s in among}
+    symbols = {s.name: s for s in among}
+    own = set(among)
     out = {}
     for name, xy in points.items():
         where = f"{owner}: point {name!r}"
@@ -369,7 +370,9 @@ def read_points(points, among, owner: str = "mechanism") -> dict:
                                  f"({type(error).__name__})") from None
             if not isinstance(expr, sp.Expr):
                 raise InputError(f"{where} {axis}: {c!r:.60} is not a number-valued expression")
-            expr = expr.xreplace({s: symbols[str(s)] for s in expr.free_symbols if str(s) in symbols})
+            strangers = expr.free_symbols - own
+            if strangers:  # a name means the mechanism's symbol of that name
+                expr = expr.xreplace({s: symbols[s.name] for s in strangers if s.name in symbols})
             if expr.has(sp.I, sp.zoo, sp.nan, sp.oo, -sp.oo):
                 raise InputError(f"{where} {axis}: {c!r:.60} is not a finite real expression")
             coordinates.append(expr)
