@@ -242,20 +242,10 @@ def check_scene_argument(value, argument: str = "name_or_path") -> None:
 
 
 def load_scene(name_or_path, overrides: Mapping | None = None) -> Scene:
-    """Read and validate a scene: a built-in name (``numkin scenes``) or a .toml path.
+    """Read and validate a scene, a built-in name (``numkin scenes``) or a .toml path: a :class:`Scene`.
 
-    :func:`numkin.schema.load_scene`, its arguments checked first.
-
-    Parameters
-    ----------
-    name_or_path : str or path
-    overrides : mapping, optional
-        Nested values merged into the file before validation, e.g.
-        ``{"input": {"step_deg": 5}}`` for a coarser, faster sweep.
-
-    Returns
-    -------
-    Scene
+    :func:`numkin.schema.load_scene` (``overrides``: nested values merged into
+    the file before validation), its arguments checked first.
 
     Raises
     ------
