@@ -119,7 +119,7 @@ _NODES = (ast.Expression, ast.BinOp, ast.UnaryOp, ast.Call, ast.Name, ast.Consta
 def names_in(expression: str, where: str) -> set:
     """The names an expression string uses besides :data:`FUNCTIONS`; refuses what is not arithmetic.
 
-    Read with :mod:`ast`, never evaluated: what sympy would run (``__import__``, attributes,
+    Read with ``ast``, never evaluated: what sympy would run (``__import__``, attributes,
     comparisons) is refused before sympy reads the string.
 
     Examples

@@ -218,6 +218,7 @@ __all__ = [
     "LINKAGES",
     "SCENES_DIR",
     "load_scene",
+    "check_scene_argument",
     "list_scenes",
     "scene_path",
     "run_scene",
@@ -288,9 +289,7 @@ def run_scene(scene, out=None, at: float | None = None, *, figures: bool = True,
 
     Examples
     --------
-    >>> round(run_scene("quick-return", at=30).at.values["r4"], 3)
-    130.767
-    >>> run_scene("quick-return", at="30")
+    >>> run_scene("quick-return", at="30")  # the run itself: numkin.pipeline.run_scene's example
     Traceback (most recent call last):
     ...
     numkin.errors.InputError: at must be an input angle in degrees (a finite number), got str '30'
