@@ -201,9 +201,11 @@ Examples
 
 from __future__ import annotations
 
-import numbers
+import math
 import os
 from collections.abc import Mapping
+
+import numpy as np
 
 from . import pipeline, schema
 from .errors import InputError
@@ -273,6 +275,16 @@ def load_scene(name_or_path, overrides: Mapping | None = None) -> Scene:
     return schema.load_scene(name_or_path, overrides)
 
 
+def _finite_number(value) -> bool:
+    """Whether ``value`` is one finite real number (a Python or numpy scalar; not a bool, a string or an array)."""
+    if isinstance(value, (bool, np.bool_, str, bytes)) or np.ndim(value) != 0:
+        return False
+    try:
+        return math.isfinite(float(value))
+    except (TypeError, ValueError):
+        return False
+
+
 def run_scene(scene, out=None, at: float | None = None, *, figures: bool = True, progress=None) -> SceneResult:
     """Compute what a scene asks for, and write its tables and figures to ``out``.
 
@@ -300,7 +312,7 @@ def run_scene(scene, out=None, at: float | None = None, *, figures: bool = True,
         check_scene_argument(scene, "scene")
     if out is not None:
         output_folder(out)
-    if at is not None and (isinstance(at, bool) or not isinstance(at, numbers.Real) or not abs(at) < float("inf")):
+    if at is not None and not _finite_number(at):
         raise InputError(f"at must be an input angle in degrees (a finite number), got {type(at).__name__} {at!r:.60}")
     if not isinstance(figures, bool):
         raise InputError(f"figures must be True or False, got {figures!r:.60}")
