@@ -10,16 +10,23 @@ a point's expressions) is first read. :class:`~numkin.Mechanism` inherits this.
 from __future__ import annotations
 
 import sys
+from collections.abc import Iterable
 from typing import Callable
 
 from .compiled import CompiledMechanism, KernelNotKept, export_function, import_function
 from .errors import InputError
-from .loops import LazyPoints, Loop, SymbolName, as_symbol, describe
+from .loops import LazyPoints, Loop, SymbolName, as_symbol, describe, read_points
 
-__all__ = ["CachedModel"]
+__all__ = ["CachedModel", "count_message"]
 
 #: Keywords of :class:`~numkin.Mechanism` besides the loops, input, parameters, points, name and unit.
 _OPTIONS = ("guess", "guess_input", "links", "ground", "length_scale", "assembly_check", "branch", "quantities")
+
+
+def count_message(name, values, parameters) -> str:
+    """What is wrong when ``values`` and ``parameters`` differ in number: the same words from the sympy model
+    and from the kernel cache."""
+    return f"{name}: {len(values)} parameter values for {len(parameters)} parameters {list(parameters)}"
 
 
 class CachedModel:
@@ -57,17 +64,28 @@ class CachedModel:
         """
         from . import kernel_cache
 
+        if not isinstance(key, str):
+            raise InputError(f"key must be a string (what the mechanism is built from), got {key!r:.60}")
+        if not callable(model):
+            raise InputError(f"model must be a function () -> (loops, input, parameter symbols, points), got "
+                             f"{model!r:.60}")
+        if isinstance(values, (str, bytes)) or not isinstance(values, Iterable):
+            raise InputError(f"values must be the parameters' values in the order model() lists them, got "
+                             f"{type(values).__name__} {values!r:.60}")
+        values = list(values)
         found = kernel_cache.load_bundle(key)
         if found is not None:
             try:
-                return cls._from_bundle(key, found, model, list(values), options)
+                return cls._from_bundle(key, found, model, values, options)
             except (KeyError, TypeError, IndexError, AttributeError):
                 pass  # a bundle of another shape: built again below
-        loops, input_symbol, symbols, points = model()
+        built = model()
+        if not (isinstance(built, (tuple, list)) and len(built) == 4):
+            raise InputError(f"model() must return (loops, input, parameter symbols, points), got {built!r:.80}")
+        loops, input_symbol, symbols, points = built
         symbols = list(symbols)
-        values = list(values)
         if len(values) != len(symbols):
-            raise InputError(f"{len(values)} parameter values for {len(symbols)} parameters {[str(s) for s in symbols]}")
+            raise InputError(count_message(options.get("name", "mechanism"), values, [str(s) for s in symbols]))
         mech = cls(loops, input_symbol, dict(zip(symbols, values)), points=points, **options)
         mech._keep(key)
         return mech
@@ -126,9 +144,8 @@ class CachedModel:
         self.input_symbol = as_symbol(input_symbol)
         self.parameters = dict(zip((as_symbol(s) for s in symbols), self.parameter_values.tolist()))
         self.unknown_symbols = [u for lp in self.loops for u in lp.unknowns]
-        import sympy as sp
-
-        self.points.resolved({k: tuple(sp.sympify(c) for c in v) for k, v in points.items()})
+        self.points.resolved(read_points(points, [*self.unknown_symbols, self.input_symbol, *self.parameters],
+                                         self.name))
 
     def _symbolic(self):
         """``(residuals, unknowns, input symbol, parameter symbols)`` for :class:`CompiledMechanism`."""

@@ -118,10 +118,19 @@ def _cmd_scenes(args) -> int:
     return 0
 
 
+def _out_checked(out) -> None:
+    """``--out`` refused before any work when it is a file or lies under one (:func:`numkin.outputs.output_folder`)."""
+    if out is not None:
+        from .outputs import output_folder
+
+        output_folder(out, "--out")
+
+
 def _cmd_run(args) -> int:
     from .scene import load_scene, run_scene
 
     scene = load_scene(args.scene)
+    _out_checked(args.out)
     with _progress(scene.name) as step, _about(scene):
         result = run_scene(scene, out=args.out, at=args.at, progress=step)
     if args.format == "json":
@@ -150,6 +159,7 @@ def _cmd_report(args) -> int:
     from .scene import load_scene
 
     scene = load_scene(args.scene)
+    _out_checked(args.out)
     with _progress(f"{scene.name} report") as step, _about(scene):
         step("tables")
         tables = scene_report(scene, repeat=args.repeat)
@@ -183,6 +193,7 @@ def _cmd_figures(args) -> int:
 
     names = _scenes_for_figures(args)
     scenes = [load_scene(n) for n in names]  # every file checked before any work
+    _out_checked(args.out)
     out = Path(args.out)
     written = []
     with _progress("figures", total=len(scenes)) as step:
@@ -229,6 +240,9 @@ def _cmd_animate(args) -> int:
     path = Path(args.out)
     if path.suffix.lower() != ".gif":
         raise InputError(f"--out {args.out!r}: the animation is written as a GIF (Pillow); give a .gif file")
+    if path.is_dir():
+        raise InputError(f"--out: '{path}' is a folder; give the path of a .gif file")
+    _out_checked(path.parent)
     options = _animation_options(args, scene)  # the input speed read before positions_only()
     scene = scene.positions_only()
     with _progress(f"{scene.name} animation") as step, _about(scene):

@@ -43,6 +43,7 @@ out of the RMS values.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
@@ -133,6 +134,10 @@ def quantities(mechanism) -> dict:
     >>> q["alpha_theta3"], q["v_x"], q["ax_P"]
     ((2, 'rad/s^2'), (1, 'mm/s'), (2, 'mm/s^2'))
     """
+    from .mechanism import Mechanism
+
+    if not isinstance(mechanism, Mechanism):
+        raise InputError(f"mechanism must be a numkin.Mechanism, got {type(mechanism).__name__} {mechanism!r:.60}")
     return {k: (q.order, q.unit) for k, q in _catalog(mechanism).items()}
 
 
@@ -149,7 +154,8 @@ def _resolve(mech, quantity) -> Quantity:
                              f"numkin.quantities.resolve(mechanism, name) returns; valid: {sorted(catalog)}")
         return own
     if not isinstance(quantity, str):
-        raise TypeError(f"quantity must be a string such as 'omega_{mech.unknowns[0]}', got {quantity!r}")
+        raise InputError(f"quantity must be a name such as 'omega_{mech.unknowns[0]}', got {type(quantity).__name__} "
+                         f"{quantity!r:.60}; valid: {sorted(catalog)}")
     if quantity in catalog:
         return catalog[quantity]
     hint = ""
@@ -244,8 +250,8 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
 
     if schemes is None:
         schemes = DEFAULT_SCHEMES[order] + ((_SPECTRAL[order],) if rows.periodic else ())
-    elif isinstance(schemes, str):
-        schemes = (schemes,)
+    elif isinstance(schemes, str) or not isinstance(schemes, Iterable):
+        schemes = (schemes,)  # one scheme: scheme_for names it if it is none
     parameter = "schemes" + ("" if order == 1 else f" (for the acceleration {quantity})")
     chosen = [scheme_for(s, order, parameter) for s in schemes]
     if not chosen:

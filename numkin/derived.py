@@ -28,7 +28,8 @@ from typing import Any, Mapping
 
 from .errors import InputError
 
-__all__ = ["Derived", "DIMENSIONS", "FUNCTIONS", "read_quantities", "taken_names", "names_of", "bind"]
+__all__ = ["Derived", "DIMENSIONS", "FUNCTIONS", "read_quantities", "taken_names", "names_of", "bind",
+           "refuse_unknown_names", "names_in"]
 
 #: What a derived quantity's value is: an angle (rad) or a length (the mechanism's length unit).
 DIMENSIONS = ("angle", "length")
@@ -64,7 +65,8 @@ def read_quantities(spec, taken: Mapping[str, str], owner: str = "mechanism", kn
     ``taken`` maps every name the mechanism already uses (unknowns, input,
     parameters, points and the names of their rates) to what it is, so a
     derived quantity can neither shadow one nor be shadowed. ``known``: the
-    names an expression may use (unknowns, input, parameters), if given.
+    names an expression may use, as ``(unknowns, input name, parameters)``, if
+    given (:func:`refuse_unknown_names`).
 
     Examples
     --------
@@ -97,12 +99,9 @@ def read_quantities(spec, taken: Mapping[str, str], owner: str = "mechanism", kn
             raise InputError(f"{where}: the expression must be a string or a sympy expression, got {expression!r}")
         used = {str(s) for s in expression.free_symbols} if hasattr(expression, "free_symbols") else None
         if isinstance(expression, str):
-            used = _names_in(expression, where)
+            used = names_in(expression, where)
         if known is not None:
-            strange = sorted(used - set(known))
-            if strange:
-                raise InputError(f"{where} names {strange}, which the mechanism does not have: it may use "
-                                 f"{sorted(known)}")
+            refuse_unknown_names(where, used, *known)
         for own in names_of(name, dimension):
             if own in taken:
                 raise InputError(f"{where} is already the name of {taken[own]}" if own == name else
@@ -117,8 +116,21 @@ _NODES = (ast.Expression, ast.BinOp, ast.UnaryOp, ast.Call, ast.Name, ast.Consta
           ast.Mult, ast.Div, ast.Pow, ast.USub, ast.UAdd)
 
 
-def _names_in(expression: str, where: str) -> set:
-    """The names an expression string uses besides :data:`FUNCTIONS`; refuses what is not arithmetic."""
+def names_in(expression: str, where: str) -> set:
+    """The names an expression string uses besides :data:`FUNCTIONS`; refuses what is not arithmetic.
+
+    Read with ``ast``, never evaluated: what sympy would run (``__import__``, attributes,
+    comparisons) is refused before sympy reads the string.
+
+    Examples
+    --------
+    >>> sorted(names_in("r2*cos(theta2) + e", "point 'P' x"))
+    ['e', 'r2', 'theta2']
+    >>> names_in("theta2.real", "point 'P' x")
+    Traceback (most recent call last):
+    ...
+    numkin.errors.InputError: point 'P' x: the expression 'theta2.real' is not arithmetic of numbers, names and the functions Abs, abs, acos, asin, atan, atan2, cos, cosh, exp, log, sin, sinh, sqrt, tan, tanh
+    """
     try:
         tree = ast.parse(expression.replace("^", "**").strip(), mode="eval")
     except SyntaxError:
@@ -158,6 +170,41 @@ def taken_names(unknowns, angles, input_name, parameters, points) -> dict:
     return taken
 
 
+def refuse_unknown_names(where: str, used, unknowns, input_name: str, parameters) -> None:
+    """Refuse an expression that names something other than an unknown, the input or a parameter.
+
+    The one check of what an expression of a mechanism may name: a derived
+    quantity's (:func:`read_quantities`, :func:`bind`) and a named point's
+    coordinates (:func:`numkin.loops.check_point_names`).
+
+    Parameters
+    ----------
+    where : str
+        What the expression belongs to, first in the message (``"four-bar: point 'B'"``).
+    used : iterable of str
+        The names the expression uses (functions and constants left out).
+    unknowns, parameters : sequence of str
+    input_name : str
+
+    Raises
+    ------
+    InputError
+        Naming ``where``, the names the mechanism does not have and those it has.
+
+    Examples
+    --------
+    >>> refuse_unknown_names("four-bar: point 'B'", {"r2", "theta3"}, ["theta3", "theta4"], "theta2", ["r2"])
+    >>> refuse_unknown_names("four-bar: point 'B'", {"r2", "theta33"}, ["theta3", "theta4"], "theta2", ["r2"])
+    Traceback (most recent call last):
+    ...
+    numkin.errors.InputError: four-bar: point 'B' names ['theta33'], which the mechanism does not have: it may use the unknowns ['theta3', 'theta4'], the input theta2 and the parameters ['r2']
+    """
+    strange = sorted(set(used) - {*unknowns, input_name, *parameters})
+    if strange:
+        raise InputError(f"{where} names {strange}, which the mechanism does not have: it may use the unknowns "
+                         f"{list(unknowns)}, the input {input_name} and the parameters {list(parameters)}")
+
+
 def bind(mechanism, derived: Derived):
     """The expression of ``derived`` in the mechanism's own symbols (sympy).
 
@@ -177,11 +224,8 @@ def bind(mechanism, derived: Derived):
         raise InputError(f"{where}: cannot read the expression {derived.expression!r} ({error})") from None
     if not isinstance(expr, sp.Expr):
         raise InputError(f"{where}: the expression {derived.expression!r} is not a number-valued expression")
-    strange = sorted(str(s) for s in expr.free_symbols if str(s) not in symbols)
-    if strange:
-        raise InputError(f"{where} names {strange}, which the mechanism does not have: it may use the unknowns "
-                         f"{[str(u) for u in mechanism.unknown_symbols]}, the input {mechanism.input_symbol} "
-                         f"and the parameters {[str(p) for p in mechanism.parameters]}")
+    refuse_unknown_names(where, {str(s) for s in expr.free_symbols}, [str(u) for u in mechanism.unknown_symbols],
+                         str(mechanism.input_symbol), [str(p) for p in mechanism.parameters])
     expr = expr.xreplace({s: symbols[str(s)] for s in expr.free_symbols})  # a name means the loops' own symbol
     if not expr.free_symbols & {*mechanism.unknown_symbols, mechanism.input_symbol}:
         raise InputError(f"{where}: {derived.expression!r} depends on no unknown and not on the input: it is a "

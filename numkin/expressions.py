@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 import weakref
+from collections.abc import Iterable
 
 import numpy as np
 
@@ -38,7 +39,7 @@ from .errors import InputError, warn
 from .quantities import Quantity, input_quantity, point_quantities
 
 __all__ = ["point_derivatives", "point_kinematics", "derived_values", "derived_derivatives", "derived_kinematics",
-           "expression_functions"]
+           "expression_functions", "warn_not_finite"]
 
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
@@ -116,22 +117,46 @@ def _evaluate(sweep, key, expressions, names: list, rates: bool = True, at_chang
     rows = len(names)
     with np.errstate(all="ignore"):
         out = [np.broadcast_to(np.asarray(f(*args), dtype=float).reshape(rows, -1), (rows, t.size)) for f in functions]
+    warn_not_finite(mech, names, out[0], q, t)
+    return out
+
+
+def warn_not_finite(mech, names, rows, q, t) -> None:
+    """Warn, naming the quantity and the first input, of values that are not finite where the unknowns ``q`` are.
+
+    ``rows[k]`` holds the values of ``names[k]`` at the inputs ``t`` (rad): an
+    expression outside its domain (``sqrt`` of a negative number) there.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from numkin import linkages
+    >>> mech = linkages.slider_crank(80, 200)
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warn_not_finite(mech, ["x_P"], np.array([[1.0, np.nan]]), np.zeros((2, 2)), np.radians([0.0, 10.0]))
+    >>> print(caught[0].message)
+    slider-crank (crank 80, rod 200, offset 0): x_P is not finite at 1 of 2 inputs, first at input 10°: its expression is undefined there (outside its domain)
+    """
+    t = np.asarray(t, dtype=float)
     solved = np.all(np.isfinite(q), axis=0)
-    for name, values in zip(names, out[0]):
+    for name, values in zip(names, rows):
         bad = np.flatnonzero(~np.isfinite(values) & solved)
         if bad.size:
             warn(f"{mech.name}: {name} is not finite at {bad.size} of {t.size} inputs, first at input "
                  f"{math.degrees(t[bad[0]]):.6g}°: its expression is undefined there (outside its domain)",
                  RuntimeWarning)
-    return out
 
 
-def _names(mech, wanted, have, what: str, how: str) -> list:
-    """The names asked for among ``have`` (all of them when ``wanted`` is None)."""
+def _names(mech, wanted, have, what: str, how: str, argument: str) -> list:
+    """The names asked for (the ``argument``) among ``have`` (all of them when ``wanted`` is None)."""
     if not have:
         raise InputError(f"{mech.name} has no {what} (give {how} when building the Mechanism)")
     if wanted is None:
         return list(have)
+    if not isinstance(wanted, (str, Iterable)):
+        raise InputError(f"{argument} must be a name or a list of names of the {what} of {mech.name} "
+                         f"{list(have)}, got {type(wanted).__name__} {wanted!r:.60}")
     names = [wanted] if isinstance(wanted, str) else list(wanted)
     if not names:
         raise InputError(f"name at least one of the {what} of {mech.name}: {list(have)}")
@@ -168,7 +193,7 @@ def point_derivatives(sweep, points=None, *, at_change_point: str = "nan") -> di
     [-80.   0.] [ -0. -80.]
     """
     mech = check_sweep(sweep)[0]
-    names = _names(mech, points, list(mech.points), "points", "points=")
+    names = _names(mech, points, list(mech.points), "points", "points=", "points")
     P, dP, d2P = _evaluate(sweep, ("points", tuple(names)), lambda: [c for name in names for c in mech.points[name]],
                            [f"{axis}_{name}" for name in names for axis in "xy"], at_change_point=at_change_point)
     return {name: (P[2 * k : 2 * k + 2], dP[2 * k : 2 * k + 2], d2P[2 * k : 2 * k + 2]) for k, name in enumerate(names)}
@@ -272,7 +297,7 @@ def derived_values(sweep, names=None) -> dict:
 
 def _derived(mech, names):
     """The names asked for, their :class:`~numkin.derived.Derived` and their cache key."""
-    names = _names(mech, names, list(mech.derived), "derived quantities", "quantities=")
+    names = _names(mech, names, list(mech.derived), "derived quantities", "quantities=", "names")
     chosen = [mech.derived[n] for n in names]
     return names, chosen, ("derived", tuple((d.name, str(d.expression), d.dimension) for d in chosen))
 

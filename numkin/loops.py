@@ -15,7 +15,7 @@ from typing import Callable, Iterable, Sequence
 from .errors import InputError
 
 __all__ = ["Loop", "as_symbol", "SymbolName", "LazyPoints", "describe", "check_lengths", "check_symbols",
-           "default_length_scale", "read_parameters"]
+           "default_length_scale", "read_parameters", "read_points", "check_point_names"]
 
 
 def as_symbol(name, among=()):
@@ -94,7 +94,11 @@ class Loop:
     def __init__(self, residuals: Sequence, unknowns: Sequence, *, name: str | None = None, angles=None):
         import sympy as sp
 
-        self.residuals = [sp.sympify(r) for r in residuals]
+        where = f"loop '{name}'" if name else "a loop"
+        for argument, value in (("residuals", residuals), ("unknowns", unknowns)):
+            if isinstance(value, (str, bytes)) or not isinstance(value, Iterable):
+                raise InputError(f"{where}: {argument} must be a list, got {type(value).__name__} {value!r:.60}")
+        self.residuals = [_expression(r, f"{where}: equation {k + 1}") for k, r in enumerate(residuals)]
         free = set().union(*(r.free_symbols for r in self.residuals))
         self.unknowns = [as_symbol(u, free) for u in unknowns]
         self.name = name or "-".join(str(u) for u in self.unknowns)
@@ -131,17 +135,18 @@ class Loop:
         """
         import sympy as sp
 
+        if isinstance(vectors, (str, bytes)) or not isinstance(vectors, Iterable):
+            where = f"loop {name!r}" if name else "a loop"
+            raise InputError(f"{where}: vectors must be a list of (length, angle) pairs, got {type(vectors).__name__} "
+                             f"{vectors!r:.60}")
         pairs = []
         for k, v in enumerate(vectors):
             try:
                 length, angle = v
             except (TypeError, ValueError):
                 raise InputError(f"vector {k} of loop '{name}' must be a (length, angle) pair, got {v!r}") from None
-            try:
-                pair = (sp.sympify(length), sp.sympify(angle))
-            except (sp.SympifyError, TypeError):
-                raise InputError(f"vector {k} of loop '{name}': {v!r} is not a (length, angle) pair of "
-                                 "expressions") from None
+            pair = (_expression(length, f"vector {k} of loop '{name}': its length"),
+                    _expression(angle, f"vector {k} of loop '{name}': its angle"))
             for what, expr in zip(("length", "angle"), pair):
                 if expr.has(sp.zoo, sp.oo, -sp.oo, sp.nan) or expr.has(sp.I):
                     raise InputError(f"vector {k} of loop '{name}': its {what} {expr} is not a finite real "
@@ -183,6 +188,27 @@ class Loop:
 
     def __repr__(self) -> str:
         return f"Loop({self.name!r}, unknowns={[str(u) for u in self.unknowns]})"
+
+
+def _expression(value, where: str):
+    """``value`` (a sympy expression, a number or an arithmetic string) as a sympy expression; an InputError
+    naming ``where`` if it is none (a string is read with :func:`numkin.derived.names_in` first: never run)."""
+    import sympy as sp
+
+    from .derived import names_in
+
+    if isinstance(value, bool) or value is None:
+        raise InputError(f"{where}: {value!r} is not an expression")
+    if isinstance(value, str):
+        names_in(value, where)
+    try:
+        expr = sp.sympify(value, rational=False)
+    except (sp.SympifyError, SyntaxError, TypeError, ValueError) as error:
+        raise InputError(f"{where}: cannot read {value!r:.60} as an expression ({type(error).__name__})") from None
+    if not isinstance(expr, sp.Expr):
+        raise InputError(f"{where}: {value!r:.60} is not a number-valued expression (an equation is written "
+                         "as lhs - rhs, which is 0)")
+    return expr
 
 
 class SymbolName(str):
@@ -257,7 +283,8 @@ def describe(loops, input_symbol, parameters, points) -> dict:
     """What numkin needs to know about loops besides their compiled kernels, by names only (JSON data).
 
     ``{"input", "input_assumptions", "parameters": [[name, non-negative, sign undeclared], ...], "loops": [{"name",
-    "unknowns", "angles", "lengths", "links"}, ...], "points": [names]}``: the kernel cache keeps it so a
+    "unknowns", "angles", "lengths", "links"}, ...], "points": [names], "point_symbols":
+    {name: [names its coordinates use]}}``: the kernel cache keeps it so a
     mechanism can be checked and solved without sympy. ``lengths`` are the parameters in the loop's
     vector lengths, ``links`` those in the lengths of vectors that turn (whose angle holds the input or
     an unknown): a vector of fixed direction is an offset, which may have either sign.
@@ -282,7 +309,99 @@ def describe(loops, input_symbol, parameters, points) -> dict:
                    "links": sorted({str(s) for length, angle in lp.vector_symbols if angle & moving
                                     for s in length - set(lp.unknowns)})} for lp in loops],
         "points": [str(k) for k in (points or {})],
+        "point_symbols": {str(k): sorted({s.name for c in xy for s in getattr(c, "free_symbols", ())})
+                          for k, xy in (points or {}).items()},
     }
+
+
+def read_points(points, among, owner: str = "mechanism") -> dict:
+    """Named points as ``{name: (x, y)}`` of sympy expressions in the mechanism's own symbols.
+
+    A coordinate is a sympy expression, a number or a string; a name in it
+    means the symbol of that name in ``among`` (the unknowns, the input and
+    the parameters), whatever its assumptions. A name that is none of them
+    is kept, for :func:`check_point_names` to refuse.
+
+    Raises
+    ------
+    InputError
+        If ``points`` is not a mapping of names to pairs, or a coordinate
+        cannot be read or is not finite and real; the message names the point.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> t = sp.Symbol("t", real=True)
+    >>> read_points({"P": ("2*cos(t)", 0)}, [t])["P"][0].free_symbols == {t}
+    True
+    >>> read_points({"P": "2*cos(t)"}, [t], "shadow")
+    Traceback (most recent call last):
+    ...
+    numkin.errors.InputError: shadow: point 'P' must be a pair (x, y) of expressions, got '2*cos(t)'
+    """
+    import sympy as sp
+
+    from .derived import names_in
+
+    if points is None:
+        return {}
+    if not isinstance(points, Mapping):
+        raise InputError(f"{owner}: points must be a mapping name -> (x, y), got {type(points).__name__} "
+                         f"{points!r:.60}")
+    symbols = {s.name: s for s in among}
+    own = set(among)
+    out = {}
+    for name, xy in points.items():
+        where = f"{owner}: point {name!r}"
+        if not (isinstance(name, str) and name.isidentifier()):
+            raise InputError(f"{where}: a point's name is an identifier such as 'B' or 'O2'")
+        if isinstance(xy, (str, bytes)) or not hasattr(xy, "__len__") or len(xy) != 2:
+            raise InputError(f"{where} must be a pair (x, y) of expressions, got {xy!r:.60}")
+        coordinates = []
+        for axis, c in zip("xy", xy):
+            if isinstance(c, bool) or c is None:
+                raise InputError(f"{where} {axis}: {c!r} is not an expression")
+            if isinstance(c, str):
+                names_in(c, f"{where} {axis}")  # arithmetic only: sympy evaluates what it reads
+            try:
+                expr = sp.sympify(c, locals=dict(symbols), rational=False)
+            except (sp.SympifyError, SyntaxError, TypeError, ValueError) as error:
+                raise InputError(f"{where} {axis}: cannot read the expression {c!r:.60} "
+                                 f"({type(error).__name__})") from None
+            if not isinstance(expr, sp.Expr):
+                raise InputError(f"{where} {axis}: {c!r:.60} is not a number-valued expression")
+            strangers = expr.free_symbols - own
+            if strangers:  # a name means the mechanism's symbol of that name
+                expr = expr.xreplace({s: symbols[s.name] for s in strangers if s.name in symbols})
+            if expr.has(sp.I, sp.zoo, sp.nan, sp.oo, -sp.oo):
+                raise InputError(f"{where} {axis}: {c!r:.60} is not a finite real expression")
+            coordinates.append(expr)
+        out[name] = tuple(coordinates)
+    return out
+
+
+def check_point_names(model: dict, owner: str = "mechanism") -> None:
+    """Every name a point's coordinates use is an unknown, the input or a parameter (:func:`describe`'s names).
+
+    Checked where a mechanism is built, from the sympy model or from the
+    kernel cache alike, so a misspelt name is refused there rather than
+    when the points are first computed.
+
+    Examples
+    --------
+    >>> model = {"input": "t", "parameters": [["r", True, False]], "loops": [{"unknowns": ["x"]}],
+    ...          "point_symbols": {"P": ["r", "tt"]}}
+    >>> check_point_names(model, "shadow")
+    Traceback (most recent call last):
+    ...
+    numkin.errors.InputError: shadow: point 'P' names ['tt'], which the mechanism does not have: it may use the unknowns ['x'], the input t and the parameters ['r']
+    """
+    from .derived import refuse_unknown_names
+
+    unknowns = [u for lp in model["loops"] for u in lp["unknowns"]]
+    params = [p for p, _, _ in model["parameters"]]
+    for name, used in model["point_symbols"].items():
+        refuse_unknown_names(f"{owner}: point {name!r}", used, unknowns, model["input"], params)
 
 
 def read_parameters(parameters, input_symbol, named=()) -> dict:

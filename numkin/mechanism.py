@@ -10,15 +10,16 @@ from __future__ import annotations
 
 import math
 from functools import cached_property
-from typing import Callable, Mapping, Sequence
+from typing import Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
-from .cached_model import CachedModel
+from .cached_model import CachedModel, count_message
 from .compiled import BlockStructure, CompiledMechanism, compiled_once
 from .derived import bind, names_of, read_quantities, taken_names
 from .errors import AssemblyError, ConvergenceError, GuessWarning, InputError, warn
-from .loops import Loop, as_symbol, check_lengths, check_symbols, default_length_scale, describe, read_parameters
+from .loops import (Loop, as_symbol, check_lengths, check_point_names, check_symbols, default_length_scale, describe,
+                    read_parameters, read_points)
 from .newton import JACOBIANS, TOL_MIN, NewtonResult, check_tol, iterate, residual_floor, scaled_cond
 from .units import finite
 
@@ -29,6 +30,15 @@ __all__ = ["Mechanism", "LENGTH_SCALE_RANGE"]
 #: Jacobian's determinant) stay normal float64 numbers, so every length scale in this
 #: range solves alike, in the same iterations to the same relative accuracy.
 LENGTH_SCALE_RANGE = (1e-150, 1e150)
+
+
+def _names(value, argument: str) -> list:
+    """``value``, a list of point names (None: none), as a list; an InputError naming ``argument`` otherwise."""
+    if value is None:
+        return []
+    if not isinstance(value, (list, tuple)) or not all(isinstance(v, str) for v in value):
+        raise InputError(f"{argument} must be a list of point names, got {value!r:.60}")
+    return list(value)
 
 
 class Mechanism(CachedModel):
@@ -53,7 +63,10 @@ class Mechanism(CachedModel):
         guessed branch.
     points : mapping, optional
         Named points ``name -> (x, y)`` as expressions of the unknowns, the
-        input and the parameters (for drawing and point kinematics).
+        input and the parameters (for drawing and point kinematics): sympy
+        expressions, numbers or strings, whose names mean the loops' own
+        symbols. A point that uses any other name is refused here, naming
+        the point and the name (:func:`numkin.loops.read_points`).
     links : sequence of sequences, optional
         Rigid links as sequences of point names (drawn as polylines).
     quantities : mapping, optional
@@ -111,21 +124,21 @@ class Mechanism(CachedModel):
     ):
         if isinstance(loops, Loop):
             loops = [loops]
-        self.loops = list(loops)
+        self.loops = list(loops) if isinstance(loops, Iterable) and not isinstance(loops, str) else []
         if not self.loops or not all(isinstance(lp, Loop) for lp in self.loops):
-            raise InputError("`loops` must be a non-empty sequence of numkin.Loop")
+            raise InputError(f"`loops` must be a non-empty sequence of numkin.Loop, got {loops!r:.80}")
         self.name = name
         named = set().union(*(r.free_symbols for lp in self.loops for r in lp.residuals))  # a name means these
         self.input_symbol = as_symbol(input, named)
         self.parameters = read_parameters(parameters, self.input_symbol, named)
         check_symbols(self.loops, self.input_symbol, self.parameters)
         self.unknown_symbols = [u for lp in self.loops for u in lp.unknowns]
-        self._setup(describe(self.loops, self.input_symbol, self.parameters, points), list(self.parameters.values()), name=name, guess=guess,
-                    guess_input=guess_input, links=links, ground=ground, length_unit=length_unit,
-                    length_scale=length_scale, assembly_check=assembly_check, branch=branch, quantities=quantities)
-        import sympy as sp
-
-        self.points = {k: tuple(sp.sympify(c) for c in v) for k, v in (points or {}).items()}
+        self.points = read_points(points, [*self.unknown_symbols, self.input_symbol, *self.parameters],
+                                  name if isinstance(name, str) else "mechanism")
+        self._setup(describe(self.loops, self.input_symbol, self.parameters, self.points),
+                    list(self.parameters.values()), name=name, guess=guess, guess_input=guess_input, links=links,
+                    ground=ground, length_unit=length_unit, length_scale=length_scale,
+                    assembly_check=assembly_check, branch=branch, quantities=quantities)
         self.compiled = CompiledMechanism(
             [r for lp in self.loops for r in lp.residuals],
             self.unknown_symbols,
@@ -137,11 +150,15 @@ class Mechanism(CachedModel):
     def _setup(self, model: dict, values: list, *, name, guess, guess_input, links, ground, length_unit,
                length_scale, assembly_check, branch, quantities=None) -> None:
         """Everything numeric about the mechanism, from the names in ``model`` and the parameter ``values``."""
+        for key, value in (("name", name), ("branch", branch)):
+            if not (isinstance(value, str) and value.strip() or value is None and key == "branch"):
+                raise InputError(f"{key} must be a non-empty string, got {value!r:.60}")
         self.name = name
         self.input_name = model["input"]
         params = model["parameters"]
+        check_point_names(model, name)  # from the sympy model or from the kernel cache alike
         if len(values) != len(params):
-            raise InputError(f"{name}: {len(values)} parameter values for {len(params)} parameters")
+            raise InputError(count_message(name, values, [p for p, _, _ in params]))
         values = [finite(f"parameter {p}", v) for (p, _, _), v in zip(params, values)]
         for (p, nonnegative, _), v in zip(params, values):
             if v < 0 and nonnegative:
@@ -162,8 +179,8 @@ class Mechanism(CachedModel):
         self.length_unit = length_unit
         if length_scale is None:
             length_scale = default_length_scale(model, value_of)
-        self.length_scale = float(length_scale)
-        if not (math.isfinite(self.length_scale) and self.length_scale > 0):
+        self.length_scale = finite("length_scale", length_scale)
+        if not self.length_scale > 0:
             raise InputError(f"length_scale must be a positive number, got {self.length_scale}")
         lo, hi = LENGTH_SCALE_RANGE
         if not lo <= self.length_scale <= hi:
@@ -173,16 +190,23 @@ class Mechanism(CachedModel):
                 "give the lengths in another unit"
             )
         self.xscale = np.array([1.0 if u in self.angles else self.length_scale for u in self.unknowns])
-        self.links = [tuple(link) for link in (links or [])]
-        self.ground = tuple(ground or ())
+        if not (links is None or isinstance(links, (list, tuple))):
+            raise InputError(f"links must be a list of links, each a list of point names, got {links!r:.60}")
+        self.links = [tuple(_names(link, "each of links")) for link in links or ()]
+        self.ground = tuple(_names(ground, "ground"))
         unknown_points = {p for link in self.links for p in link} | set(self.ground)
         missing = sorted(unknown_points - set(model["points"]))
         if missing:
             raise InputError(f"links or ground name undefined point(s) {missing}")
+        if assembly_check is not None and not callable(assembly_check):
+            raise InputError(f"assembly_check must be a function of the inputs, got {assembly_check!r:.60}")
         self.assembly_check = assembly_check
         self.branch = branch
+        if isinstance(guess, (str, bytes)):
+            raise InputError(f"guess must be a mapping name -> value, a sequence in unknown order or a function "
+                             f"of the input, got {guess!r:.60}")
         self._guess = guess
-        self.guess_input = guess_input
+        self.guess_input = None if guess_input is None else finite("guess_input (rad)", guess_input)
         self.parameter_values = np.array(values, dtype=float)
         self.derived = {}
         self._declared = quantities  # declared by add_quantities once the model can be read
@@ -198,7 +222,7 @@ class Mechanism(CachedModel):
         params = [p for p, _, _ in model["parameters"]]
         taken = taken_names(self.unknowns, self.angles, self.input_name, params, model["points"])
         taken.update({own: f"the quantity {d.name}" for d in self.derived.values() for own in names_of(d.name, d.dimension)})
-        known = [*self.unknowns, self.input_name, *params]
+        known = (self.unknowns, self.input_name, params)
         new = read_quantities(quantities, taken, self.name, known)
         for derived in new.values():
             bind(self, derived)  # what an expression names, and whether it moves, checked now, not at first use
@@ -484,11 +508,24 @@ class Mechanism(CachedModel):
         return self.compiled.point_function(exprs) if exprs else None
 
     def point_coordinates(self, x, inputs) -> dict:
-        """Coordinates of the named points, name -> (2, N) array."""
+        """Coordinates of the named points, name -> (2, N) array.
+
+        A coordinate that is not finite where the unknowns are (its
+        expression undefined there, ``sqrt`` of a negative number) is warned
+        of, naming the point's coordinate and the input
+        (:func:`numkin.expressions.warn_not_finite`).
+        """
         if not self.points:
             return {}
         t = np.asarray(inputs)
-        xy = self.point_function(*x, t, *self.parameter_values)
+        with np.errstate(all="ignore"):
+            xy = self.point_function(*x, t, *self.parameter_values)
+        if not np.all(np.isfinite(xy)):
+            from .expressions import warn_not_finite
+
+            names = [f"{axis}_{name}" for name in self.points for axis in "xy"]
+            rows = np.broadcast_to(np.asarray(xy).reshape(len(names), -1), (len(names), t.size))
+            warn_not_finite(self, names, rows, np.asarray(x), t)
         return {name: xy[2 * k : 2 * k + 2] for k, name in enumerate(self.points)}
 
     def check_assembly(self, inputs) -> None:

@@ -17,11 +17,63 @@ Examples
 from __future__ import annotations
 
 import math
+import os
+from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["tables", "write_tables", "error_summary", "jsonable"]
+from .errors import InputError
+
+__all__ = ["tables", "write_tables", "error_summary", "jsonable", "output_folder"]
+
+
+def output_folder(out, argument: str = "out") -> Path:
+    """``out`` as the :class:`~pathlib.Path` of a folder that is there or can be made; nothing is made.
+
+    Raises
+    ------
+    InputError
+        Naming ``argument`` and the path: ``out`` is not a path (``str`` or
+        :class:`pathlib.Path`), is a file, or lies under a file.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.NamedTemporaryFile() as f:
+    ...     output_folder(f.name + "/tables")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    numkin.errors.InputError: out: cannot make the folder '.../tables': '...' is a file, not a folder
+    >>> output_folder(3)
+    Traceback (most recent call last):
+    ...
+    numkin.errors.InputError: out must be a folder's path (str or pathlib.Path), got int 3
+    """
+    if isinstance(out, (str, os.PathLike)) and not str(out).strip():
+        raise InputError(f"{argument} is empty: give a folder's path ('.' for the current folder)")
+    if isinstance(out, bytes) or not isinstance(out, (str, os.PathLike)):
+        raise InputError(f"{argument} must be a folder's path (str or pathlib.Path), got {type(out).__name__} "
+                         f"{out!r:.60}")
+    path = Path(out)
+    if path.exists() and not path.is_dir():
+        raise InputError(f"{argument}: '{path}' is a file, not a folder")
+    above = path.parent
+    while not above.exists() and above != above.parent:
+        above = above.parent
+    if above.exists() and not above.is_dir():
+        raise InputError(f"{argument}: cannot make the folder '{path}': '{above}' is a file, not a folder")
+    return path
+
+
+def _made(out, argument: str = "out") -> Path:
+    """:func:`output_folder`, made (with its parents); an OSError said as an InputError naming the folder."""
+    path = output_folder(out, argument)
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise InputError(f"{argument}: cannot make the folder '{path}': {error.strerror or error}") from None
+    return path
 
 
 def jsonable(obj):
@@ -46,7 +98,23 @@ def error_summary(comparisons: dict) -> dict:
     The columns of a comparison's summary lose their unit (``max abs error
     [rad/s]`` -> ``max_abs_error``; the unit is given once per quantity) and
     ``max at <input> [deg]`` becomes ``max_at_deg``.
+
+    Raises
+    ------
+    InputError
+        If ``comparisons`` is not a mapping name -> Comparison (the message names the entry).
     """
+    if not isinstance(comparisons, Mapping):
+        raise InputError(f"comparisons must be a mapping name -> numkin.compare.Comparison, got "
+                         f"{type(comparisons).__name__} {comparisons!r:.60}")
+    if not comparisons:
+        return {}  # a position-only scene's: numkin.compare is not even imported
+    from .compare import Comparison
+
+    for name, comparison in comparisons.items():
+        if not isinstance(comparison, Comparison):
+            raise InputError(f"comparisons[{name!r}] must be a numkin.compare.Comparison (from compare()), got "
+                             f"{type(comparison).__name__} {comparison!r:.60}")
     out = {}
     for name, comparison in comparisons.items():
         unit_suffix = f" [{comparison.unit}]"
@@ -81,10 +149,22 @@ def _columns(result, quantities, values_of) -> dict:
 
 
 def tables(result) -> dict:
-    """The DataFrames a scene asks for (only those), from a :class:`~numkin.pipeline.SceneResult`."""
+    """The DataFrames a scene asks for (only those), from a :class:`~numkin.pipeline.SceneResult`.
+
+    Raises
+    ------
+    InputError
+        If ``result`` is not a scene's result with a mechanism (the stability suite's has none).
+    """
     import pandas as pd
 
     from .assemble import scene_quantities
+    from .pipeline import SceneResult
+
+    if not isinstance(result, SceneResult) or result.sweep is None:
+        what = "the stability suite's result" if isinstance(result, SceneResult) else \
+            f"{type(result).__name__} {result!r:.60}"
+        raise InputError(f"result must be the SceneResult of run_scene() on a scene with a mechanism, got {what}")
 
     scene, mech, sweep = result.scene, result.mechanism, result.sweep
     wanted = set(scene.tables)
@@ -152,9 +232,32 @@ def tables(result) -> dict:
 
 
 def write_tables(scene, tables: dict, out: Path) -> list[Path]:
-    """Write ``tables`` as ``<out>/<scene>-<name>.<format>`` in the scene's formats; the paths written."""
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    """Write ``tables`` as ``<out>/<scene>-<name>.<format>`` in the scene's formats; the paths written.
+
+    ``out`` is made, with its parents, if it is not there.
+
+    Raises
+    ------
+    InputError
+        Naming the argument: ``scene`` is not a :class:`~numkin.schema.Scene`,
+        ``tables`` not a mapping name -> pandas DataFrame, ``out`` not a
+        folder that is there or can be made (:func:`output_folder`).
+    """
+    import pandas as pd
+
+    from .schema import Scene
+
+    if not isinstance(scene, Scene):
+        raise InputError(f"scene must be a numkin.scene.Scene (from load_scene()), got {type(scene).__name__} "
+                         f"{scene!r:.60}")
+    if not isinstance(tables, Mapping):
+        raise InputError(f"tables must be a mapping name -> pandas.DataFrame, got {type(tables).__name__} "
+                         f"{tables!r:.60}")
+    for name, frame in tables.items():
+        if not isinstance(name, str) or not isinstance(frame, pd.DataFrame):
+            raise InputError(f"tables[{name!r}] must be a pandas.DataFrame named by a string, got "
+                             f"{type(frame).__name__} {frame!r:.60}")
+    out = _made(out)
     written = []
     if "csv" in scene.table_formats:
         for name, frame in tables.items():

@@ -543,10 +543,10 @@ def test_report_through_a_change_point_says_the_tables_need_none(capsys, tmp_pat
 def test_warnings_are_said_when_a_later_stage_fails(capsys, tmp_path):
     path = tmp_path / "par.toml"
     path.write_text(textwrap.dedent(PARALLELOGRAM.format(extra='on_singular = "report"')) + '[output]\ntables = ["positions"]\n')
-    blocked = tmp_path / "a-file"
-    blocked.write_text("")
-    code, out, err = run(capsys, "run", str(path), "--out", str(blocked / "sub"))
-    assert code == 2
+    out_dir = tmp_path / "out"
+    (out_dir / "par-positions.csv").mkdir(parents=True)  # the table's file is a folder: writing it fails
+    code, out, err = run(capsys, "run", str(path), "--out", str(out_dir))
+    assert code == 2 and "par-positions.csv" in err.split("numkin: error:")[1]
     assert "change point" in err.split("numkin: error:")[0]  # the sweep's warning, before the error line
 
 
