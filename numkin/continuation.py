@@ -87,9 +87,12 @@ def _validate_inputs(inputs):
         t = inputs
     else:
         try:
-            if np.iscomplexobj(inputs):
-                raise TypeError("complex")
-            t = np.asarray(inputs, dtype=float)
+            raw = np.asarray(inputs)
+            # numbers only: not text (which numpy would read as numbers), None, booleans or complex values
+            if raw.dtype.kind not in "iuf" and (raw.dtype.kind != "O" or any(
+                    v is None or isinstance(v, (str, bytes, bool, np.bool_, complex)) for v in raw.ravel().tolist())):
+                raise TypeError(raw.dtype)
+            t = raw.astype(float)
         except (TypeError, ValueError):
             raise InputError(f"inputs must be numbers (input values, rad), got {inputs!r:.80}") from None
     if t.ndim == 0:

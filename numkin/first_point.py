@@ -124,13 +124,17 @@ def guess_vector(mech, guess, at: float) -> np.ndarray:
             if unknown:
                 raise InputError(f"guess names {unknown}, which are not unknowns of {mech.name} {list(mech.unknowns)}")
             raise InputError(f"guess lacks values for {[u for u in mech.unknowns if u not in values]}")
-        vec = np.array([values[u] for u in mech.unknowns], dtype=float)
+        vec = [values[u] for u in mech.unknowns]
     else:
-        vec = np.asarray(guess, dtype=float).reshape(-1)
-        if vec.size != len(mech.unknowns):
-            raise InputError(
-                f"guess has {vec.size} values but {mech.name} has {len(mech.unknowns)} unknowns {list(mech.unknowns)}"
-            )
+        vec = guess
+    try:
+        vec = np.asarray(vec, dtype=float).reshape(-1)
+    except (TypeError, ValueError):
+        raise InputError(f"guess must be numbers (rad for angles) for {list(mech.unknowns)}, got {guess!r:.80}") from None
+    if vec.size != len(mech.unknowns):
+        raise InputError(
+            f"guess has {vec.size} values but {mech.name} has {len(mech.unknowns)} unknowns {list(mech.unknowns)}"
+        )
     if not math.isfinite(vec.sum()) and not np.isfinite(vec).all():  # (a finite sum: all finite)
         bad = mech.unknowns[int(np.flatnonzero(~np.isfinite(vec))[0])]
         raise InputError(f"guess for {bad} is not finite")

@@ -29,8 +29,8 @@ import numpy as np
 
 from . import outputs
 from .assemble import scene_quantities, scene_unit
-from .schema import Scene, SceneReader, in_range, load_scene, nearest
-from .errors import warn
+from .schema import Scene, SceneReader, check_scene_argument, in_range, load_scene, nearest
+from .errors import InputError, warn
 
 __all__ = ["CheckResult", "SceneResult", "run_scene", "render_figures", "written_tolerance", "in_scene_terms"]
 
@@ -220,12 +220,34 @@ def run_scene(
     -------
     SceneResult
 
+    Raises
+    ------
+    InputError
+        An argument of the wrong kind, before anything is computed: ``scene``
+        neither a :class:`Scene`, a name nor a path; ``out`` a file or under
+        one (:func:`numkin.outputs.output_folder`); ``at`` not one finite
+        number; ``figures`` not True or False; ``progress`` not callable.
+
     Examples
     --------
     >>> result = run_scene("quick-return", at=30)
     >>> round(result.at.values["r4"], 3)
     130.767
+    >>> run_scene("quick-return", at="30")
+    Traceback (most recent call last):
+    ...
+    numkin.errors.InputError: at must be an input angle in degrees (a finite number), got str '30'
     """
+    if not isinstance(scene, Scene):
+        check_scene_argument(scene, "scene")
+    if out is not None:
+        outputs.output_folder(out)
+    if at is not None and not _finite_number(at):
+        raise InputError(f"at must be an input angle in degrees (a finite number), got {type(at).__name__} {at!r:.60}")
+    if not isinstance(figures, bool):
+        raise InputError(f"figures must be True or False, got {figures!r:.60}")
+    if progress is not None and not callable(progress):
+        raise InputError(f"progress must be a function of the stage's name, got {progress!r:.60}")
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
     step = progress or (lambda stage: None)
@@ -233,6 +255,16 @@ def run_scene(
     with ExitStack() as scope:
         _run(scene, result, scope, out, at, figures, step)
     return result
+
+
+def _finite_number(value) -> bool:
+    """Whether ``value`` is one finite real number (a Python or numpy scalar; not a bool, a string or an array)."""
+    if isinstance(value, (bool, np.bool_, str, bytes)) or np.ndim(value) != 0:
+        return False
+    try:
+        return math.isfinite(float(value))
+    except (TypeError, ValueError):
+        return False
 
 
 def _run(scene: Scene, result: SceneResult, scope: ExitStack, out, at, figures: bool, step) -> None:

@@ -58,7 +58,7 @@ are optional. ::
     points = ["B"]           # named points whose x, y (vx, vy, ax, ay) are wanted
     tables = ["positions", "kinematics", "points", "comparison", "summary", "checks"]
     table_formats = ["csv"]  # csv, md, tex
-    figures = ["kinematics:theta4"]   # names of numkin.figures.FIGURES (default none)
+    figures = ["kinematics:theta4"]   # numkin.figures.FIGURES names, ":<unknown or derived quantity>" (default none)
 
     [compare]                # finite differences against the analytic solution, for the
                              # unknowns' rates (numkin.compare.compare takes a point's too)
@@ -201,16 +201,8 @@ Examples
 
 from __future__ import annotations
 
-import math
-import os
-from collections.abc import Mapping
-
-import numpy as np
-
-from . import pipeline, schema
-from .errors import InputError
-from .pipeline import CheckResult, SceneResult, render_figures
-from .schema import SCENES_DIR, Scene, SceneError, list_scenes, scene_path
+from .pipeline import CheckResult, SceneResult, render_figures, run_scene
+from .schema import SCENES_DIR, Scene, SceneError, check_scene_argument, list_scenes, load_scene, scene_path
 
 __all__ = [
     "Scene",
@@ -226,99 +218,6 @@ __all__ = [
     "run_scene",
     "render_figures",
 ]
-
-
-def check_scene_argument(value, argument: str = "name_or_path") -> None:
-    """Refuse what is neither a scene's name nor a path, naming ``argument`` and what was given.
-
-    Examples
-    --------
-    >>> check_scene_argument("homework")
-    >>> check_scene_argument(None)
-    Traceback (most recent call last):
-    ...
-    numkin.errors.InputError: name_or_path must be a built-in scene's name or the path of a .toml file (str or pathlib.Path), got NoneType None
-    """
-    if isinstance(value, bytes) or not isinstance(value, (str, os.PathLike)):
-        raise InputError(f"{argument} must be a built-in scene's name or the path of a .toml file (str or "
-                         f"pathlib.Path), got {type(value).__name__} {value!r:.60}")
-
-
-def load_scene(name_or_path, overrides: Mapping | None = None) -> Scene:
-    """Read and validate a scene, a built-in name (``numkin scenes``) or a .toml path: a :class:`Scene`.
-
-    :func:`numkin.schema.load_scene` (``overrides``: nested values merged into
-    the file before validation), its arguments checked first.
-
-    Raises
-    ------
-    InputError
-        If ``name_or_path`` is not a ``str`` or path, or ``overrides`` not a
-        mapping (the message names the argument and what was given).
-    SceneError
-        A mistake in the scene or its file (missing, a folder, not TOML, not
-        text): one line naming the file, the key and what is wrong.
-
-    Examples
-    --------
-    >>> load_scene("homework").speed
-    7.5
-    >>> load_scene("homework", overrides=[("input", 5)])
-    Traceback (most recent call last):
-    ...
-    numkin.errors.InputError: overrides must be a mapping of the scene's sections, e.g. {'input': {'step_deg': 5}}, got list [('input', 5)]
-    """
-    check_scene_argument(name_or_path)
-    if overrides is not None and not isinstance(overrides, Mapping):
-        raise InputError("overrides must be a mapping of the scene's sections, e.g. {'input': {'step_deg': 5}}, "
-                         f"got {type(overrides).__name__} {overrides!r:.60}")
-    return schema.load_scene(name_or_path, overrides)
-
-
-def _finite_number(value) -> bool:
-    """Whether ``value`` is one finite real number (a Python or numpy scalar; not a bool, a string or an array)."""
-    if isinstance(value, (bool, np.bool_, str, bytes)) or np.ndim(value) != 0:
-        return False
-    try:
-        return math.isfinite(float(value))
-    except (TypeError, ValueError):
-        return False
-
-
-def run_scene(scene, out=None, at: float | None = None, *, figures: bool = True, progress=None) -> SceneResult:
-    """Compute what a scene asks for, and write its tables and figures to ``out``.
-
-    :func:`numkin.pipeline.run_scene`, its arguments checked before anything
-    is computed: ``scene`` a :class:`Scene`, a name or a path; ``out`` a
-    folder that is there or can be made (:func:`numkin.outputs.output_folder`);
-    ``at`` a finite angle in degrees; ``figures`` True or False; ``progress``
-    a function of one argument.
-
-    Raises
-    ------
-    InputError
-        Naming the argument and what was given.
-
-    Examples
-    --------
-    >>> run_scene("quick-return", at="30")  # the run itself: numkin.pipeline.run_scene's example
-    Traceback (most recent call last):
-    ...
-    numkin.errors.InputError: at must be an input angle in degrees (a finite number), got str '30'
-    """
-    from .outputs import output_folder
-
-    if not isinstance(scene, Scene):
-        check_scene_argument(scene, "scene")
-    if out is not None:
-        output_folder(out)
-    if at is not None and not _finite_number(at):
-        raise InputError(f"at must be an input angle in degrees (a finite number), got {type(at).__name__} {at!r:.60}")
-    if not isinstance(figures, bool):
-        raise InputError(f"figures must be True or False, got {figures!r:.60}")
-    if progress is not None and not callable(progress):
-        raise InputError(f"progress must be a function of the stage's name, got {progress!r:.60}")
-    return pipeline.run_scene(scene, out, at, figures=figures, progress=progress)
 
 
 def __getattr__(name: str):

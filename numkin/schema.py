@@ -19,13 +19,14 @@ from __future__ import annotations
 import copy
 import math
 import numbers
+import os
 import re
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Mapping
 
-from .errors import NumkinError
+from .errors import InputError, NumkinError
 from .scene_sections import (QUANTITIES, TABLE_FORMATS, TABLES, in_range, input_rate, is_int, nearest, read_animation,
                              read_checks, read_compare, read_figures, read_input, read_output)
 
@@ -43,6 +44,7 @@ __all__ = [
     "TABLES",
     "TABLE_FORMATS",
     "load_scene",
+    "check_scene_argument",
     "list_scenes",
     "scene_path",
     "nearest",
@@ -346,6 +348,22 @@ def scene_path(name_or_path) -> Path:
     )
 
 
+def check_scene_argument(value, argument: str = "name_or_path") -> None:
+    """Refuse what is neither a scene's name nor a path, naming ``argument`` and what was given.
+
+    Examples
+    --------
+    >>> check_scene_argument("homework")
+    >>> check_scene_argument(None)
+    Traceback (most recent call last):
+    ...
+    numkin.errors.InputError: name_or_path must be a built-in scene's name or the path of a .toml file (str or pathlib.Path), got NoneType None
+    """
+    if isinstance(value, bytes) or not isinstance(value, (str, os.PathLike)):
+        raise InputError(f"{argument} must be a built-in scene's name or the path of a .toml file (str or "
+                         f"pathlib.Path), got {type(value).__name__} {value!r:.60}")
+
+
 def load_scene(name_or_path, overrides: Mapping | None = None) -> Scene:
     """Read and validate a scene: a built-in name (``numkin scenes``) or a .toml path.
 
@@ -363,14 +381,26 @@ def load_scene(name_or_path, overrides: Mapping | None = None) -> Scene:
     Raises
     ------
     SceneError
-        One line naming the file, the key and what is wrong.
+        A mistake in the scene or its file (missing, a folder, not TOML, not
+        text): one line naming the file, the key and what is wrong.
+    InputError
+        If ``name_or_path`` is not a ``str`` or path, or ``overrides`` not a
+        mapping (the message names the argument and what was given).
 
     Examples
     --------
     >>> scene = load_scene("homework")
     >>> scene.speed, scene.n_points
     (7.5, 361)
+    >>> load_scene("homework", overrides=[("input", 5)])
+    Traceback (most recent call last):
+    ...
+    numkin.errors.InputError: overrides must be a mapping of the scene's sections, e.g. {'input': {'step_deg': 5}}, got list [('input', 5)]
     """
+    check_scene_argument(name_or_path)
+    if overrides is not None and not isinstance(overrides, Mapping):
+        raise InputError("overrides must be a mapping of the scene's sections, e.g. {'input': {'step_deg': 5}}, "
+                         f"got {type(overrides).__name__} {overrides!r:.60}")
     path = scene_path(name_or_path)
     builtin = path.parent == SCENES_DIR
     source = path.name

@@ -21,6 +21,7 @@ from typing import Iterator
 
 import numpy as np
 
+from .errors import InputError
 from .newton import COND_MAX, COND_WARN
 
 __all__ = ["Sweep", "SweepEvent", "SingularityWarning", "run_sweep", "COND_MAX", "COND_WARN", "EvaluationCounter",
@@ -28,10 +29,11 @@ __all__ = ["Sweep", "SweepEvent", "SingularityWarning", "run_sweep", "COND_MAX",
 
 
 def check_sweep(sweep):
-    """``(mechanism, inputs, values)`` of a sweep, or a TypeError for anything else."""
+    """``(mechanism, inputs, values)`` of a sweep, or :class:`~numkin.errors.InputError` for anything else."""
     for attr in ("mechanism", "inputs", "values"):
         if not hasattr(sweep, attr):
-            raise TypeError(f"sweep must be a numkin Sweep (from Mechanism.sweep), got {type(sweep).__name__}")
+            hint = ": give mechanism.sweep(inputs)" if hasattr(sweep, "unknowns") else ""
+            raise InputError(f"sweep must be a numkin Sweep (from Mechanism.sweep), got {type(sweep).__name__}{hint}")
     return sweep.mechanism, np.asarray(sweep.inputs, dtype=float), np.asarray(sweep.values, dtype=float)
 
 

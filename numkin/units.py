@@ -354,7 +354,7 @@ def input_rate(value, kind: str = "speed", count: int | None = None, name: str |
     UnitError
         For an unreadable string or a unit of the wrong dimension; the
         message names the parameter.
-    TypeError, ValueError
+    InputError
         For a value that is not a number, string or array, an array of the
         wrong length, or a value that is not finite.
 
@@ -376,7 +376,7 @@ def input_rate(value, kind: str = "speed", count: int | None = None, name: str |
     name = name or default
 
     def expected():
-        return TypeError(f"{name} must be a number, a string with units or an array of numbers, got {value!r}")
+        return InputError(f"{name} must be a number, a string with units or an array of numbers, got {value!r:.60}")
 
     if isinstance(value, (str, numbers.Real)) and not isinstance(value, bool):
         try:

@@ -18,6 +18,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from numkin import SingularityWarning, analytic, expressions, linkages
+from numkin.errors import InputError
 from numkin.units import UnitError
 
 DEG = np.radians(np.arange(0.0, 361.0))  # 1° grid over one turn
@@ -255,7 +256,7 @@ def test_per_point_input_speed(slider):
     np.testing.assert_allclose(kin["v_x"], w * x1, rtol=1e-10, atol=1e-8)
     with pytest.raises(ValueError, match=r"omega.*shape \(361,\)"):
         analytic.kinematics(slider, np.ones(3))
-    with pytest.raises(TypeError, match="omega"):
+    with pytest.raises(InputError, match="omega"):
         analytic.kinematics(slider, None)
 
 
@@ -265,7 +266,7 @@ def test_points_errors(slider):
 
 
 def test_not_a_sweep():
-    with pytest.raises(TypeError, match="Sweep"):
+    with pytest.raises(InputError, match="Sweep"):
         analytic.derivatives(np.zeros((2, 3)))
 
 

@@ -79,10 +79,16 @@ def test_load_scene_says_what_is_wrong_with_the_file(tmp_path, content, words):
 def test_run_scene_checks_its_arguments_before_computing(monkeypatch, kwargs, words):
     from numkin import pipeline
 
-    monkeypatch.setattr(pipeline, "run_scene", lambda *a, **k: pytest.fail("computed although an argument is bad"))
+    monkeypatch.setattr(pipeline, "_run", lambda *a, **k: pytest.fail("computed although an argument is bad"))
     kwargs = {"scene": "slider-crank", **kwargs}
     with pytest.raises(InputError, match=words):
         run_scene(**kwargs)
+
+
+def test_load_and_run_scene_are_the_schema_and_pipeline_functions():
+    from numkin import pipeline, schema
+
+    assert load_scene is schema.load_scene and run_scene is pipeline.run_scene
 
 
 def test_run_scene_refuses_an_out_that_is_a_file_or_under_one(tmp_path):
@@ -388,3 +394,42 @@ def test_from_model_names_its_arguments_and_says_a_count_alike_from_the_cache(tm
         messages.append(str(caught.value))
         Mechanism.from_model("a shadow", model, [2.0], name="shadow", guess={"x": 1.0})
     assert messages[0] == messages[1] == "shadow: 0 parameter values for 1 parameters ['r']"
+
+
+# ------------------------------------------------------------------- sweeps and rates
+@pytest.mark.parametrize("inputs", [None, ["0", "1"], "0.5", [True, False], [0.5j, 1.0j], [0.5, None]])
+def test_sweep_inputs_that_are_not_numbers_are_named(inputs):
+    with pytest.raises(InputError, match=r"^inputs must be numbers \(input values, rad\), got "):
+        linkages.four_bar(4, 1, 3, 3).sweep(inputs)
+
+
+def test_sweep_inputs_as_sympy_numbers_are_numbers():
+    sweep = linkages.four_bar(4, 1, 3, 3).sweep([sp.pi / 4, sp.pi / 2])
+    np.testing.assert_allclose(sweep["theta4"], [four_bar_closed_form(math.pi / 4)[1], four_bar_closed_form(math.pi / 2)[1]],
+                               atol=1e-12)
+
+
+@pytest.mark.parametrize("guess", [{"theta3": "x", "theta4": 1.5}, ["a", 1.5], {"theta3": [0.5, 1.0], "theta4": 1.5}])
+def test_a_guess_that_is_not_numbers_is_named(guess):
+    with pytest.raises(InputError, match=r"^guess must be numbers \(rad for angles\) for \['theta3', 'theta4'\]"):
+        linkages.four_bar(4, 1, 3, 3).sweep([0.0, 0.1], guess=guess)
+
+
+def test_the_analytic_rates_name_a_mechanism_given_for_a_sweep():
+    from numkin import analytic
+
+    mech = linkages.four_bar(4, 1, 3, 3)
+    with pytest.raises(InputError, match=r"^sweep must be a numkin Sweep .* got Mechanism: give mechanism.sweep"):
+        analytic.derivatives(mech)
+    with pytest.raises(InputError, match=r"^sweep must be a numkin Sweep .* got str$"):
+        analytic.tangent("sweep")
+
+
+@pytest.mark.parametrize("kwargs, name", [({"omega": None}, "omega"), ({"omega": 1.0, "alpha": None}, "alpha")])
+def test_an_input_rate_of_none_is_named(kwargs, name):
+    from numkin import analytic
+
+    sweep = linkages.four_bar(4, 1, 3, 3).sweep(np.radians([0.0, 10.0]))
+    with pytest.raises(InputError, match=rf"^{name} must be a number, a string with units or an array of numbers, "
+                                         "got None"):
+        analytic.kinematics(sweep, **kwargs)

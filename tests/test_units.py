@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+from numkin.errors import InputError
 from numkin.units import (
     UnitError,
     angular_acceleration,
@@ -210,8 +211,8 @@ def test_input_rate_is_the_one_parser():
         ("10 rad/s", "acceleration", None, UnitError, r"alpha: .*angular speed"),
         ([1.0, 2.0], "speed", 3, ValueError, r"shape \(3,\)"),
         ([1.0, np.nan], "speed", 2, ValueError, r"omega\[1\] is not finite"),
-        (None, "speed", None, TypeError, "omega must be"),
-        (True, "speed", None, TypeError, "omega must be"),
+        (None, "speed", None, InputError, "omega must be"),
+        (True, "speed", None, InputError, "omega must be"),
         ("1 rad/s", "jerk", None, ValueError, "kind"),
     ],
 )
