@@ -567,3 +567,10 @@ def test_every_error_numkin_raises_on_purpose_is_a_numkin_error():
             for number, text in enumerate(path.read_text().splitlines(), 1)
             if "raise ValueError(" in text or "= ValueError(" in text]
     assert bare == []
+
+
+def test_run_summary_gives_the_dimensions_with_their_unit(capsys):
+    # the scene works in metres (crank 80 mm, rod 200 mm): the summary's dimensions say so
+    assert main(["run", "slider-crank"]) == 0
+    out = capsys.readouterr().out
+    assert "  slider-crank (crank 0.08 m, rod 0.2 m, offset 0 m); theta 0..180° step 1°" in out
