@@ -19,7 +19,7 @@ import pytest
 
 from numkin import linkages, report
 from numkin.errors import InputError
-from numkin.report.study import studied_quantity
+from numkin.report.studied import studied_quantity
 
 W = 10.0  # rad/s
 MU = {"mu": ("theta4 - theta3", "angle")}

@@ -13,8 +13,9 @@ from ..errors import InputError
 from ..schemes import point_stencil
 from .study import (
     EPS, UNIT, branch_point, deg_text, exact_derivatives, order_text, position_record, set_caption, set_views,
-    silenced, solve_points, studied_quantity,
+    silenced, solve_points,
 )
+from .studied import studied_quantity
 
 __all__ = [
     "ROUNDOFF_SCHEMES",

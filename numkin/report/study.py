@@ -4,9 +4,8 @@ The table modules of :mod:`numkin.report` (:mod:`~numkin.report.convergence`,
 :mod:`~numkin.report.workprecision`, :mod:`~numkin.report.roundoff`,
 :mod:`~numkin.report.newton_tables`, :mod:`~numkin.report.tolerance`) build on
 these: the input speed and the quantity studied (an unknown or a derived
-quantity of :mod:`numkin.derived`: a :class:`StudiedQuantity`, checked once,
-that gives its values, exact derivatives and differences over any sweep); the
-grids in points per turn; the names and units of the quantities; sweeps and one-point
+quantity of :mod:`numkin.derived`, checked once; over a sweep it is a
+:class:`~numkin.report.studied.StudiedQuantity`); the grids in points per turn; the names and units of the quantities; sweeps and one-point
 solves on the branch of the sweep from the starting guess (:func:`branch_point`),
 by numkin's Newton (:func:`solve_points`); the caption and the solved positions a table
 carries in ``DataFrame.attrs``.
@@ -18,9 +17,6 @@ Examples
 >>> mech = linkages.chained_four_bars()
 >>> quantity_labels(mech, "beta")[1], unknown_index(mech, "beta")
 ('omega_beta [rad/s]', 2)
->>> mu = studied_quantity(linkages.four_bar(4, 1, 3, 3).add_quantities({"mu": ("theta4 - theta3", "angle")}), "mu")
->>> mu.is_angle, mu.labels[2], mu.title
-(True, 'alpha_mu [rad/s^2]', 'mu = theta4 - theta3')
 >>> grid_inputs(36, 0.0, TURN).size                 # a full turn: N + 1 samples
 37
 >>> point = branch_point(mech, math.radians(100))   # continued from the guess at 0 deg
@@ -36,8 +32,7 @@ import time
 import warnings
 from contextlib import contextmanager
 from contextvars import ContextVar
-from dataclasses import dataclass
-from typing import Any, Callable, Mapping, Sequence
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -54,8 +49,7 @@ __all__ = [
     "VARIES",
     "input_speed",
     "unknown_index",
-    "StudiedQuantity",
-    "studied_quantity",
+    "check_quantity",
     "quantity_labels",
     "table_quantities",
     "deg_text",
@@ -67,6 +61,7 @@ __all__ = [
     "check_index",
     "silenced",
     "shared_results",
+    "shared_result",
     "median_time",
     "timing_repeats",
     "solve_points",
@@ -109,8 +104,9 @@ def unknown_index(mechanism, quantity: str) -> int:
     return mechanism.unknowns.index(quantity)
 
 
-def _check_name(mechanism, quantity) -> None:
-    """An InputError unless `quantity` names an unknown or a derived quantity of the mechanism."""
+def check_quantity(mechanism, quantity) -> None:
+    """An InputError unless `quantity` names an unknown or a derived quantity (:mod:`numkin.derived`) of the
+    mechanism: what an error table can study."""
     derived = list(getattr(mechanism, "derived", {}))
     if isinstance(quantity, str) and (quantity in mechanism.unknowns or quantity in derived):
         return
@@ -120,204 +116,11 @@ def _check_name(mechanism, quantity) -> None:
                      f"choose one of {list(mechanism.unknowns)}{also}")
 
 
-def _row(value, size: int) -> np.ndarray:
-    """One row of a compiled expression's output as an (size,) array (a constant broadcast)."""
-    return np.array(np.broadcast_to(np.asarray(value).reshape(-1), (size,)))
-
-
-@dataclass(frozen=True, eq=False)
-class StudiedQuantity:
-    """What an error table studies: an unknown or a derived quantity, over any sweep of its mechanism.
-
-    The tables of :mod:`numkin.report` ask it, never a row index, for the
-    quantity's sampled values, its exact derivatives with respect to the
-    input and its finite differences, so that an unknown (``"beta"``) and
-    a derived quantity (``"mu"``, :mod:`numkin.derived`) are studied alike.
-    Made by :func:`studied_quantity`.
-
-    Attributes
-    ----------
-    mechanism : Mechanism
-    name : str
-    dimension : {"angle", "length"}
-        An angle (rad) is differenced unwrapped, and a full turn may add
-        whole turns to it, as the unknowns' angles
-        (:func:`numkin.kinematics.prepare_rows`).
-    index : int or None
-        Its row among the unknowns; None for a derived quantity.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from numkin import linkages
-    >>> mech = linkages.slider_crank(80, 200).add_quantities({"gap": ("x - r*cos(theta)", "length")})
-    >>> gap = studied_quantity(mech, "gap")
-    >>> s = mech.sweep(np.radians([0.0, 90.0]))
-    >>> print(gap.values(s).round(4), gap.exact(s)[1].round(4))   # sqrt(l^2 - r^2 sin^2), its d2/dtheta2
-    [200.     183.303] [-32.      34.9149]
-    """
-
-    mechanism: Any
-    name: str
-    dimension: str
-    index: int | None = None
-
-    @property
-    def is_angle(self) -> bool:
-        """Whether the quantity is an angle (rad)."""
-        return self.dimension == "angle"
-
-    @property
-    def derived(self) -> bool:
-        """Whether it is a derived quantity (not an unknown)."""
-        return self.index is None
-
-    @property
-    def title(self) -> str:
-        """Its name, and for a derived quantity its expression: ``"beta"``, ``"mu = theta4 - theta3"``."""
-        if not self.derived:
-            return self.name
-        return f"{self.name} = {self.mechanism.derived[self.name].expression}"
-
-    @property
-    def labels(self) -> dict:
-        """:func:`quantity_labels` of the quantity."""
-        return quantity_labels(self.mechanism, self.name)
-
-    @property
-    def quantities(self) -> dict:
-        """:func:`table_quantities` of the quantity (a table's ``attrs["quantities"]``)."""
-        return table_quantities(self.mechanism, self.name)
-
-    def work(self, sweep) -> int:
-        """Point evaluations of the derived quantity's compiled expression a method spends over `sweep`.
-
-        Every method evaluates it once per input (its values for the
-        differences, its chain rule for the exact derivatives): the sweep's
-        input count; 0 for an unknown, whose values are the sweep's own.
-        """
-        return int(np.asarray(sweep.inputs).size) if self.derived else 0
-
-    def _functions(self, rates: bool = True) -> tuple:
-        from ..derived import bind
-        from ..expressions import expression_functions
-
-        mech = self.mechanism
-        d = mech.derived[self.name]
-        key = ("derived", ((d.name, str(d.expression), d.dimension),))  # compiled once per mechanism
-        return expression_functions(mech, key, lambda: [bind(mech, d)], rates)
-
-    def _finite(self, values, given, t, what: str) -> np.ndarray:
-        """`values`, or an InputError naming the first input where they are not finite while `given` is."""
-        bad = np.flatnonzero(~np.isfinite(values) & np.all(np.isfinite(given), axis=0))
-        if bad.size:
-            raise InputError(
-                f"{self.mechanism.name}: {what} of the quantity {self.title!r} is not finite at input "
-                f"{math.degrees(float(t[bad[0]])):.6g} deg ({bad.size} of {t.size} inputs): its expression is "
-                "undefined there; the error tables need it over the whole sweep"
-            )
-        return values
-
-    def at(self, x, t) -> np.ndarray:
-        """Its values at the positions `x` (n, M) of the unknowns and the inputs `t` (M,), rad."""
-        t = np.atleast_1d(np.asarray(t, dtype=float))
-        x = np.asarray(x, dtype=float).reshape(-1, t.size)
-        if not self.derived:
-            return x[self.index].copy()
-        (f,) = self._functions(rates=False)
-        with np.errstate(all="ignore"):
-            e = _row(f(*x, t, *self.mechanism.parameter_values), t.size)
-        return self._finite(e, x, t, "the value")
-
-    def values(self, sweep) -> np.ndarray:
-        """Its values over `sweep` (rad or the length unit)."""
-        return self.at(sweep.values, sweep.inputs)
-
-    def rates(self, x, t, dq, d2q=None) -> tuple:
-        """``(de/dtheta, d2e/dtheta2)`` from the unknowns' rates `dq`, `d2q` (n, M) at `x`, `t`.
-
-        The chain rule of :mod:`numkin.expressions` for a derived quantity
-        (exact: the unknowns' rates carry all the error); the unknown's own
-        row for an unknown. Without `d2q`, the second is None.
-        """
-        t = np.atleast_1d(np.asarray(t, dtype=float))
-        dq = np.asarray(dq, dtype=float).reshape(-1, t.size)
-        if d2q is not None:
-            d2q = np.asarray(d2q, dtype=float).reshape(-1, t.size)
-        if not self.derived:
-            return dq[self.index].copy(), None if d2q is None else d2q[self.index].copy()
-        _, f1, f2 = self._functions()
-        x = np.asarray(x, dtype=float).reshape(-1, t.size)
-        args = (*x, *dq, *(np.zeros_like(dq) if d2q is None else d2q), t, *self.mechanism.parameter_values)
-        with np.errstate(all="ignore"):
-            first = self._finite(_row(f1(*args), t.size), np.vstack([x, dq]), t, "the first derivative")
-            second = None if d2q is None else self._finite(_row(f2(*args), t.size), np.vstack([x, dq, d2q]), t,
-                                                         "the second derivative")
-        return first, second
-
-    def exact(self, sweep, quiet: bool = True, *, fresh: bool = False) -> tuple:
-        """The exact ``(dq/dtheta, d2q/dtheta2)`` of the quantity over `sweep` (from :func:`exact_derivatives`)."""
-        dq, d2q = exact_derivatives(sweep, quiet, fresh=fresh)
-        return self.rates(sweep.values, sweep.inputs, dq, d2q)
-
-    def differenced(self, sweep, scheme, quiet: bool = True, *, fresh: bool = False, close: bool = False):
-        """d/dtheta (or d2/dtheta2) of the quantity over `sweep` by the finite-difference `scheme` (a Scheme).
-
-        An unknown's row of :func:`differenced`; a derived quantity's
-        values differenced as the unknowns are (angles unwrapped, a full
-        turn as periodic). With `close`, a full turn is differenced as
-        periodic even where its end misses its start by the solver's error
-        (:func:`numkin.kinematics.sweep_derivative`).
-        """
-        if not self.derived and not close:
-            return differenced(sweep, scheme, quiet, fresh=fresh)[self.index]
-        if not self.derived:
-            return kinematics.sweep_derivative(sweep, scheme.name, periodic=True, close=True)[self.index]
-
-        def compute():
-            mech, t = self.mechanism, np.asarray(sweep.inputs, dtype=float)
-            periodic = True if close else "auto"
-            rows = kinematics.prepare_rows(self.values(sweep)[None], [self.is_angle], [self.name], t,
-                                           kinematics.sweep_grid(sweep, periodic), mech.length_scale, periodic,
-                                           close=close)
-            return rows.apply(scheme)[0]
-
-        key = ("differenced", id(sweep), scheme.name, self.name, close)
-        return _shared(key, compute, quiet, keep=(sweep,), fresh=fresh)
-
-
-def studied_quantity(mechanism, quantity) -> StudiedQuantity:
-    """The quantity an error table studies: an unknown or a derived quantity, by name (checked).
-
-    Raises
-    ------
-    InputError
-        If `quantity` is neither, naming the unknowns and derived quantities.
-
-    Examples
-    --------
-    >>> from numkin import linkages
-    >>> studied_quantity(linkages.slider_crank(80, 200), "x").index
-    1
-    >>> studied_quantity(linkages.slider_crank(80, 200), "mu")  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    ...
-    numkin.errors.InputError: quantity 'mu' is neither an unknown nor a derived quantity of slider-crank ...
-    """
-    if isinstance(quantity, StudiedQuantity):
-        return quantity
-    _check_name(mechanism, quantity)
-    if quantity in mechanism.unknowns:
-        dimension = "angle" if quantity in mechanism.angles else "length"
-        return StudiedQuantity(mechanism, quantity, dimension, mechanism.unknowns.index(quantity))
-    return StudiedQuantity(mechanism, quantity, mechanism.derived[quantity].dimension)
-
-
 def _rates(mechanism, quantity: str) -> dict:
     """The Quantities of one quantity's rates: 1, 2 (with respect to time), "d1", "d2" (to the input)."""
     from ..quantities import catalogue
 
-    _check_name(mechanism, quantity)
+    check_quantity(mechanism, quantity)
     position = catalogue(mechanism, (0,), points=False)[quantity].with_source("analytic")
     first, by_input = position.derivative(), position.derivative("input")
     return {1: first, 2: first.derivative(), "d1": by_input, "d2": by_input.derivative()}
@@ -419,6 +222,8 @@ def grid_study(mechanism, omega, quantity: str, grids, span: float, schemes) -> 
     of `quantity` (an unknown or a derived quantity), `periodic` whether
     `span` is a full turn.
     """
+    from .studied import studied_quantity
+
     w = input_speed(omega)
     studied = studied_quantity(mechanism, quantity)
     periodic = full_turn(span)
@@ -563,7 +368,7 @@ def _key(value):
     return None
 
 
-def _shared(key, compute: Callable, quiet: bool, keep=(), fresh: bool = False):
+def shared_result(key, compute: Callable, quiet: bool = True, keep=(), fresh: bool = False):
     """``compute()`` (its warnings silenced if `quiet`), once per `key` inside :func:`shared_results`.
 
     `keep` holds the objects whose ``id`` is in `key`, so that no other object takes that id while the
@@ -592,7 +397,7 @@ def solve_sweep(mechanism, inputs, guess=None, *, quiet: bool = True, shared: bo
     """
     parts = _key((np.asarray(inputs, dtype=float), guess, sorted(kwargs.items()))) if shared else None
     key = None if parts is None else ("sweep", id(mechanism), parts)
-    return _shared(key, lambda: mechanism.sweep(inputs, guess, **kwargs), quiet, keep=(mechanism,))
+    return shared_result(key, lambda: mechanism.sweep(inputs, guess, **kwargs), quiet, keep=(mechanism,))
 
 
 def branch_point(mechanism, angle: float, guess=None, start: float = 0.0) -> Sweep:
@@ -629,7 +434,7 @@ def differenced(sweep: Sweep, scheme, quiet: bool = True, *, fresh: bool = False
     Inside :func:`shared_results`, once per sweep and scheme; with `fresh`
     (where the work is counted or timed) computed anew, and kept.
     """
-    return _shared(("differenced", id(sweep), scheme.name), lambda: kinematics.sweep_derivative(sweep, scheme.name),
+    return shared_result(("differenced", id(sweep), scheme.name), lambda: kinematics.sweep_derivative(sweep, scheme.name),
                    quiet, keep=(sweep,), fresh=fresh)
 
 
@@ -639,7 +444,7 @@ def exact_derivatives(sweep: Sweep, quiet: bool = True, *, fresh: bool = False) 
     Inside :func:`shared_results`, once per sweep; with `fresh` (where the
     evaluations are counted or timed) computed anew, and kept.
     """
-    return _shared(("exact", id(sweep)), lambda: analytic.derivatives(sweep), quiet, keep=(sweep,), fresh=fresh)
+    return shared_result(("exact", id(sweep)), lambda: analytic.derivatives(sweep), quiet, keep=(sweep,), fresh=fresh)
 
 
 def order_text(scheme) -> str:

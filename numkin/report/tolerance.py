@@ -14,8 +14,9 @@ from ..schemes import own_stencil_points
 from ..sweep import Sweep
 from .study import (
     TURN, check_index, deg_text, full_turn, grid_inputs, input_speed, position_record, set_caption, set_views,
-    solve_sweep, studied_quantity,
+    solve_sweep,
 )
+from .studied import studied_quantity
 
 __all__ = [
     "STUDENT_RULES",
