@@ -296,3 +296,24 @@ def test_a_quantity_undefined_on_part_of_the_sweep_is_refused_by_name():
     mech = linkages.slider_crank(R, L).add_quantities({"root": ("sqrt(x - 250)", "length")})
     with pytest.raises(InputError, match=r"quantity 'root = sqrt\(x - 250\)' is not finite at input"):
         report.convergence_table(mech, omega=W, quantity="root", grids=(36,), schemes=("centred",))
+
+
+def test_an_angle_reduced_by_atan2_is_differenced_across_its_cut():
+    """The direction of the crank pin seen from the rocker pivot, atan2(sin t, cos t - 4), jumps from pi to -pi at
+    t = 180 deg; its derivative (1 - 4 cos t) / (17 - 8 cos t), by hand, is smooth there."""
+    ang = ("atan2(r2*sin(theta2), r2*cos(theta2) - r1)", "angle")
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"ang": ang})
+    ro = report.roundoff_table(mech, quantity="ang", check_angle=math.pi, schemes=("centred",))
+    h = ro.attrs["steps"]["rel error at h = 1e-02 rad [-]"]
+    h = (math.pi + h) - math.pi
+    closed = np.unwrap(np.arctan2(np.sin([math.pi - h, math.pi + h]), np.cos([math.pi - h, math.pi + h]) - 4))
+    by_hand = (closed[1] - closed[0]) / (2 * h)
+    assert ro["exact value [unit of quantity]"].iloc[0] == pytest.approx(0.2, rel=1e-13)
+    assert ro["rel error at h = 1e-02 rad [-]"].iloc[0] == pytest.approx(abs(by_hand - 0.2) / 0.2, rel=1e-6)
+    with pytest.warns(UserWarning, match="jump by more than 180"):
+        conv = report.convergence_table(mech, omega=W, quantity="ang", grids=(72,), schemes=("centred",))
+    t = np.linspace(0.0, 2 * np.pi, 73)[:-1]
+    y = np.unwrap(np.arctan2(np.sin(t), np.cos(t) - 4))  # returns to its start: it does not turn
+    est = (np.roll(y, -1) - np.roll(y, 1)) / (2 * (t[1] - t[0]))
+    exact = (1 - 4 * np.cos(t)) / (17 - 8 * np.cos(t))
+    assert conv["max abs error [unit of quantity]"].iloc[0] == pytest.approx(W * np.abs(est - exact).max(), rel=1e-8)

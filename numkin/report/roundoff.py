@@ -285,7 +285,7 @@ def roundoff_table(
         kk = np.array(offsets, dtype=float)
         tt = theta + eff[:, None] * kk[None, :]  # (S, K)
         solved = _samples(mechanism, base, tt.reshape(-1))
-        vals = studied.at(solved, tt.reshape(-1)).reshape(S, len(offsets))
+        vals = studied.near(studied.at(solved, tt.reshape(-1)), v0).reshape(S, len(offsets))
         samples.update({k: vals[:, c] for c, k in enumerate(offsets)})
     rows = []
     scan_errors = {}
@@ -380,8 +380,9 @@ def _error_at(studied, base, scheme, stencils, theta, h, exact) -> float:
     else:
         ks, ws = stencils[scheme.name]
         tt = theta + h * ks.astype(float)
-        vals = studied.at(_samples(studied.mechanism, base, tt), tt)
-        vals[ks == 0] = studied.values(base)[0]
+        v0 = studied.values(base)[0]
+        vals = studied.near(studied.at(_samples(studied.mechanism, base, tt), tt), v0)
+        vals[ks == 0] = v0
         est = float(np.sum(ws * vals) / h**scheme.derivative)
     err = abs(est - exact)
     return err / abs(exact) if exact != 0 else err

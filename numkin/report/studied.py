@@ -31,7 +31,9 @@ import numpy as np
 
 from .. import kinematics
 from ..errors import InputError
-from .study import check_quantity, differenced, exact_derivatives, quantity_labels, shared_result, table_quantities
+from .study import (
+    TURN, check_quantity, differenced, exact_derivatives, quantity_labels, shared_result, table_quantities,
+)
 
 __all__ = ["StudiedQuantity", "studied_quantity"]
 
@@ -145,6 +147,19 @@ class StudiedQuantity:
             e = _row(f(*x, t, *self.mechanism.parameter_values), t.size)
         return self._finite(e, x, t, "the value")
 
+    def near(self, values, reference) -> np.ndarray:
+        """`values` moved by whole turns to lie within pi of `reference`, for an angle; as they are otherwise.
+
+        A derived angle may be reduced to (-pi, pi] by its expression
+        (``atan2``): samples of one stencil across that cut are brought
+        together before they are differenced. Values already within pi are
+        returned bit for bit.
+        """
+        values = np.asarray(values, dtype=float)
+        if not self.is_angle:
+            return values
+        return values - TURN * np.round((values - reference) / TURN)
+
     def values(self, sweep) -> np.ndarray:
         """Its values over `sweep` (rad or the length unit)."""
         return self.at(sweep.values, sweep.inputs)
@@ -172,7 +187,11 @@ class StudiedQuantity:
         return first, second
 
     def exact(self, sweep, quiet: bool = True, *, fresh: bool = False) -> tuple:
-        """The exact ``(dq/dtheta, d2q/dtheta2)`` of the quantity over `sweep` (from :func:`~numkin.report.study.exact_derivatives`)."""
+        """The exact ``(dq/dtheta, d2q/dtheta2)`` of the quantity over `sweep`.
+
+        From the unknowns' analytic rates (:func:`~numkin.report.study.exact_derivatives`, shared by the
+        tables of one report).
+        """
         dq, d2q = exact_derivatives(sweep, quiet, fresh=fresh)
         return self.rates(sweep.values, sweep.inputs, dq, d2q)
 

@@ -5,7 +5,8 @@ The table modules of :mod:`numkin.report` (:mod:`~numkin.report.convergence`,
 :mod:`~numkin.report.newton_tables`, :mod:`~numkin.report.tolerance`) build on
 these: the input speed and the quantity studied (an unknown or a derived
 quantity of :mod:`numkin.derived`, checked once; over a sweep it is a
-:class:`~numkin.report.studied.StudiedQuantity`); the grids in points per turn; the names and units of the quantities; sweeps and one-point
+:class:`~numkin.report.studied.StudiedQuantity`); the grids in points per
+turn; the names and units of the quantities; sweeps and one-point
 solves on the branch of the sweep from the starting guess (:func:`branch_point`),
 by numkin's Newton (:func:`solve_points`); the caption and the solved positions a table
 carries in ``DataFrame.attrs``.

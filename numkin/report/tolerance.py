@@ -390,7 +390,5 @@ def _missing(studied, sweep, step) -> float:
     """The largest change of the studied quantity that the Newton `step` (n, N) still missing would make."""
     if not studied.derived:
         return float(np.max(np.abs(step[studied.index])))
-    change = studied.at(sweep.values + step, sweep.inputs) - studied.values(sweep)
-    if studied.is_angle:
-        change = np.remainder(change + math.pi, TURN) - math.pi
-    return float(np.max(np.abs(change)))
+    now = studied.values(sweep)
+    return float(np.max(np.abs(studied.near(studied.at(sweep.values + step, sweep.inputs), now) - now)))
