@@ -310,3 +310,19 @@ def test_an_angle_reduced_by_atan2_is_differenced_across_its_cut():
     est = (np.roll(y, -1) - np.roll(y, 1)) / (2 * (t[1] - t[0]))
     exact = (1 - 4 * np.cos(t)) / (17 - 8 * np.cos(t))
     assert conv["max abs error [unit of quantity]"].iloc[0] == pytest.approx(W * np.abs(est - exact).max(), rel=1e-8)
+
+
+def test_a_derived_quantity_equal_to_an_unknown_has_that_unknowns_tables():
+    """t4 = theta4 declared as a derived quantity: every error is the unknown's own (the same samples, the same
+    rates), whatever path the tables take for it; only the work counts its expression's evaluations."""
+    mech = linkages.slider_crank(R, L).add_quantities({"t3": ("theta3", "angle"), "xx": ("x", "length")})
+    for unknown, derived in (("theta3", "t3"), ("x", "xx")):
+        kwargs = dict(omega=W, grids=(36, 72), schemes=("centred", "five_point_second"))
+        a = report.convergence_table(mech, quantity=unknown, **kwargs)
+        b = report.convergence_table(mech, quantity=derived, **kwargs)
+        errors = [c for c in a.columns if c.startswith(("max ", "RMS ", "observed "))]
+        np.testing.assert_allclose(b[errors].to_numpy(), a[errors].to_numpy(), rtol=1e-12, atol=0)
+        ro_a = report.roundoff_table(mech, quantity=unknown, check_angle=math.radians(50))
+        ro_b = report.roundoff_table(mech, quantity=derived, check_angle=math.radians(50))
+        steps = list(ro_a.attrs["steps"])
+        np.testing.assert_allclose(ro_b[steps].to_numpy(), ro_a[steps].to_numpy(), rtol=1e-12, atol=0)
