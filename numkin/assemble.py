@@ -376,8 +376,11 @@ def _check_names(scene: Scene, mech) -> None:
                     f"quantities: {', '.join(valid)}",
                 )
     quantity = scene.report.get("quantity")
-    if quantity is not None and quantity not in unknowns:
-        scene.fail("[report] quantity", f"'{quantity}' is not an unknown{nearest(quantity, unknowns)}; unknowns: {', '.join(unknowns)}")
+    studied = unknowns + list(mech.derived)  # the error tables study an unknown or a derived quantity
+    if quantity is not None and quantity not in studied:
+        derived = f"; derived quantities ([mechanism.quantities]): {', '.join(mech.derived)}" if mech.derived else ""
+        scene.fail("[report] quantity", f"'{quantity}' is neither an unknown nor a derived quantity"
+                                        f"{nearest(quantity, studied)}; unknowns: {', '.join(unknowns)}{derived}")
     if scene.figures:
         from .figures import parse_spec  # does not import matplotlib
 

@@ -1,7 +1,7 @@
 """Error-analysis reports: error against step, error against run time, solver settings.
 
 Every table is a :class:`pandas.DataFrame` returned by one function, built
-from a mechanism and plain settings (input speed, the unknown to study, a
+from a mechanism and plain settings (input speed, the quantity to study, a
 check angle in rad, grids, schemes), so that a notebook can call each one
 and :func:`full_report` can call them all for a scene:
 
@@ -29,6 +29,25 @@ function                      what the table shows
                               against numkin's, and what they do to differenced omega, alpha
 ============================  ===============================================================
 
+What is studied
+---------------
+The ``quantity`` of a table is an unknown of the mechanism (``"beta"``) or
+one of its derived quantities (:mod:`numkin.derived`: an expression of the
+unknowns, the input and the dimensions declared once, such as a four-bar's
+transmission angle ``mu = theta4 - theta3``; a scene's ``[report] quantity``
+names either). A derived quantity is studied as an unknown is: its values
+over each sweep are differenced by the same schemes (an angle unwrapped, a
+full turn as periodic, whole turns included) and compared with its exact
+derivatives (the chain rule through the unknowns' analytic rates,
+:func:`numkin.expressions.derived_derivatives`); the round-off table
+differences its values at the positions solved at ``theta + k h``; its
+complex step is the unknowns' complex-step rates carried through that chain
+rule; the tolerance table differences its values on each loosely solved
+sweep. The Newton and Jacobian tables study the solve of all the unknowns at
+once and take no quantity: they are the same whichever quantity the report
+studies. One object, :class:`~numkin.report.studied.StudiedQuantity`, gives
+every table these values, derivatives and labels.
+
 Conventions
 -----------
 * Angles are in rad inside; tables show degrees only in labelled columns
@@ -37,7 +56,9 @@ Conventions
 * A row's ``quantity`` names what was differentiated, with its unit:
   ``"omega_beta [rad/s]"`` (first-derivative schemes) or
   ``"alpha_beta [rad/s^2]"`` (second-derivative schemes); for a length
-  unknown ``"v_x [mm/s]"`` / ``"a_x [mm/s^2]"``. Absolute errors are in
+  unknown ``"v_x [mm/s]"`` / ``"a_x [mm/s^2]"``; a derived quantity's are
+  named the same way (``"omega_mu [rad/s]"``, ``"v_gap [mm/s]"``), from its
+  :class:`~numkin.quantities.Quantity`. Absolute errors are in
   that unit (column names say ``[unit of quantity]``); relative errors are
   divided by the largest magnitude of the exact quantity over the sweep,
   ``[-]``.
@@ -71,7 +92,8 @@ Modules, one table family each, in the order :func:`full_report` runs them:
 (with :mod:`~numkin.report.counting`, the work measure),
 :mod:`~numkin.report.roundoff`, :mod:`~numkin.report.newton_tables`,
 :mod:`~numkin.report.tolerance`; what they share (settings, grids, labels,
-points on the sweep's branch, captions) is :mod:`~numkin.report.study`, and
+points on the sweep's branch, captions) is :mod:`~numkin.report.study`, the
+quantity studied over a sweep :mod:`~numkin.report.studied`, and
 :mod:`~numkin.report.writers` writes the tables. Every name above is
 importable from :mod:`numkin.report` itself.
 
@@ -153,7 +175,9 @@ def full_report(
     omega : float or str
         Input speed of every table (rad/s or a string with units).
     quantity : str
-        The unknown every table studies.
+        The unknown or derived quantity (:mod:`numkin.derived`) the
+        convergence, work-precision, round-off and tolerance tables study
+        (the Newton and Jacobian tables take none).
     check_angle : float
         Input angle (rad) of the point values, the round-off scan and the
         Newton solve; it should lie on every grid.

@@ -10,8 +10,8 @@ import numpy as np
 from ..errors import InputError
 from ..schemes import own_stencil_points
 from .study import (
-    DEFAULT_GRIDS, EPS, TURN, UNIT, check_index, deg_text, differenced, exact_derivatives, grid_inputs, grid_positions,
-    grid_study, order_text, set_caption, set_views, solve_sweep, table_quantities,
+    DEFAULT_GRIDS, EPS, TURN, UNIT, check_index, deg_text, grid_inputs, grid_positions, grid_study, order_text,
+    set_caption, set_views, solve_sweep,
 )
 
 __all__ = [
@@ -44,8 +44,13 @@ def convergence_table(
     omega : float or str
         Constant input speed, rad/s or a string with units (``"450 rad/min"``).
     quantity : str
-        The unknown whose velocity (first-derivative schemes) and
-        acceleration (second-derivative schemes) are compared.
+        The unknown, or derived quantity (:mod:`numkin.derived`, e.g. a
+        four-bar's transmission angle ``"mu"``), whose velocity
+        (first-derivative schemes) and acceleration (second-derivative
+        schemes) are compared. A derived quantity's values over each sweep
+        are differenced as an unknown's are (an angle unwrapped, a full turn
+        as periodic) and compared with its exact derivatives
+        (:func:`numkin.expressions.derived_derivatives`).
     check_angle : float, optional
         Input angle (rad) where the error is also reported; NaN on a grid
         that does not hold it.
@@ -84,8 +89,13 @@ def convergence_table(
     ...                       grids=(90, 180), schemes=("forward",))
     >>> print(t["quantity"].iloc[0], round(float(t["observed order [-]"].iloc[1]), 1))
     v_x [mm/s] 1.0
+    >>> mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"mu": ("theta4 - theta3", "angle")})
+    >>> t = convergence_table(mech, omega=10.0, quantity="mu", grids=(180, 360), schemes=("centred",))
+    >>> print(t["quantity"].iloc[0], round(float(t["observed order [-]"].iloc[1]), 2))
+    omega_mu [rad/s] 2.0
     """
-    w, j, lab, grid_list, periodic, scheme_list = grid_study(mechanism, omega, quantity, grids, span, schemes)
+    w, studied, grid_list, periodic, scheme_list = grid_study(mechanism, omega, quantity, grids, span, schemes)
+    lab = studied.labels
     check_col = (
         f"abs error at {lab['input']} = {deg_text(check_angle)} deg {UNIT}" if check_angle is not None else None
     )
@@ -100,8 +110,8 @@ def convergence_table(
     data = {}
     for n in grid_list:
         s = solve_sweep(mechanism, grid_inputs(n, start, span), guess, quiet=False)
-        dq, d2q = exact_derivatives(s, quiet=False)
-        data[n] = (s, dq[j], d2q[j])
+        dq, d2q = studied.exact(s, quiet=False)
+        data[n] = (s, dq, d2q)
     rows = []
     at_end = set()  # schemes whose error at the check angle is their end stencil's
     floored = set()  # schemes whose error reached the round-off floor on some grid
@@ -111,7 +121,7 @@ def convergence_table(
         for n in grid_list:
             s, dq, d2q = data[n]
             exact = scale * (dq if scheme.derivative == 1 else d2q)
-            est = scale * differenced(s, scheme, quiet=False)[j]
+            est = scale * studied.differenced(s, scheme, quiet=False)
             err = np.abs(est - exact)
             # statistics where the scheme's own stencil applies: one period of a periodic grid; on an
             # open grid the first and last points (one-sided end stencils) have their own column
@@ -139,7 +149,7 @@ def convergence_table(
                 if k is not None and not periodic and not keep.start <= k < keep.stop:
                     at_end.add(scheme.name)
             # the rounding error of differencing samples known to eps |q|: about eps max|q| / h^n
-            floor = ROUNDOFF_UNITS * EPS * float(np.max(np.abs(s.values[j]))) * abs(scale) / h**scheme.derivative
+            floor = ROUNDOFF_UNITS * EPS * float(np.max(np.abs(studied.values(s)))) * abs(scale) / h**scheme.derivative
             at_floor = e_max <= floor
             order = math.nan
             if prev is not None and prev[0] > 0 and e_max > 0 and not (at_floor or prev[2]):
@@ -152,7 +162,7 @@ def convergence_table(
     import pandas as pd
 
     df = pd.DataFrame(rows)
-    df.attrs["quantities"] = table_quantities(mechanism, quantity)
+    df.attrs["quantities"] = studied.quantities
     df.attrs["units"] = {"h [deg]": "deg"}  # what a figure writes on its axis
     ends_col = None if periodic else f"ends abs error {UNIT}"
     set_views(df, [
@@ -174,7 +184,7 @@ def convergence_table(
     )
     return set_caption(
         df,
-        f"Convergence: {mechanism.name}, {quantity}, input speed {w:g} rad/s; error of each scheme "
+        f"Convergence: {mechanism.name}, {studied.title}, input speed {w:g} rad/s; error of each scheme "
         "against the analytic solution over the sweep; observed order from successive grids. Absolute errors "
         f"in {lab['unit1']} ({lab['name1']}, first-derivative schemes) or {lab['unit2']} ({lab['name2']}, "
         "second-derivative schemes)." + ends_text + floor_text,

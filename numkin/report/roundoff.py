@@ -12,9 +12,10 @@ from ..derivatives import get_scheme
 from ..errors import InputError
 from ..schemes import point_stencil
 from .study import (
-    EPS, UNIT, branch_point, deg_text, exact_derivatives, order_text, position_record, quantity_labels, set_caption,
-    set_views, silenced, solve_points, table_quantities, unknown_index,
+    EPS, UNIT, branch_point, deg_text, exact_derivatives, order_text, position_record, set_caption, set_views,
+    silenced, solve_points,
 )
+from .studied import studied_quantity
 
 __all__ = [
     "ROUNDOFF_SCHEMES",
@@ -214,7 +215,12 @@ def roundoff_table(
     ----------
     mechanism : Mechanism
     quantity : str
-        The unknown differentiated.
+        The unknown, or derived quantity (:mod:`numkin.derived`),
+        differentiated. A derived quantity's stencil samples are its
+        expression at the unknowns solved at ``theta + k h``; its complex
+        step is the unknowns' complex-step rate through its exact chain rule
+        (``e_q q' + e_theta``: the complex step's own error, carried
+        through), so its floor is still eps.
     check_angle : float
         Input angle (rad).
     schemes : sequence of str
@@ -252,8 +258,8 @@ def roundoff_table(
     """
     import pandas as pd
 
-    j = unknown_index(mechanism, quantity)
-    lab = quantity_labels(mechanism, quantity)
+    studied = studied_quantity(mechanism, quantity)
+    lab = studied.labels
     steps = [float(h) for h in steps]
     if not steps or not all(math.isfinite(h) and 0 < h < 1 for h in steps):
         raise InputError(f"steps must be positive and below 1 rad, got {steps!r}")
@@ -264,8 +270,9 @@ def roundoff_table(
     stencils = {s.name: stencil(s) for s in sch if s is not None}
     theta = float(check_angle)
     base = branch_point(mechanism, theta, guess, start)
-    dq, d2q = exact_derivatives(base)
-    x0, q1, q2 = base.values[:, 0], dq[:, 0], d2q[:, 0]
+    x0 = base.values[:, 0]
+    v0 = float(studied.values(base)[0])
+    q1, q2 = (float(d[0]) for d in studied.exact(base))
     lo, hi = math.log10(min(steps)), math.log10(max(steps))
     m = int(round((hi - lo) * scan_per_decade))
     scan = sorted(set(steps) | set(10.0 ** np.linspace(hi, lo, m + 1)), reverse=True)
@@ -273,25 +280,24 @@ def roundoff_table(
     eff = np.array([(theta + h) - theta for h in scan])
     S = len(scan)
     offsets = sorted({int(k) for k, _ in stencils.values() for k in k} - {0})
-    samples = {0: np.full(S, x0[j])}
+    samples = {0: np.full(S, v0)}
     if offsets:
         kk = np.array(offsets, dtype=float)
         tt = theta + eff[:, None] * kk[None, :]  # (S, K)
-        dt = tt - theta
-        pred = x0[:, None, None] + q1[:, None, None] * dt + 0.5 * q2[:, None, None] * dt**2
-        solved = solve_points(mechanism, pred.reshape(len(x0), -1), tt.reshape(-1), what="round-off sample")
-        vals = solved.reshape(len(x0), S, len(offsets))[j]
+        solved = _samples(mechanism, base, tt.reshape(-1))
+        vals = studied.near(studied.at(solved, tt.reshape(-1)), v0).reshape(S, len(offsets))
         samples.update({k: vals[:, c] for c, k in enumerate(offsets)})
     rows = []
     scan_errors = {}
     shown = {h: k for k, h in enumerate(scan)}
     for name, scheme in zip(names, sch):
         if scheme is None:
-            deriv, order, exact = 1, 2, q1[j]
-            est = complex_step_scan(mechanism, base, eff)[j]
+            deriv, order, exact = 1, 2, q1
+            est = studied.rates(np.repeat(base.values, S, axis=1), np.repeat(base.inputs, S),
+                                complex_step_scan(mechanism, base, eff))[0]
         else:
             deriv, order = scheme.derivative, scheme.order
-            exact = q1[j] if deriv == 1 else q2[j]
+            exact = q1 if deriv == 1 else q2
             ks, ws = stencils[scheme.name]
             est = sum(w * samples[int(k)] for k, w in zip(ks, ws)) / eff**deriv
         err = np.abs(est - exact)
@@ -309,7 +315,7 @@ def roundoff_table(
         row["measured optimal h [rad]"] = hstar
         row["rel error at measured optimal h [-]"] = estar
         row["rel error measured at that h [-]"] = (
-            _error_at(mechanism, base, j, scheme, stencils, theta, hstar, exact) if math.isfinite(hstar) else math.nan
+            _error_at(studied, base, scheme, stencils, theta, hstar, exact) if math.isfinite(hstar) else math.nan
         )
         scan_errors[row["scheme"]] = [float(v) for v in rel]
         if scheme is None:
@@ -323,17 +329,14 @@ def roundoff_table(
             row["textbook error [-]"] = EPS ** (p / (p + n))
         rows.append(row)
     df = pd.DataFrame(rows)
-    df.attrs["quantities"] = table_quantities(mechanism, quantity)
+    df.attrs["quantities"] = studied.quantities
     caption = (
-        f"Round-off floor: {mechanism.name}, {quantity} at {lab['input']} = {deg_text(theta)} deg on the sweep's "
+        f"Round-off floor: {mechanism.name}, {studied.title} at {lab['input']} = {deg_text(theta)} deg on the sweep's "
         "branch; relative error against the step h, positions solved by Newton to the stopping rule's "
         "tol^(4/3). Measured optimum: where the truncation line C_t h^p and the rounding line C_r eps/h^n, "
         f"fitted to {S} steps, meet (the error there is on the fitted curve)."
     )
-    zero = [lab["d1"] if abs(v) <= 1e-12 * (abs(x0[j]) + 1.0) else None for v in (q1[j],)] + [
-        lab["d2"] if abs(q2[j]) <= 1e-12 * (abs(x0[j]) + 1.0) else None
-    ]
-    zero = [z for z in zero if z]
+    zero = [lab[d] for d, v in (("d1", q1), ("d2", q2)) if abs(v) <= 1e-12 * (abs(v0) + 1.0)]
     if zero:
         caption += (
             f" The exact {' and '.join(zero)} is 0 at this angle: errors are absolute, and symmetric stencils "
@@ -356,20 +359,30 @@ def roundoff_table(
     return set_caption(df, caption, [position_record("check angle", mechanism, theta, x0)])
 
 
-def _error_at(mechanism, base, j, scheme, stencils, theta, h, exact) -> float:
+def _samples(mechanism, base, tt) -> np.ndarray:
+    """The positions (n, M) at the inputs `tt` near the one-point sweep `base`, solved by Newton.
+
+    Each from the second-order Taylor prediction of the exact rates at the base point.
+    """
+    x0 = base.values[:, :1]
+    dq, d2q = exact_derivatives(base)
+    dt = np.asarray(tt, dtype=float)[None, :] - float(base.inputs[0])
+    pred = x0 + dq[:, :1] * dt + 0.5 * d2q[:, :1] * dt**2
+    return solve_points(mechanism, pred, tt, what="round-off sample")
+
+
+def _error_at(studied, base, scheme, stencils, theta, h, exact) -> float:
     """The relative error of one scheme (None: the complex step) measured at the step `h`."""
     h = (theta + h) - theta
     if scheme is None:
-        est = float(silenced(analytic.complex_step, base, h=float(h), order=1)[j, 0])
+        dq = silenced(analytic.complex_step, base, h=float(h), order=1)
+        est = float(studied.rates(base.values, base.inputs, dq)[0][0])
     else:
         ks, ws = stencils[scheme.name]
-        x0 = base.values[:, 0]
-        dq, d2q = exact_derivatives(base)
         tt = theta + h * ks.astype(float)
-        dt = tt - theta
-        pred = x0[:, None] + dq[:, :1] * dt + 0.5 * d2q[:, :1] * dt**2
-        vals = solve_points(mechanism, pred, tt, what="round-off sample")[j]
-        vals[ks == 0] = x0[j]
+        v0 = studied.values(base)[0]
+        vals = studied.near(studied.at(_samples(studied.mechanism, base, tt), tt), v0)
+        vals[ks == 0] = v0
         est = float(np.sum(ws * vals) / h**scheme.derivative)
     err = abs(est - exact)
     return err / abs(exact) if exact != 0 else err

@@ -3,8 +3,10 @@
 The table modules of :mod:`numkin.report` (:mod:`~numkin.report.convergence`,
 :mod:`~numkin.report.workprecision`, :mod:`~numkin.report.roundoff`,
 :mod:`~numkin.report.newton_tables`, :mod:`~numkin.report.tolerance`) build on
-these: the input speed and the unknown studied, checked once; the grids in
-points per turn; the names and units of the quantities; sweeps and one-point
+these: the input speed and the quantity studied (an unknown or a derived
+quantity of :mod:`numkin.derived`, checked once; over a sweep it is a
+:class:`~numkin.report.studied.StudiedQuantity`); the grids in points per
+turn; the names and units of the quantities; sweeps and one-point
 solves on the branch of the sweep from the starting guess (:func:`branch_point`),
 by numkin's Newton (:func:`solve_points`); the caption and the solved positions a table
 carries in ``DataFrame.attrs``.
@@ -48,6 +50,7 @@ __all__ = [
     "VARIES",
     "input_speed",
     "unknown_index",
+    "check_quantity",
     "quantity_labels",
     "table_quantities",
     "deg_text",
@@ -59,6 +62,7 @@ __all__ = [
     "check_index",
     "silenced",
     "shared_results",
+    "shared_result",
     "median_time",
     "timing_repeats",
     "solve_points",
@@ -93,6 +97,7 @@ def input_speed(omega) -> float:
 
 
 def unknown_index(mechanism, quantity: str) -> int:
+    """Row of the unknown `quantity` among the mechanism's unknowns (an InputError for anything else)."""
     if quantity not in mechanism.unknowns:
         raise InputError(
             f"quantity {quantity!r} is not an unknown of {mechanism.name}; choose one of {list(mechanism.unknowns)}"
@@ -100,18 +105,32 @@ def unknown_index(mechanism, quantity: str) -> int:
     return mechanism.unknowns.index(quantity)
 
 
+def check_quantity(mechanism, quantity) -> None:
+    """An InputError unless `quantity` names an unknown or a derived quantity (:mod:`numkin.derived`) of the
+    mechanism: what an error table can study."""
+    derived = list(getattr(mechanism, "derived", {}))
+    if isinstance(quantity, str) and (quantity in mechanism.unknowns or quantity in derived):
+        return
+    also = f" (unknowns) or {derived} (derived quantities)" if derived else (
+        " (unknowns), or declare a derived quantity (Mechanism.add_quantities, [mechanism.quantities])")
+    raise InputError(f"quantity {quantity!r} is neither an unknown nor a derived quantity of {mechanism.name}; "
+                     f"choose one of {list(mechanism.unknowns)}{also}")
+
+
 def _rates(mechanism, quantity: str) -> dict:
-    """The Quantities of one unknown's rates: 1, 2 (with respect to time), "d1", "d2" (to the input)."""
+    """The Quantities of one quantity's rates: 1, 2 (with respect to time), "d1", "d2" (to the input)."""
     from ..quantities import catalogue
 
+    check_quantity(mechanism, quantity)
     position = catalogue(mechanism, (0,), points=False)[quantity].with_source("analytic")
     first, by_input = position.derivative(), position.derivative("input")
     return {1: first, 2: first.derivative(), "d1": by_input, "d2": by_input.derivative()}
 
 
 def quantity_labels(mechanism, quantity: str) -> dict:
-    """Labels, names and units of dq/dt, d2q/dt2, dq/dtheta and d2q/dtheta2 for one unknown, as its
-    :class:`~numkin.quantities.Quantity` objects give them (``table_quantities`` maps each label back)."""
+    """Labels, names and units of dq/dt, d2q/dt2, dq/dtheta and d2q/dtheta2 for one unknown or derived
+    quantity, as its :class:`~numkin.quantities.Quantity` objects give them (``table_quantities`` maps each
+    label back)."""
     q = _rates(mechanism, quantity)
     return {
         "unit": q[1].position().unit,
@@ -122,7 +141,8 @@ def quantity_labels(mechanism, quantity: str) -> dict:
 
 
 def table_quantities(mechanism, quantity: str) -> dict:
-    """``attrs["quantities"]`` of a table about one unknown: each label of :func:`quantity_labels` -> its Quantity.
+    """``attrs["quantities"]`` of a table about one unknown or derived quantity: each label of
+    :func:`quantity_labels` -> its Quantity.
 
     Figures read the quantity, its symbol and unit from here, never from
     the label's text.
@@ -197,16 +217,18 @@ def grid_list(grids) -> list:
 
 
 def grid_study(mechanism, omega, quantity: str, grids, span: float, schemes) -> tuple:
-    """The checked arguments of a study over grids: ``(w, j, labels, grids, periodic, schemes)``.
+    """The checked arguments of a study over grids: ``(w, studied, grids, periodic, schemes)``.
 
-    `w` is the input speed in rad/s, `j` the index of `quantity` among the
-    unknowns, `periodic` whether `span` is a full turn.
+    `w` is the input speed in rad/s, `studied` the :class:`StudiedQuantity`
+    of `quantity` (an unknown or a derived quantity), `periodic` whether
+    `span` is a full turn.
     """
+    from .studied import studied_quantity
+
     w = input_speed(omega)
-    j = unknown_index(mechanism, quantity)
-    lab = quantity_labels(mechanism, quantity)
+    studied = studied_quantity(mechanism, quantity)
     periodic = full_turn(span)
-    return w, j, lab, grid_list(grids), periodic, scheme_list(schemes, periodic)
+    return w, studied, grid_list(grids), periodic, scheme_list(schemes, periodic)
 
 
 def check_index(inputs: np.ndarray, angle: float | None) -> int | None:
@@ -347,7 +369,7 @@ def _key(value):
     return None
 
 
-def _shared(key, compute: Callable, quiet: bool, keep=(), fresh: bool = False):
+def shared_result(key, compute: Callable, quiet: bool = True, keep=(), fresh: bool = False):
     """``compute()`` (its warnings silenced if `quiet`), once per `key` inside :func:`shared_results`.
 
     `keep` holds the objects whose ``id`` is in `key`, so that no other object takes that id while the
@@ -376,7 +398,7 @@ def solve_sweep(mechanism, inputs, guess=None, *, quiet: bool = True, shared: bo
     """
     parts = _key((np.asarray(inputs, dtype=float), guess, sorted(kwargs.items()))) if shared else None
     key = None if parts is None else ("sweep", id(mechanism), parts)
-    return _shared(key, lambda: mechanism.sweep(inputs, guess, **kwargs), quiet, keep=(mechanism,))
+    return shared_result(key, lambda: mechanism.sweep(inputs, guess, **kwargs), quiet, keep=(mechanism,))
 
 
 def branch_point(mechanism, angle: float, guess=None, start: float = 0.0) -> Sweep:
@@ -413,7 +435,7 @@ def differenced(sweep: Sweep, scheme, quiet: bool = True, *, fresh: bool = False
     Inside :func:`shared_results`, once per sweep and scheme; with `fresh`
     (where the work is counted or timed) computed anew, and kept.
     """
-    return _shared(("differenced", id(sweep), scheme.name), lambda: kinematics.sweep_derivative(sweep, scheme.name),
+    return shared_result(("differenced", id(sweep), scheme.name), lambda: kinematics.sweep_derivative(sweep, scheme.name),
                    quiet, keep=(sweep,), fresh=fresh)
 
 
@@ -423,7 +445,7 @@ def exact_derivatives(sweep: Sweep, quiet: bool = True, *, fresh: bool = False) 
     Inside :func:`shared_results`, once per sweep; with `fresh` (where the
     evaluations are counted or timed) computed anew, and kept.
     """
-    return _shared(("exact", id(sweep)), lambda: analytic.derivatives(sweep), quiet, keep=(sweep,), fresh=fresh)
+    return shared_result(("exact", id(sweep)), lambda: analytic.derivatives(sweep), quiet, keep=(sweep,), fresh=fresh)
 
 
 def order_text(scheme) -> str:

@@ -7,16 +7,16 @@ import warnings
 
 import numpy as np
 
-from .. import kinematics
 from ..derivatives import get_scheme
 from ..errors import InputError, NumkinError
 from ..newton_rules import check_tol
 from ..schemes import own_stencil_points
 from ..sweep import Sweep
 from .study import (
-    TURN, check_index, deg_text, differenced, exact_derivatives, full_turn, grid_inputs, input_speed, position_record,
-    quantity_labels, set_caption, set_views, solve_sweep, table_quantities, unknown_index,
+    TURN, check_index, deg_text, full_turn, grid_inputs, input_speed, position_record, set_caption, set_views,
+    solve_sweep,
 )
+from .studied import studied_quantity
 
 __all__ = [
     "STUDENT_RULES",
@@ -207,7 +207,8 @@ def tolerance_table(
     omega : float or str
         Input speed.
     quantity : str
-        The unknown studied.
+        The unknown, or derived quantity (:mod:`numkin.derived`), studied:
+        a derived quantity's values on each solve's sweep are differenced.
     check_angle : float
         Input angle (rad) of the point values; must be on the grid.
     points_per_turn : int
@@ -228,7 +229,8 @@ def tolerance_table(
         ``rule`` (a short name), ``stopping rule`` (in full), ``tol`` (in the rule's own terms), ``Newton iterations per point
         (mean)``, ``max |F| [length unit]``, ``<quantity> error estimate
         max|J^-1 F| [unit]`` (the studied unknown's Newton step still
-        missing), the velocity and acceleration at the check angle
+        missing; for a derived quantity, the change of its value that step
+        would make), the velocity and acceleration at the check angle
         with their relative errors [%] (blank where the exact value is 0),
         their largest relative errors over
         the sweep [%] (over ``max |exact|``) and where the acceleration error is
@@ -246,8 +248,8 @@ def tolerance_table(
     import pandas as pd
 
     w = input_speed(omega)
-    j = unknown_index(mechanism, quantity)
-    lab = quantity_labels(mechanism, quantity)
+    studied = studied_quantity(mechanism, quantity)
+    lab = studied.labels
     loose_tol = check_tol(loose_tol, "loose_tol")
     s1, s2 = get_scheme(method), get_scheme(second_method)
     if s1.derivative != 1 or s2.derivative != 2:
@@ -260,8 +262,8 @@ def tolerance_table(
             f"{math.degrees(start):.6g} deg"
         )
     ref = solve_sweep(mechanism, inputs, guess, quiet=False)
-    dq, d2q = exact_derivatives(ref, quiet=False)
-    w_ex, a_ex = w * dq[j], w * w * d2q[j]
+    dq, d2q = studied.exact(ref, quiet=False)
+    w_ex, a_ex = w * dq, w * w * d2q
     deg = deg_text(check_angle)
     at = f"at {lab['input']} = {deg} deg"
     cols = {
@@ -332,12 +334,9 @@ def tolerance_table(
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             try:
-                if periodic:  # every row alike: a loose sweep's end mismatch is its position error
-                    d1 = w * kinematics.sweep_derivative(s, s1.name, periodic=True, close=True)[j]
-                    d2 = w * w * kinematics.sweep_derivative(s, s2.name, periodic=True, close=True)[j]
-                else:
-                    d1 = w * differenced(s, s1)[j]
-                    d2 = w * w * differenced(s, s2)[j]
+                # periodic: every row alike, a loose sweep's end mismatch is its position error
+                d1 = w * studied.differenced(s, s1, close=periodic)
+                d2 = w * w * studied.differenced(s, s2, close=periodic)
             except ValueError as exc:  # e.g. a student sweep that cannot be differenced
                 d1 = d2 = np.full(inputs.size, math.nan)
                 note = (note + "; " if note else "") + f"not differenced: {exc}"
@@ -349,7 +348,7 @@ def tolerance_table(
                 "tol": float(tol),
                 "Newton iterations per point (mean)": float(np.mean(s.iterations)),
                 f"max |F| [{lu}]": float(np.max(np.abs(f))),
-                f"{quantity} error estimate max|J^-1 F| [{lab['unit']}]": float(np.max(np.abs(step[j]))),
+                f"{quantity} error estimate max|J^-1 F| [{lab['unit']}]": _missing(studied, s, step),
                 cols["w"]: float(d1[k]),
                 cols["we"]: _percent(d1[k], w_ex[k], w_ex),
                 cols["a"]: float(d2[k]),
@@ -363,7 +362,7 @@ def tolerance_table(
             }
         )
     df = pd.DataFrame(rows)
-    df.attrs["quantities"] = table_quantities(mechanism, quantity)
+    df.attrs["quantities"] = studied.quantities
     set_views(df, [
         ("the stopping rules", ["rule", "stopping rule", "tol"]),
         ("what each leaves in the positions", ["rule", "Newton iterations per point (mean)", f"max |F| [{lu}]",
@@ -373,7 +372,7 @@ def tolerance_table(
     ], row_keys=["rule"])
     return set_caption(
         df,
-        f"Solver tolerance: {mechanism.name}, {quantity}, {int(points_per_turn)} points per turn"
+        f"Solver tolerance: {mechanism.name}, {studied.title}, {int(points_per_turn)} points per turn"
         + ("" if full_turn(span) else f" over {math.degrees(span):g} deg from {math.degrees(start):g} deg")
         + f", input speed {w:g} rad/s; "
         f"{lab['name1']} by {s1.name}, {lab['name2']} by {s2.name}, against the analytic values"
@@ -385,3 +384,11 @@ def tolerance_table(
         + ".",
         positions,
     )
+
+
+def _missing(studied, sweep, step) -> float:
+    """The largest change of the studied quantity that the Newton `step` (n, N) still missing would make."""
+    if not studied.derived:
+        return float(np.max(np.abs(step[studied.index])))
+    now = studied.values(sweep)
+    return float(np.max(np.abs(studied.near(studied.at(sweep.values + step, sweep.inputs), now) - now)))

@@ -12,8 +12,8 @@ from ..errors import InputError
 from ..schemes import get_scheme, own_stencil_points
 from .counting import count_evaluations, stencil_evaluations, sweep_evaluations
 from .study import (
-    DEFAULT_GRIDS, EPS, TURN, UNIT, VARIES, differenced, exact_derivatives, grid_inputs, grid_positions, grid_study,
-    median_time, set_caption, set_views, silenced, solve_sweep, table_quantities, timing_repeats,
+    DEFAULT_GRIDS, EPS, TURN, UNIT, VARIES, exact_derivatives, grid_inputs, grid_positions, grid_study, median_time,
+    set_caption, set_views, silenced, solve_sweep, timing_repeats,
 )
 
 __all__ = [
@@ -68,7 +68,12 @@ def work_precision_table(
       are evaluated: the number of points, Newton iterations and linear
       solves. A stencil evaluation (a few multiply-adds) is cheaper than a
       point evaluation (trigonometric functions), so counting each as one
-      overstates, if anything, the cost of the finite differences;
+      overstates, if anything, the cost of the finite differences. For a
+      derived quantity (:mod:`numkin.derived`) every method also evaluates
+      its compiled expression once per input (its values for the
+      differences; its chain rule, applied to the unknowns' rates, for the
+      analytic solution and the complex step): the sweep's input count,
+      added to ``derivative work`` of every row alike;
     * **run time** (only when asked for, with `repeat`) -- medians over `repeat` repeats of
       :func:`time.perf_counter` (after an untimed warm-up): the sweep, the
       derivative alone (:func:`numkin.kinematics.sweep_derivative`, or
@@ -82,7 +87,9 @@ def work_precision_table(
     omega : float or str
         Input speed (rad/s or a string with units).
     quantity : str
-        The unknown studied.
+        The unknown or derived quantity studied (see :func:`convergence_table`).
+        For a derived quantity the complex-step rows are the unknowns'
+        complex-step rates carried through its exact chain rule.
     grids : iterable of int
         Points per turn.
     schemes : sequence of str, optional
@@ -125,7 +132,8 @@ def work_precision_table(
     """
     import pandas as pd
 
-    w, j, lab, grid_list, periodic, scheme_list = grid_study(mechanism, omega, quantity, grids, span, schemes)
+    w, studied, grid_list, periodic, scheme_list = grid_study(mechanism, omega, quantity, grids, span, schemes)
+    lab = studied.labels
     repeat = timing_repeats(repeat)
     rows = []
     per_grid = {}
@@ -136,7 +144,7 @@ def work_precision_table(
             return solve_sweep(mechanism, inputs, guess, shared=False)
 
         s = solve_sweep(mechanism, inputs, guess)
-        dq, d2q = exact_derivatives(s)
+        dq, d2q = studied.exact(s)
         done = {}  # the complex step, counted once: the reference of the analytic rows and a row of its own
         h = analytic.COMPLEX_STEP
         with count_evaluations(mechanism) as cs_count:  # one complex solve serves both orders
@@ -145,25 +153,36 @@ def work_precision_table(
         with count_evaluations(mechanism) as cs_count:
             d2 = silenced(analytic.complex_tangent, mechanism, x, s.inputs, h)
         d1 = x.imag / h
-        d1[:, failed] = np.nan
-        d2[:, failed] = np.nan
-        done[1] = (d1, solve_count)
-        done[2] = (d2, solve_count + cs_count.total)
-        cs1, cs2 = done[1][0][j], done[2][0][j]
+        cs1, cs2 = studied.rates(s.values, s.inputs, d1, d2)
+        cs1[failed] = np.nan
+        cs2[failed] = np.nan
+        done[1] = (cs1, solve_count)
+        done[2] = (cs2, solve_count + cs_count.total)
         t_sweep = median_time(run_sweep, repeat) if repeat else math.nan
-        per_grid[n] = (run_sweep, s, dq[j], d2q[j], cs1, cs2, t_sweep, sweep_evaluations(s),
+        per_grid[n] = (run_sweep, s, dq, d2q, cs1, cs2, t_sweep, sweep_evaluations(s),
                        stencil_evaluations(s), done)
+
+    def analytic_rates(s, order):  # the quantity's; counted (and timed): never taken from shared results
+        if order == 1:
+            return studied.rates(s.values, s.inputs, silenced(analytic.tangent, s))[0]
+        return studied.rates(s.values, s.inputs, *exact_derivatives(s, fresh=True))[1]
+
+    def complex_rates(s, order):  # timed only (the rows' values are the complex step counted above)
+        if not studied.derived:
+            return silenced(analytic.complex_step, s, order=order)[studied.index]
+        dq = silenced(analytic.complex_step, s, order=1)
+        d2q = silenced(analytic.complex_step, s, order=2) if order == 2 else None
+        return studied.rates(s.values, s.inputs, dq, d2q)[order - 1]
 
     def method_fns(order):
         fns = [
             # counted (and timed): computed here, never taken from results shared with other tables
-            ("analytic", (lambda s: silenced(analytic.tangent, s)) if order == 1
-             else (lambda s: exact_derivatives(s, fresh=True)), False),
-            ("complex step", lambda s, o=order: silenced(analytic.complex_step, s, order=o), False),
+            ("analytic", lambda s: analytic_rates(s, order), False),
+            ("complex step", lambda s: complex_rates(s, order), False),
         ]
         for scheme in scheme_list:
             if scheme.derivative == order:
-                fns.append((scheme.name, lambda s, sc=scheme: differenced(s, sc, fresh=True), True))
+                fns.append((scheme.name, lambda s, sc=scheme: studied.differenced(s, sc, fresh=True), True))
         return fns
 
     for order in (1, 2):
@@ -178,13 +197,11 @@ def work_precision_table(
                     with count_evaluations(mechanism) as count:
                         out = fn(s)
                     counted = count.total
-                derivative_work = counted + (stencils if differences else 0)
+                derivative_work = counted + (stencils if differences else 0) + studied.work(s)
                 if name == "analytic":
                     est, ref = exact, (cs1 if order == 1 else cs2)
                 else:
-                    est = (out[1] if order == 2 and isinstance(out, tuple) else out)
-                    est = est[j] if np.ndim(est) == 2 else est
-                    ref = exact
+                    est, ref = out, exact
                 err = abs(scale) * np.abs(est - ref)  # the input may turn either way: omega < 0
                 ref_peak = float(np.max(np.abs(scale * ref)))
                 # one period; on an open grid the points where a scheme's own stencil applies (as the
@@ -211,7 +228,7 @@ def work_precision_table(
                 row["max rel error [-]"] = e_max / ref_peak
                 rows.append(row)
     df = pd.DataFrame(rows)
-    df.attrs["quantities"] = table_quantities(mechanism, quantity)
+    df.attrs["quantities"] = studied.quantities
     df.attrs["units"] = {c: "ms" for c in df.columns if " time [ms] " in c} | {"h [deg]": "deg"}
     if repeat:
         df[f"Pareto front {VARIES}"] = _pareto(df, f"sweep + derivative time [ms] {VARIES}")
@@ -228,7 +245,7 @@ def work_precision_table(
               else "; not timed (pass repeat to time each row)")
     return set_caption(
         df,
-        f"Work and precision: {mechanism.name}, {quantity}, input speed {w:g} rad/s; work = point evaluations of "
+        f"Work and precision: {mechanism.name}, {studied.title}, input speed {w:g} rad/s; work = point evaluations of "
         "the compiled loop equations (sweep, analytic and complex-step derivatives) plus stencil evaluations "
         f"(finite differences), exact and the same in every run{timing}; beside the max error over the sweep, "
         "against the analytic solution, the analytic rows' against the complex step (the two rows show their "

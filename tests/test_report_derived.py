@@ -1,0 +1,328 @@
+"""Error tables of a derived quantity (numkin.report with quantity = a name of numkin.derived).
+
+References, independent of numkin: the four-bar (4, 1, 3, 3) solved in closed
+form by the law of cosines (written below, evaluated with mpmath at 30
+digits and differentiated by mpmath.diff), its transmission angle
+mu = theta4 - theta3 sampled from that closed form and differenced here with
+the schemes' own formulas; the slider-crank's gap between the crank pin's x
+and the piston, sqrt(l^2 - r^2 sin^2), differentiated by hand.
+"""
+
+from __future__ import annotations
+
+import math
+
+import mpmath as mp
+import numpy as np
+import pandas as pd
+import pytest
+
+from numkin import linkages, report
+from numkin.errors import InputError
+from numkin.report.studied import studied_quantity
+
+W = 10.0  # rad/s
+MU = {"mu": ("theta4 - theta3", "angle")}
+R, L = 80.0, 200.0
+GAP = {"gap": ("x - r*cos(theta)", "length")}
+
+
+# ----------------------------------------------------------------- references
+def _four_bar(t, ground=4, crank=1, coupler=3, rocker=3):
+    """(theta3, theta4) of the open four-bar at crank angle t, by the law of cosines in the triangle A B O4 (mpmath).
+
+    The coupler leaves the crank pin A at the angle of A->O4 plus the triangle's angle at A.
+    """
+    ax, ay = crank * mp.cos(t), crank * mp.sin(t)
+    d = mp.sqrt((ground - ax) ** 2 + ay**2)
+    theta3 = mp.atan2(-ay, ground - ax) + mp.acos((coupler**2 + d**2 - rocker**2) / (2 * coupler * d))
+    bx, by = ax + coupler * mp.cos(theta3), ay + coupler * mp.sin(theta3)
+    return theta3, mp.atan2(by, bx - ground)
+
+
+def mu_closed(t):
+    theta3, theta4 = _four_bar(t)
+    return theta4 - theta3
+
+
+def mu_reference(points: int):
+    """mu, dmu/dtheta, d2mu/dtheta2 on a grid of `points` per turn from 0 (mpmath, 30 digits)."""
+    with mp.workdps(30):
+        t = [2 * mp.pi * k / points for k in range(points)]
+        values = np.array([float(mu_closed(x)) for x in t])
+        d1 = np.array([float(mp.diff(mu_closed, x)) for x in t])
+        d2 = np.array([float(mp.diff(mu_closed, x, 2)) for x in t])
+    return values, d1, d2
+
+
+@pytest.fixture(scope="module")
+def four_bar():
+    return linkages.four_bar(4, 1, 3, 3).add_quantities(MU)
+
+
+@pytest.fixture(scope="module")
+def reference():
+    """The closed form on the 144-point grid (it holds the 36- and 72-point grids)."""
+    return mu_reference(144)
+
+
+GRIDS = (36, 72, 144)
+
+
+@pytest.fixture(scope="module")
+def mu_convergence(four_bar):
+    return report.convergence_table(four_bar, omega=W, quantity="mu", check_angle=math.radians(90), grids=GRIDS,
+                                    schemes=("centred", "second_difference", "spectral"))
+
+
+# ----------------------------------------------------------------- the convergence table of mu
+def test_the_exact_derivatives_of_mu_are_the_closed_forms(four_bar, reference):
+    values, d1, d2 = reference
+    sweep = four_bar.sweep(np.linspace(0.0, 2 * np.pi, 145))
+    mu = studied_quantity(four_bar, "mu")
+    exact1, exact2 = mu.exact(sweep)
+    np.testing.assert_allclose(mu.values(sweep)[:-1], values, atol=1e-13, rtol=0)
+    np.testing.assert_allclose(exact1[:-1], d1, atol=1e-11, rtol=0)
+    np.testing.assert_allclose(exact2[:-1], d2, atol=1e-10, rtol=0)
+    # and they are the difference of the unknowns' own rates, from their closed forms
+    with mp.workdps(30):
+        t = mp.radians(100)
+        by_parts = mp.diff(lambda x: _four_bar(x)[1], t) - mp.diff(lambda x: _four_bar(x)[0], t)
+    single = four_bar.sweep(np.radians(np.arange(0.0, 101.0)))
+    assert mu.exact(single)[0][-1] == pytest.approx(float(by_parts), abs=1e-12)
+
+
+def _periodic(values, points):
+    """The closed-form samples of one turn, as the schemes see them (the table's grid, mu is 2 pi periodic)."""
+    return values[:: 144 // points]
+
+
+def test_centred_errors_on_mu_are_those_of_the_closed_form_samples(mu_convergence, reference):
+    values, d1, d2 = reference
+    centred = mu_convergence[mu_convergence["scheme"] == "centred"]
+    second = mu_convergence[mu_convergence["scheme"] == "second_difference"]
+    assert list(centred["quantity"]) == ["omega_mu [rad/s]"] * 3
+    assert list(second["quantity"]) == ["alpha_mu [rad/s^2]"] * 3
+    for n in GRIDS:
+        k = 144 // n
+        y, e1, e2 = _periodic(values, n), d1[::k], d2[::k]
+        h = 2 * math.pi / n
+        est1 = (np.roll(y, -1) - np.roll(y, 1)) / (2 * h)  # mu returns to its value after a turn
+        est2 = (np.roll(y, -1) - 2 * y + np.roll(y, 1)) / h**2
+        err1, err2 = W * np.abs(est1 - e1), W**2 * np.abs(est2 - e2)
+        row1 = centred[centred["points per turn"] == n].iloc[0]
+        row2 = second[second["points per turn"] == n].iloc[0]
+        assert row1["max abs error [unit of quantity]"] == pytest.approx(err1.max(), rel=1e-8)
+        assert row1["RMS abs error [unit of quantity]"] == pytest.approx(np.sqrt(np.mean(err1**2)), rel=1e-8)
+        assert row1["max rel error [-]"] == pytest.approx(err1.max() / (W * np.abs(e1).max()), rel=1e-8)
+        assert row1["abs error at theta2 = 90 deg [unit of quantity]"] == pytest.approx(err1[n // 4], rel=1e-8)
+        assert row2["max abs error [unit of quantity]"] == pytest.approx(err2.max(), rel=1e-7)
+
+
+def test_the_centred_scheme_on_mu_converges_with_order_two(mu_convergence):
+    centred = mu_convergence[mu_convergence["scheme"] == "centred"]
+    h = np.radians(centred["h [deg]"].to_numpy())
+    slope = np.polyfit(np.log(h), np.log(centred["max abs error [unit of quantity]"].to_numpy()), 1)[0]
+    assert slope == pytest.approx(2.0, abs=0.02)
+    np.testing.assert_allclose(centred["observed order [-]"].iloc[1:], 2.0, atol=0.02)
+    # the spectral scheme differences mu as periodic: exact to round-off on a turn, no observed order
+    spectral = mu_convergence[mu_convergence["scheme"] == "spectral"]
+    assert spectral["max rel error [-]"].max() < 1e-10
+    assert spectral["observed order [-]"].isna().all()
+
+
+def test_the_table_names_the_derived_quantity_and_its_units(mu_convergence):
+    q = mu_convergence.attrs["quantities"]
+    assert q["omega_mu [rad/s]"].of == "mu" and q["alpha_mu [rad/s^2]"].unit == "rad/s^2"
+    assert "mu = theta4 - theta3" in mu_convergence.attrs["caption"]
+
+
+def test_an_angle_that_turns_with_the_input_is_differenced_with_its_whole_turn():
+    """phi = theta2 - theta3 gains a turn per turn of the input: periodic up to 2 pi, as an angle unknown."""
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"phi": ("theta2 - theta3", "angle")})
+    t = report.convergence_table(mech, omega=W, quantity="phi", grids=(36, 72), schemes=("centred", "spectral"))
+    with mp.workdps(30):
+        dphi = np.array([float(1 - mp.diff(lambda x: _four_bar(x)[0], 2 * mp.pi * k / 72)) for k in range(72)])
+        y = np.array([float(2 * mp.pi * k / 72 - _four_bar(2 * mp.pi * k / 72)[0]) for k in range(72)])
+    y = np.unwrap(y)
+    h = 2 * math.pi / 72
+    est = (np.append(y[1:], y[0] + 2 * math.pi) - np.insert(y[:-1], 0, y[-1] - 2 * math.pi)) / (2 * h)
+    row = t[(t["scheme"] == "centred") & (t["points per turn"] == 72)].iloc[0]
+    assert row["max abs error [unit of quantity]"] == pytest.approx(W * np.abs(est - dphi).max(), rel=1e-8)
+    assert t[t["scheme"] == "spectral"]["max rel error [-]"].max() < 1e-9
+
+
+# ----------------------------------------------------------------- a length: the slider-crank's gap
+def gap(t):
+    """sqrt(l^2 - r^2 sin^2 t) and its first two derivatives, by hand."""
+    s, c = np.sin(t), np.cos(t)
+    g = np.sqrt(L**2 - (R * s) ** 2)
+    g1 = -(R**2) * s * c / g
+    g2 = -(R**2) * np.cos(2 * t) / g - (R**2 * s * c) ** 2 / g**3
+    return g, g1, g2
+
+
+@pytest.fixture(scope="module")
+def slider():
+    return linkages.slider_crank(R, L).add_quantities(GAP)
+
+
+def test_the_roundoff_table_of_a_length_quantity(slider):
+    t60 = math.radians(60)
+    table = report.roundoff_table(slider, quantity="gap", check_angle=t60, schemes=("centred", "complex_step"))
+    _, g1, _ = gap(t60)
+    centred = table[table["scheme"] == "centred"].iloc[0]
+    assert centred["quantity"] == "dgap/dtheta [mm/rad]"
+    assert centred["exact value [unit of quantity]"] == pytest.approx(g1, rel=1e-13)
+    h = table.attrs["steps"]["rel error at h = 1e-02 rad [-]"]
+    h = (t60 + h) - t60
+    by_hand = (gap(t60 + h)[0] - gap(t60 - h)[0]) / (2 * h)
+    assert centred["rel error at h = 1e-02 rad [-]"] == pytest.approx(abs(by_hand - g1) / abs(g1), rel=1e-6)
+    cs = table[table["scheme"] == "complex step"].iloc[0]
+    assert cs["rel error at h = 1e-12 rad [-]"] < 1e-14  # no cancellation
+
+
+def test_the_work_precision_and_convergence_tables_of_a_length_quantity(slider):
+    wp = report.work_precision_table(slider, omega=W, quantity="gap", grids=(36,), schemes=("five_point",))
+    assert list(wp["quantity"].unique()) == ["v_gap [mm/s]", "a_gap [mm/s^2]"]
+    exact = wp[wp["method"].isin(["analytic", "complex step"])]
+    assert (exact["max rel error [-]"] < 1e-13).all()
+    # the expression is evaluated once per input by every method, on top of the unknowns' own work
+    plain = report.work_precision_table(slider, omega=W, quantity="x", grids=(36,), schemes=("five_point",))
+    extra = wp["derivative work [evaluations]"].to_numpy() - plain["derivative work [evaluations]"].to_numpy()
+    assert (extra == 37).all()
+    conv = report.convergence_table(slider, omega=W, quantity="gap", grids=(36, 72), schemes=("five_point",))
+    t = np.linspace(0.0, 2 * np.pi, 73)[:-1]
+    g, g1, _ = gap(t)
+    h = 2 * math.pi / 72
+    est = (np.roll(g, 2) - 8 * np.roll(g, 1) + 8 * np.roll(g, -1) - np.roll(g, -2)) / (12 * h)
+    assert conv["max abs error [unit of quantity]"].iloc[1] == pytest.approx(W * np.abs(est - g1).max(), rel=1e-7)
+    assert conv["observed order [-]"].iloc[1] == pytest.approx(4.0, abs=0.1)
+
+
+def test_the_tolerance_table_of_mu_starts_from_the_closed_form(four_bar):
+    table = report.tolerance_table(four_bar, omega=W, quantity="mu", check_angle=math.radians(100),
+                                   points_per_turn=72)
+    with mp.workdps(30):
+        d1 = float(mp.diff(mu_closed, mp.radians(100)))
+        d2 = float(mp.diff(mu_closed, mp.radians(100), 2))
+    assert table["omega_mu at theta2 = 100 deg [rad/s]"].iloc[0] == pytest.approx(W * d1, abs=1e-11)
+    assert table["alpha_mu at theta2 = 100 deg [rad/s^2]"].iloc[0] == pytest.approx(W**2 * d2, abs=1e-9)
+    tight = table[table["rule"] == "numkin, tol = 1e-12"].iloc[0]
+    assert tight["mu error estimate max|J^-1 F| [rad]"] < 1e-12
+    loose = table[table["rule"] == "residual"].iloc[0]
+    assert loose["mu error estimate max|J^-1 F| [rad]"] > 1e-9  # the loose rule leaves a visible step
+
+
+# ----------------------------------------------------------------- a scene, through the command
+SCENE = """
+[scene]
+description = "the transmission angle's error tables"
+
+[mechanism]
+linkage = "four_bar"
+dimensions = { ground = 4, crank = 1, coupler = 3, rocker = 3 }
+quantities = { mu = { expression = "theta4 - theta3", dimension = "angle" } }
+
+[input]
+speed = "10 rad/s"
+
+[report]
+quantity = "QUANTITY"
+check_deg = 90
+grids = [36, 72]
+schemes = ["centred", "second_difference"]
+points_per_turn = 36
+"""
+
+
+def test_numkin_report_of_a_scene_studying_mu(tmp_path, capsys, mu_convergence):
+    from numkin import cli
+
+    path = tmp_path / "mu.toml"
+    path.write_text(SCENE.replace("QUANTITY", "mu"))
+    out = tmp_path / "out"
+    assert cli.main(["report", str(path), "--out", str(out)]) == 0
+    capsys.readouterr()
+    conv = pd.read_csv(out / "mu-convergence.csv")
+    assert set(conv["quantity"]) == {"omega_mu [rad/s]", "alpha_mu [rad/s^2]"}
+    # the same errors as the Python function on the same grids (checked above against the closed form)
+    for _, row in conv.iterrows():
+        same = mu_convergence[(mu_convergence["scheme"] == row["scheme"])
+                              & (mu_convergence["points per turn"] == row["points per turn"])].iloc[0]
+        assert row["max abs error [unit of quantity]"] == pytest.approx(same["max abs error [unit of quantity]"],
+                                                                         rel=1e-12)
+    assert "mu = theta4 - theta3" in (out / "mu-convergence.md").read_text()
+    roundoff = pd.read_csv(out / "mu-roundoff.csv")
+    with mp.workdps(30):
+        d1 = float(mp.diff(mu_closed, mp.pi / 2))
+    assert roundoff[roundoff["quantity"] == "dmu/dtheta2 [rad/rad]"]["exact value [unit of quantity]"].iloc[0] \
+        == pytest.approx(d1, abs=1e-12)
+    for name in ("work_precision", "tolerance", "newton", "jacobian"):
+        assert (out / f"mu-{name}.csv").exists()
+
+
+def test_a_scene_refuses_a_report_quantity_it_does_not_have(tmp_path, capsys):
+    from numkin import cli
+
+    path = tmp_path / "nu.toml"
+    path.write_text(SCENE.replace("QUANTITY", "nu"))
+    assert cli.main(["report", str(path)]) != 0
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1
+    assert "[report] quantity" in err and "'nu' is neither an unknown nor a derived quantity" in err
+    assert "mu" in err and "theta3, theta4" in err
+
+
+# ----------------------------------------------------------------- refusals
+def test_the_tables_refuse_a_name_that_is_neither(four_bar):
+    for table in (report.convergence_table, report.work_precision_table, report.tolerance_table):
+        with pytest.raises(InputError, match=r"'nu' is neither an unknown nor a derived quantity.*\['mu'\]"):
+            table(four_bar, omega=W, quantity="nu", check_angle=0.0) if table is report.tolerance_table else \
+                table(four_bar, omega=W, quantity="nu")
+    with pytest.raises(InputError, match="neither an unknown nor a derived quantity"):
+        report.roundoff_table(four_bar, quantity="x_B", check_angle=0.0)
+
+
+def test_a_quantity_undefined_on_part_of_the_sweep_is_refused_by_name():
+    """sqrt(x - 250): the piston's x is below 250 mm over part of the turn; no table of NaN."""
+    mech = linkages.slider_crank(R, L).add_quantities({"root": ("sqrt(x - 250)", "length")})
+    with pytest.raises(InputError, match=r"quantity 'root = sqrt\(x - 250\)' is not finite at input"):
+        report.convergence_table(mech, omega=W, quantity="root", grids=(36,), schemes=("centred",))
+
+
+def test_an_angle_reduced_by_atan2_is_differenced_across_its_cut():
+    """The direction of the crank pin seen from the rocker pivot, atan2(sin t, cos t - 4), jumps from pi to -pi at
+    t = 180 deg; its derivative (1 - 4 cos t) / (17 - 8 cos t), by hand, is smooth there."""
+    ang = ("atan2(r2*sin(theta2), r2*cos(theta2) - r1)", "angle")
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"ang": ang})
+    ro = report.roundoff_table(mech, quantity="ang", check_angle=math.pi, schemes=("centred",))
+    h = ro.attrs["steps"]["rel error at h = 1e-02 rad [-]"]
+    h = (math.pi + h) - math.pi
+    closed = np.unwrap(np.arctan2(np.sin([math.pi - h, math.pi + h]), np.cos([math.pi - h, math.pi + h]) - 4))
+    by_hand = (closed[1] - closed[0]) / (2 * h)
+    assert ro["exact value [unit of quantity]"].iloc[0] == pytest.approx(0.2, rel=1e-13)
+    assert ro["rel error at h = 1e-02 rad [-]"].iloc[0] == pytest.approx(abs(by_hand - 0.2) / 0.2, rel=1e-6)
+    with pytest.warns(UserWarning, match="jump by more than 180"):
+        conv = report.convergence_table(mech, omega=W, quantity="ang", grids=(72,), schemes=("centred",))
+    t = np.linspace(0.0, 2 * np.pi, 73)[:-1]
+    y = np.unwrap(np.arctan2(np.sin(t), np.cos(t) - 4))  # returns to its start: it does not turn
+    est = (np.roll(y, -1) - np.roll(y, 1)) / (2 * (t[1] - t[0]))
+    exact = (1 - 4 * np.cos(t)) / (17 - 8 * np.cos(t))
+    assert conv["max abs error [unit of quantity]"].iloc[0] == pytest.approx(W * np.abs(est - exact).max(), rel=1e-8)
+
+
+def test_a_derived_quantity_equal_to_an_unknown_has_that_unknowns_tables():
+    """t4 = theta4 declared as a derived quantity: every error is the unknown's own (the same samples, the same
+    rates), whatever path the tables take for it; only the work counts its expression's evaluations."""
+    mech = linkages.slider_crank(R, L).add_quantities({"t3": ("theta3", "angle"), "xx": ("x", "length")})
+    for unknown, derived in (("theta3", "t3"), ("x", "xx")):
+        kwargs = dict(omega=W, grids=(36, 72), schemes=("centred", "five_point_second"))
+        a = report.convergence_table(mech, quantity=unknown, **kwargs)
+        b = report.convergence_table(mech, quantity=derived, **kwargs)
+        errors = [c for c in a.columns if c.startswith(("max ", "RMS ", "observed "))]
+        np.testing.assert_allclose(b[errors].to_numpy(), a[errors].to_numpy(), rtol=1e-12, atol=0)
+        ro_a = report.roundoff_table(mech, quantity=unknown, check_angle=math.radians(50))
+        ro_b = report.roundoff_table(mech, quantity=derived, check_angle=math.radians(50))
+        steps = list(ro_a.attrs["steps"])
+        np.testing.assert_allclose(ro_b[steps].to_numpy(), ro_a[steps].to_numpy(), rtol=1e-12, atol=0)
