@@ -73,7 +73,7 @@ are optional. ::
 
     [report]                 # settings of the error-analysis tables (numkin.report; without
                              # [input] speed they are per rad/s of input speed):
-    quantity = "theta4"      # the unknown studied (default: the first reported)
+    quantity = "theta4"      # the unknown or derived quantity studied (default: the first reported)
     check_deg = 100          # check angle (default: the first [[check]])
     grids = [36, 72, 180, 360]   # points per turn of the convergence tables (distinct, <= 100000)
     schemes = ["forward", "centred"]   # default: all
@@ -154,8 +154,9 @@ Quantity names (for ``[[check]]``, ``--at``, JSON): an angle unknown's position
 A derived quantity of ``[mechanism.quantities]`` (:mod:`numkin.derived`) is
 named like an unknown (``mu_deg``, ``omega_mu``, ``alpha_mu`` for an angle;
 ``s``, ``v_s``, ``a_s`` for a length), always reported in the tables,
-compared by ``[compare]`` and checked by ``[[check]]`` (``[report]`` and the
-figures study unknowns only). Its expression uses the
+compared by ``[compare]``, checked by ``[[check]]``, drawn by ``[output]
+figures`` (``"kinematics:mu"``) and studied by the error tables
+(``[report] quantity = "mu"``). Its expression uses the
 mechanism's own symbols: the unknowns, the input and the dimensions of a
 mechanism of loops; for a ready-made linkage its unknowns (table below), its
 input and its parameters (a four-bar's ``r1`` to ``r4``; a misspelt name is

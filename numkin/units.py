@@ -31,6 +31,7 @@ from .errors import InputError
 
 __all__ = [
     "finite",
+    "with_length_unit",
     "UnitError",
     "angular_speed",
     "angular_acceleration",
@@ -410,3 +411,21 @@ def input_rates(omega, alpha=0.0, count: int | None = None):
     (array([7.5, 7.5, 7.5]), array([0., 0., 0.]))
     """
     return input_rate(omega, "speed", count), input_rate(alpha, "acceleration", count)
+
+
+def with_length_unit(name: str, unit: str) -> str:
+    """A linkage's name with its unit after each dimension that has none (for titles and summaries).
+
+    Examples
+    --------
+    >>> with_length_unit("slider-crank (crank 0.08, rod 0.2, offset 0)", "m")
+    'slider-crank (crank 0.08 m, rod 0.2 m, offset 0 m)'
+    >>> with_length_unit("quick-return (r1 60 mm, r2 40)", "mm"), with_length_unit("chained four-bars", "in")
+    ('quick-return (r1 60 mm, r2 40 mm)', 'chained four-bars')
+    """
+    head, paren, rest = str(name).partition(" (")
+    if not paren or not rest.endswith(")"):
+        return str(name)
+    items = [re.sub(r"^(\w+ [-+0-9.eE]+)$", rf"\1 {unit}", item) for item in rest[:-1].split(", ")]
+    return f"{head} ({', '.join(items)})"
+
