@@ -110,10 +110,10 @@ def test_kinematics_of_the_transmission_angle_against_the_circle_intersection(fo
 
 
 def test_a_wrapped_angle_is_drawn_and_differenced_unwrapped(four_bar):
-    """atan2(...) of mu + 2 rad jumps from +180° to -180°: drawn continuous, its rates those of mu."""
+    """atan2(...) of mu + 2 rad jumps from +180° to -180°: drawn continuous, its rates those of mu, with the
+    warning an unknown angle's wrapped data give (numkin.kinematics.prepare_rows)."""
     sweep = four_bar.sweep
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")  # unwrapped quietly, as the unknowns' angles are continuous
+    with pytest.warns(UserWarning, match=r"\['wrapped'\] jump by more than 180°.*wrapped data; unwrapped"):
         fig = figures.kinematics(sweep, "wrapped", analytic=four_bar.analytic, finite=four_bar.finite)
     _, y = fig.axes[0].get_lines()[0].get_data()
     assert np.max(np.abs(np.diff(y))) < 5.0
