@@ -126,7 +126,8 @@ def test_a_wrapped_angle_is_drawn_and_differenced_unwrapped(four_bar):
 
 def test_position_derivative_and_difference_of_a_derived_angle(four_bar):
     sweep = four_bar.sweep
-    fig = figures.position(sweep)  # by default the unknowns and then the derived quantities
+    with pytest.warns(UserWarning, match=r"\['wrapped'\] jump by more than 180°"):
+        fig = figures.position(sweep)  # by default the unknowns and then the derived quantities
     assert [ln.get_label() for ln in fig.axes[0].get_lines()] == ["$\\theta_{3}$", "$\\theta_{4}$", "$\\mu$",
                                                                  "$\\mathrm{wrapped}$"]
     _, y = line(fig.axes[0], "$\\mu$")
@@ -339,7 +340,7 @@ def _wrong_calls(sweep, exact, fd):
         (lambda: figures.kinematics(sweep, "mu", finite=fd["centred"]),
          r"kinematics: finite must map scheme names to DataFrames, got one DataFrame"),
         (lambda: figures.kinematics(sweep, "mu", finite=[fd["centred"]]),
-         r"kinematics: finite must map scheme names .*got list of 1 items"),
+         r"kinematics: finite must map scheme names .*got a list of 1 item"),
         (lambda: figures.kinematics(sweep, "mu", finite={"centred": 1.0}),
          r"kinematics: finite\['centred'\] must be a DataFrame, got float 1.0"),
         (lambda: figures.kinematics(sweep, "mu", analytic=exact, check_angles="90"),
@@ -387,3 +388,147 @@ def test_render_draws_a_derived_quantity_from_the_frames_of_the_unknowns(four_ba
     assert [p.name for p in written] == ["kinematics-mu.svg", "acceleration-mu.svg"]
     again = figures.render(result, out_dir=tmp_path / "again", formats=["svg"])
     assert [p.read_bytes() for p in written] == [p.read_bytes() for p in again]
+
+
+def test_figure_functions_take_any_iterable_of_names_and_any_path(four_bar, tmp_path):
+    """Names as arrays, indexes, dict keys or generators; check angles as 0-d or object arrays; path-likes."""
+    import os
+
+    import pandas as pd
+
+    sweep, exact, fd = four_bar.sweep, four_bar.analytic, four_bar.finite
+    for names in (np.array(["theta3", "mu"]), pd.Index(["theta3", "mu"]), {"theta3": 1, "mu": 2}.keys(),
+                  (n for n in ["theta3", "mu"])):
+        fig = figures.position(sweep, names)
+        assert [ln.get_label() for ln in fig.axes[0].get_lines()] == ["$\\theta_{3}$", "$\\mu$"]
+    fig = figures.derivative(sweep, "mu", np.array(["forward", "centred"]))
+    assert [t.get_text() for t in fig.axes[0].get_legend().get_texts()][::2] == ["forward", "centred"]
+    for checks in ([np.array(math.radians(90))], np.array([math.radians(90)], dtype=object),
+                   (a for a in [math.radians(90)])):
+        fig = figures.kinematics(sweep, "mu", analytic=exact, check_angles=checks)
+        assert "$\\mu$(90°) = 86.815 deg" in " ".join(t.get_text() for t in fig.axes[0].texts)
+    fig = figures.kinematics(sweep, "mu", finite=[("centred", fd["centred"])])
+    assert "centred" in [ln.get_label() for ln in fig.axes[1].get_lines()]
+    assert figures.mechanism(sweep, 0.5, traces=np.array(["B"])).axes
+
+    class Stem(os.PathLike):
+        def __fspath__(self):
+            return str(tmp_path / "pathlike")
+
+    fig = figures.position(sweep, "mu")
+    assert [p.name for p in figures.save(fig, Stem(), {"png"})] == ["pathlike.png"]
+    fig = figures.position(sweep, "mu")
+    assert [p.name for p in figures.save(fig, tmp_path / "arr", np.array(["png", "svg"]))] == ["arr.png", "arr.svg"]
+    fig = figures.position(sweep, "mu")
+    assert [p.name for p in figures.save(fig, tmp_path / "gen", (f for f in ["svg"]))] == ["gen.svg"]
+    result = types.SimpleNamespace(sweep=sweep)
+    assert [p.name for p in figures.render(result, ["position:mu"], tmp_path, {"png"})] == ["position-mu.png"]
+
+
+# ----------------------------------------------------------------------------- what the frames hold
+def test_a_derived_angle_moving_more_than_half_a_turn_per_sample_is_not_bent_back_silently():
+    """5 theta2 on a 40° grid moves 200° per sample: unwrapped as an unknown's angle would be, and said so."""
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"gear": ("5*theta2", "angle")})
+    sweep = mech.sweep(np.radians(np.arange(0.0, 361.0, 40.0)))
+    for draw in (lambda: figures.position(sweep, "gear"),
+                 lambda: figures.kinematics(sweep, "gear", finite={"centred": finite_difference(sweep, 2.0)}),
+                 lambda: figures.derivative(sweep, "gear")):
+        with pytest.warns(UserWarning, match=r"\['gear'\] jump by more than 180° .*between inputs 0.000° and "
+                                             r"40.000°\): wrapped data"):
+            draw()
+    # a fine grid needs no unwrapping: the rates are 5 omega, quietly
+    fine = mech.sweep(np.radians(np.arange(0.0, 361.0, 5.0)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fig = figures.kinematics(fine, "gear", finite={"centred": finite_difference(fine, 2.0)})
+    np.testing.assert_allclose(line(fig.axes[1], "centred")[1], 10.0, atol=1e-9)
+
+
+def _centred_periodic(y, h):
+    """Centred difference of one turn (the last sample repeats the first), computed here."""
+    up, down = np.roll(y[:-1], -1), np.roll(y[:-1], 1)
+    d = (up - down) / (2 * h)
+    return np.append(d, d[0])
+
+
+def _second_periodic(y, h):
+    up, down = np.roll(y[:-1], -1), np.roll(y[:-1], 1)
+    d = (up - 2 * y[:-1] + down) / h**2
+    return np.append(d, d[0])
+
+
+def test_a_frame_of_a_coarser_sweep_is_drawn_for_a_derived_quantity_at_its_own_inputs():
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities(MU)
+    fine = mech.sweep(np.radians(np.arange(0.0, 361.0, 1.0)))
+    coarse = mech.sweep(np.radians(np.arange(0.0, 361.0, 10.0)))
+    omega, alpha = -7.0, 3.0
+    exact = analytic_kinematics(fine, omega, alpha)
+    finite = {"centred h=1": finite_difference(fine, omega, alpha),
+              "centred h=10": finite_difference(coarse, omega, alpha)}
+    fig = figures.kinematics(fine, "mu", analytic=exact, finite=finite)
+    x, w = line(fig.axes[1], "centred h=10")
+    np.testing.assert_allclose(x, np.arange(0.0, 361.0, 10.0), atol=1e-12)
+    t, h = np.radians(x), math.radians(10.0)
+    mu = _mu(t)
+    d1, d2 = _centred_periodic(mu, h), _second_periodic(mu, h)
+    np.testing.assert_allclose(w, omega * d1, atol=1e-9)
+    np.testing.assert_allclose(line(fig.axes[2], "centred h=10")[1], omega**2 * d2 + alpha * d1, atol=1e-7)
+    fig = figures.acceleration_comparison(fine, "mu", exact, finite)
+    np.testing.assert_allclose(line(fig.axes[0], "centred h=10")[1], omega**2 * d2 + alpha * d1, atol=1e-7)
+
+
+def test_a_frame_that_cannot_give_a_derived_quantity_its_rates_is_refused_by_name(four_bar):
+    import pandas as pd
+
+    sweep, exact = four_bar.sweep, four_bar.analytic
+    bare = pd.DataFrame(four_bar.finite["centred"].to_dict())  # rebuilt: its attrs are lost
+    assert bare.attrs == {}
+    figures.kinematics(sweep, "theta4", analytic=exact, finite={"bare": bare})  # an unknown's columns it holds
+    with pytest.raises(numkin.InputError, match=r"kinematics of the derived quantity 'mu': finite\['bare'\] holds "
+                                                r"no 'omega_mu' column and lacks the attrs \['method', "):
+        figures.kinematics(sweep, "mu", analytic=exact, finite={"bare": bare})
+    shifted = sweep.mechanism.sweep(sweep.inputs + math.radians(1.0))
+    with pytest.raises(numkin.InputError, match=r"finite\['shifted'\] lies on 361 inputs from 1° to 361°, not on "
+                                                r"inputs of this sweep \(361 inputs from 0° to 360°\)"):
+        figures.acceleration_comparison(sweep, "mu", exact, {"shifted": finite_difference(shifted, OMEGA)})
+    with pytest.raises(numkin.InputError, match=r"analytic holds no 'omega_mu' column and lacks the attrs "
+                                                r"\['omega'\]"):
+        figures.kinematics(sweep, "mu", analytic=pd.DataFrame(exact.to_dict()), finite=four_bar.finite)
+
+
+def _render_spy(monkeypatch):
+    from numkin.figures import dispatch
+
+    drawn = []
+
+    def spy(*args, _real=dispatch.kinematics, **kwargs):
+        drawn.append(_real(*args, **kwargs))
+        return drawn[-1]
+
+    monkeypatch.setattr(dispatch, "kinematics", spy)
+    return drawn
+
+
+def test_render_joins_derived_kinematics_only_on_the_same_inputs(four_bar, tmp_path, monkeypatch):
+    """The derived frame's columns are drawn when it lies on the analytic frame's inputs, never when shifted."""
+    import pandas as pd
+
+    from numkin.expressions import derived_kinematics
+
+    sweep = four_bar.sweep
+    bare = pd.DataFrame(four_bar.analytic.to_dict())  # no attrs: the derived rates can only come from the join
+    derived = derived_kinematics(sweep, OMEGA, names=["mu"])
+    drawn = _render_spy(monkeypatch)
+    result = types.SimpleNamespace(sweep=sweep, analytic=bare, derived_kinematics=derived, figures=["kinematics:mu"])
+    assert [p.name for p in figures.render(result, out_dir=tmp_path, formats=["png"])] == ["kinematics-mu.png"]
+    mp.mp.dps = 30
+    at = [0, 90, 200]
+    d1 = np.array([float(mp.diff(_mu_mp, mp.radians(d))) for d in at])
+    np.testing.assert_allclose(line(drawn[-1].axes[1], "analytic")[1][at], OMEGA * d1, atol=1e-9)
+    shifted = derived_kinematics(sweep.mechanism.sweep(sweep.inputs + math.radians(1.0)), OMEGA, names=["mu"])
+    result.derived_kinematics = shifted
+    with pytest.warns(UserWarning, match=r"derived_kinematics lies on other inputs than the analytic kinematics"), \
+            pytest.warns(UserWarning, match=r"figure 'kinematics' of the derived quantity 'mu': analytic holds no "
+                                            r"'omega_mu' column .*; not drawn"), \
+            pytest.warns(figures.FigureSkipped, match=r"figure 'kinematics:mu' skipped"):
+        assert figures.render(result, out_dir=tmp_path / "shifted", formats=["png"]) == []

@@ -57,7 +57,7 @@ def position(sweep, names: Sequence[str] | None = None):
     'numkin-doc-phi.png'
     """
     need_sweep(sweep, "position")
-    need_names(names, "names", "position")
+    names = need_names(names, "names", "position")
     if isinstance(names, str):
         names = [names]
     if names is None:
@@ -128,7 +128,7 @@ def derivative(sweep, name: str, schemes: Sequence[str] = ("forward", "centred")
 
     need_sweep(sweep, "derivative")
     check_unknown(sweep, name, "derivative: name")
-    need_names(schemes, "schemes", "derivative")
+    schemes = need_names(schemes, "schemes", "derivative")
     h = uniform_step(sweep)
     if isinstance(schemes, str):
         schemes = [schemes]
@@ -284,9 +284,9 @@ def kinematics(
     need_sweep(sweep, "kinematics")
     check_unknown(sweep, name, "kinematics: name")
     need_frame(analytic, "analytic", "kinematics")
-    need_frames(finite, "finite", "kinematics")
-    need_angles(check_angles, "check_angles", "kinematics")
-    analytic, finite = with_rates(sweep, name, analytic, finite)
+    finite = need_frames(finite, "finite", "kinematics")
+    check_angles = need_angles(check_angles, "check_angles", "kinematics")
+    analytic, finite = with_rates(sweep, name, analytic, finite, where="kinematics")
     vcol, acol = rate_columns(sweep, name)
     # the sources of each panel: every frame that holds its column, analytic last (drawn on top)
     panels = []
@@ -423,10 +423,10 @@ def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
     need_sweep(sweep, "acceleration_comparison")
     check_unknown(sweep, name, "acceleration_comparison: name")
     need_frame(analytic, "analytic", "acceleration_comparison")
-    need_frames(finite, "finite", "acceleration_comparison")
+    finite = need_frames(finite, "finite", "acceleration_comparison")
     if analytic is None or not finite:
         raise InputError(f"acceleration of {name!r}: needs both the analytic frame and finite-difference frames")
-    analytic, finite = with_rates(sweep, name, analytic, finite)
+    analytic, finite = with_rates(sweep, name, analytic, finite, where="acceleration_comparison")
     _, acol = rate_columns(sweep, name)
     _, _, alabel = quantity_labels(sweep, name)
     unit = unit_of(alabel)
