@@ -532,3 +532,21 @@ def test_render_joins_derived_kinematics_only_on_the_same_inputs(four_bar, tmp_p
                                             r"'omega_mu' column .*; not drawn"), \
             pytest.warns(figures.FigureSkipped, match=r"figure 'kinematics:mu' skipped"):
         assert figures.render(result, out_dir=tmp_path / "shifted", formats=["png"]) == []
+
+
+def test_a_position_title_goes_on_two_lines_only_when_one_line_does_not_fit():
+    """The four-bar's title of two unknowns fits on one line (as it always did); with three derived
+    quantities more it would run off the figure, so the mechanism's name gets a line of its own."""
+    plain = linkages.four_bar(4, 1, 3, 3)
+    sweep = plain.sweep(np.radians(np.arange(0.0, 361.0, 5.0)))
+    title = figures.position(sweep).axes[0].get_title()
+    assert title == ("four-bar (ground 4 mm, crank 1 mm, coupler 3 mm, rocker 3 mm): $\\theta_{3}$, $\\theta_{4}$ "
+                     "against $\\theta_{2}$")
+    more = plain.add_quantities({**MU, "gamma": ("theta3 + theta2", "angle"), "s": ("3*cos(theta3)", "length")})
+    fig = figures.position(more.sweep(sweep.inputs))
+    head, _, rest = fig.axes[0].get_title().partition("\n")
+    assert head == "four-bar (ground 4 mm, crank 1 mm, coupler 3 mm, rocker 3 mm)"
+    assert rest == "$\\theta_{3}$, $\\theta_{4}$, $\\mu$, $\\gamma$, $s$ against $\\theta_{2}$"
+    text = fig.axes[0].title
+    text.set_text(f"{head}: {rest}")
+    assert text.get_window_extent(fig.canvas.get_renderer()).width > 0.94 * fig.bbox.width

@@ -86,10 +86,20 @@ def position(sweep, names: Sequence[str] | None = None):
         degree_ticks(axes[-1, 0], x)
         title = f"{', '.join(sym(n) for n in names)} against {sym(input_name(sweep))}"
         head = mechanism_title(sweep.mechanism)
-        # a long title on two lines (the width of its text, symbols counted as one character each)
-        plain = len(head) + len(names) * 4 + 10
-        axes[0, 0].set_title(f"{head}\n{title}" if plain > 78 else f"{head}: {title}")
+        _title(fig, axes[0, 0], head, title)
     return fig
+
+
+def _title(fig, ax, head: str, title: str) -> None:
+    """``head: title`` on one line, or on two lines when the rendered line would not fit in the figure's width.
+
+    The width is measured by the figure's renderer, in the title's font,
+    less a margin of 3 % on each side.
+    """
+    text = ax.set_title(f"{head}: {title}")
+    width = text.get_window_extent(fig.canvas.get_renderer()).width
+    if width > 0.94 * fig.bbox.width:
+        text.set_text(f"{head}\n{title}")
 
 
 def _derivative_units(sweep, name: str) -> tuple[str, str]:
