@@ -379,13 +379,22 @@ def test_save_names_a_wrong_path(four_bar, tmp_path):
     assert [p.name for p in figures.save(fig, tmp_path / "mu", ["png"])] == ["mu.png"]
 
 
-def test_render_draws_a_derived_quantity_from_the_frames_of_the_unknowns(four_bar, tmp_path):
+def test_render_draws_a_derived_quantity_from_the_frames_of_the_unknowns(four_bar, tmp_path, monkeypatch):
     """A duck-typed result holding only the unknowns' frames: the derived rates come from their speed and
-    schemes, the same numbers as figures.kinematics draws."""
+    schemes, the same numbers as figures.kinematics draws, and those of the closed form's differences."""
     result = types.SimpleNamespace(sweep=four_bar.sweep, analytic=four_bar.analytic, finite=four_bar.finite,
                                    check_angles=[math.radians(90)], figures=["kinematics:mu", "acceleration:mu"])
+    drawn = _render_spy(monkeypatch)
     written = figures.render(result, out_dir=tmp_path, formats=["svg"])
     assert [p.name for p in written] == ["kinematics-mu.svg", "acceleration-mu.svg"]
+    direct = figures.kinematics(four_bar.sweep, "mu", analytic=four_bar.analytic, finite=four_bar.finite,
+                                check_angles=[math.radians(90)])
+    for j in (1, 2):
+        for label in ("forward", "centred", "analytic"):
+            np.testing.assert_array_equal(line(drawn[0].axes[j], label)[1], line(direct.axes[j], label)[1])
+    mu = _mu(four_bar.sweep.inputs)
+    np.testing.assert_allclose(line(drawn[0].axes[1], "centred")[1], OMEGA * _centred_periodic(mu, math.radians(1)),
+                               atol=1e-8)
     again = figures.render(result, out_dir=tmp_path / "again", formats=["svg"])
     assert [p.read_bytes() for p in written] == [p.read_bytes() for p in again]
 
@@ -550,3 +559,87 @@ def test_a_position_title_goes_on_two_lines_only_when_one_line_does_not_fit():
     text = fig.axes[0].title
     text.set_text(f"{head}: {rest}")
     assert text.get_window_extent(fig.canvas.get_renderer()).width > 0.94 * fig.bbox.width
+
+
+# ----------------------------------------------------------------------------- grids, signs and gaps
+def _forward_periodic(y, h):
+    d = (np.roll(y[:-1], -1) - y[:-1]) / h
+    return np.append(d, d[0])
+
+
+def _forward_of_forward_periodic(y, h):
+    d = (np.roll(y[:-1], -2) - 2 * np.roll(y[:-1], -1) + y[:-1]) / h**2
+    return np.append(d, d[0])
+
+
+def test_negative_speed_and_acceleration_and_forward_of_forward_against_differences_taken_here():
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities(MU)
+    sweep = mech.sweep(np.radians(np.arange(0.0, 361.0, 2.0)))
+    omega, alpha = -6.0, -4.0
+    finite = {"f": finite_difference(sweep, omega, alpha, method="forward", second_method="forward_of_forward"),
+              "c": finite_difference(sweep, omega, alpha)}
+    fig = figures.kinematics(sweep, "mu", analytic=analytic_kinematics(sweep, omega, alpha), finite=finite)
+    h, mu = math.radians(2.0), _mu(sweep.inputs)
+    f1, f2 = _forward_periodic(mu, h), _forward_of_forward_periodic(mu, h)
+    c1, c2 = _centred_periodic(mu, h), _second_periodic(mu, h)
+    np.testing.assert_allclose(line(fig.axes[1], "f")[1], omega * f1, atol=1e-8)
+    np.testing.assert_allclose(line(fig.axes[2], "f")[1], omega**2 * f2 + alpha * f1, atol=1e-6)
+    np.testing.assert_allclose(line(fig.axes[1], "c")[1], omega * c1, atol=1e-8)
+    np.testing.assert_allclose(line(fig.axes[2], "c")[1], omega**2 * c2 + alpha * c1, atol=1e-6)
+    mp.mp.dps = 30
+    at = [0, 45, 133]
+    d1 = np.array([float(mp.diff(_mu_mp, mp.radians(2 * k))) for k in at])
+    d2 = np.array([float(mp.diff(_mu_mp, mp.radians(2 * k), 2)) for k in at])
+    np.testing.assert_allclose(line(fig.axes[1], "analytic")[1][at], omega * d1, atol=1e-9)
+    np.testing.assert_allclose(line(fig.axes[2], "analytic")[1][at], omega**2 * d2 + alpha * d1, atol=1e-7)
+
+
+def test_a_frame_differenced_as_open_draws_the_end_stencils_of_a_derived_quantity(four_bar):
+    """periodic=False on a full turn: mu differenced on the open grid, its one-sided ends drawn apart."""
+    sweep = four_bar.sweep
+    fd = finite_difference(sweep, OMEGA, periodic=False)
+    fig = figures.kinematics(sweep, "mu", finite={"c": fd})
+    h, mu = math.radians(1.0), _mu(sweep.inputs)
+    x, ends = line(fig.axes[1], "c: one-sided end stencil")
+    np.testing.assert_allclose(x, [0.0, 360.0], atol=1e-12)
+    one_sided = [(-3 * mu[0] + 4 * mu[1] - mu[2]) / (2 * h), (3 * mu[-1] - 4 * mu[-2] + mu[-3]) / (2 * h)]
+    np.testing.assert_allclose(ends, OMEGA * np.array(one_sided), atol=1e-8)
+    interior = line(fig.axes[1], "c")[1]
+    np.testing.assert_allclose(interior[1:-1], OMEGA * (mu[2:] - mu[:-2]) / (2 * h), atol=1e-8)
+
+
+def test_a_derived_quantity_that_does_not_close_is_differenced_open_and_says_why():
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"half": ("theta2/2", "angle")})
+    sweep = mech.sweep(np.radians(np.arange(0.0, 361.0, 2.0)))
+    fd = finite_difference(sweep, OMEGA)
+    assert fd.attrs["periodic"] is True  # the unknowns close
+    with pytest.warns(UserWarning, match=r"'half' does not return to its starting value after one turn of the "
+                                         r"input \(half\[-1\] - half\[0\] = 180°, not a whole number of turns\): "
+                                         r"half = theta2/2 is not periodic in theta2") as caught:
+        fig = figures.kinematics(sweep, "half", finite={"c": fd})
+    assert not any("branch" in str(w.message) for w in caught)
+    x, ends = line(fig.axes[1], "c: one-sided end stencil")  # its open grid's ends, drawn apart
+    np.testing.assert_allclose(x, [0.0, 360.0], atol=1e-12)
+    np.testing.assert_allclose(ends, OMEGA * 0.5, atol=1e-9)
+    spectral = finite_difference(sweep, OMEGA, method="spectral", second_method="spectral_second")
+    with pytest.raises(numkin.InputError, match=r"finite\['s'\]: scheme 'spectral' needs a quantity periodic over "
+                                                r"exactly one turn of the input, and 'half' does not return"):
+        figures.kinematics(sweep, "half", finite={"s": spectral})
+
+
+def test_a_derived_angle_undefined_on_part_of_the_sweep_is_drawn_where_it_is_defined():
+    """acos(mu / 1.3) exists only where mu <= 1.3 rad: NaN elsewhere and wherever a stencil reaches a gap."""
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"nanq": ("acos((theta4 - theta3)/1.3)", "angle")})
+    sweep = mech.sweep(np.radians(np.arange(0.0, 361.0, 2.0)))
+    with pytest.warns(RuntimeWarning, match=r"nanq is not finite at .* first at input 62°"):
+        fig = figures.kinematics(sweep, "nanq", analytic=analytic_kinematics(sweep, OMEGA),
+                                 finite={"c": finite_difference(sweep, OMEGA)})
+    with np.errstate(invalid="ignore"):
+        q = np.arccos(_mu(sweep.inputs) / 1.3)
+    h = math.radians(2.0)
+    ref = np.full(q.size, np.nan)
+    ref[1:-1] = (q[2:] - q[:-2]) / (2 * h)
+    _, drawn = line(fig.axes[1], "c")
+    np.testing.assert_array_equal(np.isnan(drawn[1:-1]), np.isnan(ref[1:-1]))
+    np.testing.assert_allclose(drawn[1:-1], OMEGA * ref[1:-1], atol=1e-8)
+    assert np.isnan(drawn).sum() > np.isnan(q).sum()  # the stencils at each gap's edge are left out

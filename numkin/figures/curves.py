@@ -263,7 +263,11 @@ def kinematics(
     :func:`numkin.analytic.derived_kinematics` at the analytic frame's input
     speed, unless the frame holds them already; its finite-difference rates
     by each frame's own schemes applied to its sampled values (see
-    :func:`numkin.figures.series.with_rates`).
+    :func:`numkin.figures.series.with_rates`). Where its expression is
+    undefined (``acos`` of more than 1) its samples are NaN, and so is every
+    rate whose stencil reaches one: the curves break there. A frame that
+    cannot give it rates (its attrs lost, its inputs not the sweep's) is
+    refused by name.
 
     Parameters
     ----------

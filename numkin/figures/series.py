@@ -146,18 +146,43 @@ def _closes(sweep, name: str, y: np.ndarray):
     return abs(off) <= 1e-7 * sweep.mechanism.length_scale, f"{off:.6g} {length_unit(sweep)}"
 
 
+def _runs_rates(y: np.ndarray, grid, s1, s2) -> tuple[np.ndarray, np.ndarray]:
+    """First and second differences of samples with NaN gaps: each run of defined samples on its own (open
+    grid), NaN wherever an interior stencil would reach into a gap (values of one-sided stencils at a gap
+    are not drawn as if interior ones) or a run is too short for the schemes."""
+    from ..kinematics import Rows
+    from .ends import scheme_reach
+
+    ya = y[::-1] if grid.reverse else y
+    d1, d2 = np.full(ya.size, np.nan), np.full(ya.size, np.nan)
+    (b1, f1), (b2, f2) = scheme_reach([s1.name]), scheme_reach([s1.name, s2.name])
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], np.isfinite(ya).astype(int), [0]])))
+    for i0, i1 in zip(edges[::2], edges[1::2]):
+        rows = Rows(ya[None, i0:i1], grid.h, False, False, None)
+        try:
+            a1, a2 = rows.apply(s1)[0], rows.apply(s2)[0]
+        except (InputError, ValueError):  # too few samples in this run for the stencils
+            continue
+        if i0 > 0:
+            a1[:b1], a2[:b2] = np.nan, np.nan
+        if i1 < ya.size:
+            a1[a1.size - f1:], a2[a2.size - f2:] = np.nan, np.nan
+        d1[i0:i1], d2[i0:i1] = a1, a2
+    return (d1[::-1], d2[::-1]) if grid.reverse else (d1, d2)
+
+
 def _scheme_rates(sweep, name: str, key, frame, values: np.ndarray, idx):
     """``frame`` with the rates of `name` by the frame's schemes (``attrs["method"]``, ``"second_method"``).
 
-    A quantity undefined (NaN) at some inputs is differenced on the open
-    grid: a stencil that reaches such a sample gives NaN. One that does not
-    return to its starting value after a full turn is differenced as open
-    (with a warning), as an unknown's frame with ``periodic="auto"`` is.
+    A quantity undefined (NaN) at some inputs is differenced run by run of
+    defined samples (:func:`_runs_rates`), as an open grid. One that does
+    not return to its starting value after a full turn is differenced as
+    open (with a warning), as an unknown's frame with ``periodic="auto"`` is.
     """
     from dataclasses import replace
 
     from ..analytic import input_rates
-    from ..kinematics import Rows, prepare_rows, scheme_for
+    from ..kinematics import prepare_rows, scheme_for
 
     attrs = frame.attrs
     s1 = scheme_for(attrs["method"], 1, "method")
@@ -168,33 +193,36 @@ def _scheme_rates(sweep, name: str, key, frame, values: np.ndarray, idx):
     if grid is None:
         raise InputError(f"finite[{key!r}]: its inputs ({_span(t)}) are not a uniform grid: the schemes cannot be "
                          f"applied to {name!r}")
-    why = "the frame's grid is open"
-    if not np.isfinite(y).all():
+    defined = bool(np.isfinite(y).all())
+    why = None
+    if not defined:
         why = f"{name!r} is undefined (NaN) at {int((~np.isfinite(y)).sum())} of its inputs"
-        rows = Rows(y[None, ::-1] if grid.reverse else y[None], grid.h, False, grid.reverse, None)
-    else:
-        if grid.periodic:
-            ok, off = _closes(sweep, name, y)
-            if not ok:
-                expr = derived_of(sweep)[name].expression
-                why = (f"{name!r} does not return to its starting value after one turn of the input "
-                       f"({name}[-1] - {name}[0] = {off}, not a whole number of turns)")
-                warn(f"{why}: {name} = {expr} is not periodic in {input_name(sweep)}; finite[{key!r}] differences "
-                     "it as an open grid", UserWarning)
-                grid, periodic = replace(grid, periodic=False), False
+    elif grid.periodic:
+        ok, off = _closes(sweep, name, y)
+        if not ok:
+            why = (f"{name!r} does not return to its starting value after one turn of the input "
+                   f"({name}[-1] - {name}[0] = {off}, not a whole number of turns)")
+    periodic_only = [s.name for s in (s1, s2) if s.periodic_only]
+    if periodic_only and (why or not grid.periodic):
+        raise InputError(f"finite[{key!r}]: scheme {periodic_only[0]!r} needs a quantity periodic over exactly one "
+                         f"turn of the input, and {why or 'the grid is open'}: give {name!r} a frame of a stencil "
+                         "scheme (centred, five_point)")
+    if defined:
+        if why:
+            expr = derived_of(sweep)[name].expression
+            warn(f"{why}: {name} = {expr} is not periodic in {input_name(sweep)}; finite[{key!r}] differences it "
+                 "as an open grid", UserWarning)
+            grid, periodic = replace(grid, periodic=False), False
         rows = prepare_rows(y[None, :], [is_angle(sweep, name)], [name], t, grid, sweep.mechanism.length_scale,
                             periodic)
-    for s in (s1, s2):
-        if s.periodic_only and not rows.periodic:
-            raise InputError(f"finite[{key!r}]: scheme {s.name!r} needs a quantity periodic over exactly one turn "
-                             f"of the input, and {why}: give {name!r} a frame of a stencil scheme (centred, "
-                             "five_point)")
+        d1, d2, is_periodic = rows.apply(s1)[0], rows.apply(s2)[0], rows.periodic
+    else:
+        (d1, d2), is_periodic = _runs_rates(y, grid, s1, s2), False
     w, a = input_rates(attrs["omega"], attrs.get("alpha", 0.0), t.size)
-    d1, d2 = rows.apply(s1)[0], rows.apply(s2)[0]
     vcol, acol = rate_columns(sweep, name)
     out = frame.copy()
     out[vcol], out[acol] = w * d1, w**2 * d2 + a * d1
-    out.attrs["periodic"] = rows.periodic  # a derived quantity that does not close is differenced as open
+    out.attrs["periodic"] = is_periodic  # a derived quantity that does not close is differenced as open
     return out
 
 
@@ -211,7 +239,10 @@ def with_rates(sweep, name: str, analytic=None, finite=None, *, where: str = "ki
     the exact rates, a frame of :func:`numkin.kinematics.finite_difference`
     (its ``method``, ``second_method``, ``omega``, ``alpha``, ``periodic``)
     the same schemes applied to the derived quantity's samples at its
-    inputs. Frames are copied, never changed. A frame that cannot gain them
+    inputs; a quantity undefined (NaN) at some inputs is differenced run by
+    run of defined samples, NaN wherever a stencil reaches a gap; one that
+    does not return to its start after a full turn is differenced as open,
+    with a warning. Frames are copied, never changed. A frame that cannot gain them
     (its attrs lost, or its inputs not the sweep's) is refused by name, never
     left out silently.
 
