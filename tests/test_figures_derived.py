@@ -110,10 +110,10 @@ def test_kinematics_of_the_transmission_angle_against_the_circle_intersection(fo
 
 
 def test_a_wrapped_angle_is_drawn_and_differenced_unwrapped(four_bar):
-    """atan2(...) of mu + 2 rad jumps from +180° to -180°: drawn continuous, its rates those of mu."""
+    """atan2(...) of mu + 2 rad jumps from +180° to -180°: drawn continuous, its rates those of mu, with the
+    warning an unknown angle's wrapped data give (numkin.kinematics.prepare_rows)."""
     sweep = four_bar.sweep
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")  # unwrapped quietly, as the unknowns' angles are continuous
+    with pytest.warns(UserWarning, match=r"\['wrapped'\] jump by more than 180°.*wrapped data; unwrapped"):
         fig = figures.kinematics(sweep, "wrapped", analytic=four_bar.analytic, finite=four_bar.finite)
     _, y = fig.axes[0].get_lines()[0].get_data()
     assert np.max(np.abs(np.diff(y))) < 5.0
@@ -126,7 +126,8 @@ def test_a_wrapped_angle_is_drawn_and_differenced_unwrapped(four_bar):
 
 def test_position_derivative_and_difference_of_a_derived_angle(four_bar):
     sweep = four_bar.sweep
-    fig = figures.position(sweep)  # by default the unknowns and then the derived quantities
+    with pytest.warns(UserWarning, match=r"\['wrapped'\] jump by more than 180°"):
+        fig = figures.position(sweep)  # by default the unknowns and then the derived quantities
     assert [ln.get_label() for ln in fig.axes[0].get_lines()] == ["$\\theta_{3}$", "$\\theta_{4}$", "$\\mu$",
                                                                  "$\\mathrm{wrapped}$"]
     _, y = line(fig.axes[0], "$\\mu$")
@@ -339,7 +340,7 @@ def _wrong_calls(sweep, exact, fd):
         (lambda: figures.kinematics(sweep, "mu", finite=fd["centred"]),
          r"kinematics: finite must map scheme names to DataFrames, got one DataFrame"),
         (lambda: figures.kinematics(sweep, "mu", finite=[fd["centred"]]),
-         r"kinematics: finite must map scheme names .*got list of 1 items"),
+         r"kinematics: finite must map scheme names .*got a list of 1 item"),
         (lambda: figures.kinematics(sweep, "mu", finite={"centred": 1.0}),
          r"kinematics: finite\['centred'\] must be a DataFrame, got float 1.0"),
         (lambda: figures.kinematics(sweep, "mu", analytic=exact, check_angles="90"),
@@ -378,12 +379,267 @@ def test_save_names_a_wrong_path(four_bar, tmp_path):
     assert [p.name for p in figures.save(fig, tmp_path / "mu", ["png"])] == ["mu.png"]
 
 
-def test_render_draws_a_derived_quantity_from_the_frames_of_the_unknowns(four_bar, tmp_path):
+def test_render_draws_a_derived_quantity_from_the_frames_of_the_unknowns(four_bar, tmp_path, monkeypatch):
     """A duck-typed result holding only the unknowns' frames: the derived rates come from their speed and
-    schemes, the same numbers as figures.kinematics draws."""
+    schemes, the same numbers as figures.kinematics draws, and those of the closed form's differences."""
     result = types.SimpleNamespace(sweep=four_bar.sweep, analytic=four_bar.analytic, finite=four_bar.finite,
                                    check_angles=[math.radians(90)], figures=["kinematics:mu", "acceleration:mu"])
+    drawn = _render_spy(monkeypatch)
     written = figures.render(result, out_dir=tmp_path, formats=["svg"])
     assert [p.name for p in written] == ["kinematics-mu.svg", "acceleration-mu.svg"]
+    direct = figures.kinematics(four_bar.sweep, "mu", analytic=four_bar.analytic, finite=four_bar.finite,
+                                check_angles=[math.radians(90)])
+    for j in (1, 2):
+        for label in ("forward", "centred", "analytic"):
+            np.testing.assert_array_equal(line(drawn[0].axes[j], label)[1], line(direct.axes[j], label)[1])
+    mu = _mu(four_bar.sweep.inputs)
+    np.testing.assert_allclose(line(drawn[0].axes[1], "centred")[1], OMEGA * _centred_periodic(mu, math.radians(1)),
+                               atol=1e-8)
     again = figures.render(result, out_dir=tmp_path / "again", formats=["svg"])
     assert [p.read_bytes() for p in written] == [p.read_bytes() for p in again]
+
+
+def test_figure_functions_take_any_iterable_of_names_and_any_path(four_bar, tmp_path):
+    """Names as arrays, indexes, dict keys or generators; check angles as 0-d or object arrays; path-likes."""
+    import os
+
+    import pandas as pd
+
+    sweep, exact, fd = four_bar.sweep, four_bar.analytic, four_bar.finite
+    for names in (np.array(["theta3", "mu"]), pd.Index(["theta3", "mu"]), {"theta3": 1, "mu": 2}.keys(),
+                  (n for n in ["theta3", "mu"])):
+        fig = figures.position(sweep, names)
+        assert [ln.get_label() for ln in fig.axes[0].get_lines()] == ["$\\theta_{3}$", "$\\mu$"]
+    fig = figures.derivative(sweep, "mu", np.array(["forward", "centred"]))
+    assert [t.get_text() for t in fig.axes[0].get_legend().get_texts()][::2] == ["forward", "centred"]
+    for checks in ([np.array(math.radians(90))], np.array([math.radians(90)], dtype=object),
+                   (a for a in [math.radians(90)])):
+        fig = figures.kinematics(sweep, "mu", analytic=exact, check_angles=checks)
+        assert "$\\mu$(90°) = 86.815 deg" in " ".join(t.get_text() for t in fig.axes[0].texts)
+    fig = figures.kinematics(sweep, "mu", finite=[("centred", fd["centred"])])
+    assert "centred" in [ln.get_label() for ln in fig.axes[1].get_lines()]
+    assert figures.mechanism(sweep, 0.5, traces=np.array(["B"])).axes
+
+    class Stem(os.PathLike):
+        def __fspath__(self):
+            return str(tmp_path / "pathlike")
+
+    fig = figures.position(sweep, "mu")
+    assert [p.name for p in figures.save(fig, Stem(), {"png"})] == ["pathlike.png"]
+    fig = figures.position(sweep, "mu")
+    assert [p.name for p in figures.save(fig, tmp_path / "arr", np.array(["png", "svg"]))] == ["arr.png", "arr.svg"]
+    fig = figures.position(sweep, "mu")
+    assert [p.name for p in figures.save(fig, tmp_path / "gen", (f for f in ["svg"]))] == ["gen.svg"]
+    result = types.SimpleNamespace(sweep=sweep)
+    assert [p.name for p in figures.render(result, ["position:mu"], tmp_path, {"png"})] == ["position-mu.png"]
+
+
+# ----------------------------------------------------------------------------- what the frames hold
+def test_a_derived_angle_moving_more_than_half_a_turn_per_sample_is_not_bent_back_silently():
+    """5 theta2 on a 40° grid moves 200° per sample: unwrapped as an unknown's angle would be, and said so."""
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"gear": ("5*theta2", "angle")})
+    sweep = mech.sweep(np.radians(np.arange(0.0, 361.0, 40.0)))
+    for draw in (lambda: figures.position(sweep, "gear"),
+                 lambda: figures.kinematics(sweep, "gear", finite={"centred": finite_difference(sweep, 2.0)}),
+                 lambda: figures.derivative(sweep, "gear")):
+        with pytest.warns(UserWarning, match=r"\['gear'\] jump by more than 180° .*between inputs 0.000° and "
+                                             r"40.000°\): wrapped data"):
+            draw()
+    # a fine grid needs no unwrapping: the rates are 5 omega, quietly
+    fine = mech.sweep(np.radians(np.arange(0.0, 361.0, 5.0)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fig = figures.kinematics(fine, "gear", finite={"centred": finite_difference(fine, 2.0)})
+    np.testing.assert_allclose(line(fig.axes[1], "centred")[1], 10.0, atol=1e-9)
+
+
+def _centred_periodic(y, h):
+    """Centred difference of one turn (the last sample repeats the first), computed here."""
+    up, down = np.roll(y[:-1], -1), np.roll(y[:-1], 1)
+    d = (up - down) / (2 * h)
+    return np.append(d, d[0])
+
+
+def _second_periodic(y, h):
+    up, down = np.roll(y[:-1], -1), np.roll(y[:-1], 1)
+    d = (up - 2 * y[:-1] + down) / h**2
+    return np.append(d, d[0])
+
+
+def test_a_frame_of_a_coarser_sweep_is_drawn_for_a_derived_quantity_at_its_own_inputs():
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities(MU)
+    fine = mech.sweep(np.radians(np.arange(0.0, 361.0, 1.0)))
+    coarse = mech.sweep(np.radians(np.arange(0.0, 361.0, 10.0)))
+    omega, alpha = -7.0, 3.0
+    exact = analytic_kinematics(fine, omega, alpha)
+    finite = {"centred h=1": finite_difference(fine, omega, alpha),
+              "centred h=10": finite_difference(coarse, omega, alpha)}
+    fig = figures.kinematics(fine, "mu", analytic=exact, finite=finite)
+    x, w = line(fig.axes[1], "centred h=10")
+    np.testing.assert_allclose(x, np.arange(0.0, 361.0, 10.0), atol=1e-12)
+    t, h = np.radians(x), math.radians(10.0)
+    mu = _mu(t)
+    d1, d2 = _centred_periodic(mu, h), _second_periodic(mu, h)
+    np.testing.assert_allclose(w, omega * d1, atol=1e-9)
+    np.testing.assert_allclose(line(fig.axes[2], "centred h=10")[1], omega**2 * d2 + alpha * d1, atol=1e-7)
+    fig = figures.acceleration_comparison(fine, "mu", exact, finite)
+    np.testing.assert_allclose(line(fig.axes[0], "centred h=10")[1], omega**2 * d2 + alpha * d1, atol=1e-7)
+
+
+def test_a_frame_that_cannot_give_a_derived_quantity_its_rates_is_refused_by_name(four_bar):
+    import pandas as pd
+
+    sweep, exact = four_bar.sweep, four_bar.analytic
+    bare = pd.DataFrame(four_bar.finite["centred"].to_dict())  # rebuilt: its attrs are lost
+    assert bare.attrs == {}
+    figures.kinematics(sweep, "theta4", analytic=exact, finite={"bare": bare})  # an unknown's columns it holds
+    with pytest.raises(numkin.InputError, match=r"kinematics of the derived quantity 'mu': finite\['bare'\] holds "
+                                                r"no 'omega_mu' column and lacks the attrs \['method', "):
+        figures.kinematics(sweep, "mu", analytic=exact, finite={"bare": bare})
+    shifted = sweep.mechanism.sweep(sweep.inputs + math.radians(1.0))
+    with pytest.raises(numkin.InputError, match=r"finite\['shifted'\] lies on 361 inputs from 1° to 361°, not on "
+                                                r"inputs of this sweep \(361 inputs from 0° to 360°\)"):
+        figures.acceleration_comparison(sweep, "mu", exact, {"shifted": finite_difference(shifted, OMEGA)})
+    with pytest.raises(numkin.InputError, match=r"analytic holds no 'omega_mu' column and lacks the attrs "
+                                                r"\['omega'\]"):
+        figures.kinematics(sweep, "mu", analytic=pd.DataFrame(exact.to_dict()), finite=four_bar.finite)
+
+
+def _render_spy(monkeypatch):
+    from numkin.figures import dispatch
+
+    drawn = []
+
+    def spy(*args, _real=dispatch.kinematics, **kwargs):
+        drawn.append(_real(*args, **kwargs))
+        return drawn[-1]
+
+    monkeypatch.setattr(dispatch, "kinematics", spy)
+    return drawn
+
+
+def test_render_joins_derived_kinematics_only_on_the_same_inputs(four_bar, tmp_path, monkeypatch):
+    """The derived frame's columns are drawn when it lies on the analytic frame's inputs, never when shifted."""
+    import pandas as pd
+
+    from numkin.expressions import derived_kinematics
+
+    sweep = four_bar.sweep
+    bare = pd.DataFrame(four_bar.analytic.to_dict())  # no attrs: the derived rates can only come from the join
+    derived = derived_kinematics(sweep, OMEGA, names=["mu"])
+    drawn = _render_spy(monkeypatch)
+    result = types.SimpleNamespace(sweep=sweep, analytic=bare, derived_kinematics=derived, figures=["kinematics:mu"])
+    assert [p.name for p in figures.render(result, out_dir=tmp_path, formats=["png"])] == ["kinematics-mu.png"]
+    mp.mp.dps = 30
+    at = [0, 90, 200]
+    d1 = np.array([float(mp.diff(_mu_mp, mp.radians(d))) for d in at])
+    np.testing.assert_allclose(line(drawn[-1].axes[1], "analytic")[1][at], OMEGA * d1, atol=1e-9)
+    shifted = derived_kinematics(sweep.mechanism.sweep(sweep.inputs + math.radians(1.0)), OMEGA, names=["mu"])
+    result.derived_kinematics = shifted
+    with pytest.warns(UserWarning, match=r"derived_kinematics lies on other inputs than the analytic kinematics"), \
+            pytest.warns(UserWarning, match=r"figure 'kinematics' of the derived quantity 'mu': analytic holds no "
+                                            r"'omega_mu' column .*; not drawn"), \
+            pytest.warns(figures.FigureSkipped, match=r"figure 'kinematics:mu' skipped"):
+        assert figures.render(result, out_dir=tmp_path / "shifted", formats=["png"]) == []
+
+
+def test_a_position_title_goes_on_two_lines_only_when_one_line_does_not_fit():
+    """The four-bar's title of two unknowns fits on one line (as it always did); with three derived
+    quantities more it would run off the figure, so the mechanism's name gets a line of its own."""
+    plain = linkages.four_bar(4, 1, 3, 3)
+    sweep = plain.sweep(np.radians(np.arange(0.0, 361.0, 5.0)))
+    title = figures.position(sweep).axes[0].get_title()
+    assert title == ("four-bar (ground 4 mm, crank 1 mm, coupler 3 mm, rocker 3 mm): $\\theta_{3}$, $\\theta_{4}$ "
+                     "against $\\theta_{2}$")
+    more = plain.add_quantities({**MU, "gamma": ("theta3 + theta2", "angle"), "s": ("3*cos(theta3)", "length")})
+    fig = figures.position(more.sweep(sweep.inputs))
+    head, _, rest = fig.axes[0].get_title().partition("\n")
+    assert head == "four-bar (ground 4 mm, crank 1 mm, coupler 3 mm, rocker 3 mm)"
+    assert rest == "$\\theta_{3}$, $\\theta_{4}$, $\\mu$, $\\gamma$, $s$ against $\\theta_{2}$"
+    text = fig.axes[0].title
+    text.set_text(f"{head}: {rest}")
+    assert text.get_window_extent(fig.canvas.get_renderer()).width > 0.94 * fig.bbox.width
+
+
+# ----------------------------------------------------------------------------- grids, signs and gaps
+def _forward_periodic(y, h):
+    d = (np.roll(y[:-1], -1) - y[:-1]) / h
+    return np.append(d, d[0])
+
+
+def _forward_of_forward_periodic(y, h):
+    d = (np.roll(y[:-1], -2) - 2 * np.roll(y[:-1], -1) + y[:-1]) / h**2
+    return np.append(d, d[0])
+
+
+def test_negative_speed_and_acceleration_and_forward_of_forward_against_differences_taken_here():
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities(MU)
+    sweep = mech.sweep(np.radians(np.arange(0.0, 361.0, 2.0)))
+    omega, alpha = -6.0, -4.0
+    finite = {"f": finite_difference(sweep, omega, alpha, method="forward", second_method="forward_of_forward"),
+              "c": finite_difference(sweep, omega, alpha)}
+    fig = figures.kinematics(sweep, "mu", analytic=analytic_kinematics(sweep, omega, alpha), finite=finite)
+    h, mu = math.radians(2.0), _mu(sweep.inputs)
+    f1, f2 = _forward_periodic(mu, h), _forward_of_forward_periodic(mu, h)
+    c1, c2 = _centred_periodic(mu, h), _second_periodic(mu, h)
+    np.testing.assert_allclose(line(fig.axes[1], "f")[1], omega * f1, atol=1e-8)
+    np.testing.assert_allclose(line(fig.axes[2], "f")[1], omega**2 * f2 + alpha * f1, atol=1e-6)
+    np.testing.assert_allclose(line(fig.axes[1], "c")[1], omega * c1, atol=1e-8)
+    np.testing.assert_allclose(line(fig.axes[2], "c")[1], omega**2 * c2 + alpha * c1, atol=1e-6)
+    mp.mp.dps = 30
+    at = [0, 45, 133]
+    d1 = np.array([float(mp.diff(_mu_mp, mp.radians(2 * k))) for k in at])
+    d2 = np.array([float(mp.diff(_mu_mp, mp.radians(2 * k), 2)) for k in at])
+    np.testing.assert_allclose(line(fig.axes[1], "analytic")[1][at], omega * d1, atol=1e-9)
+    np.testing.assert_allclose(line(fig.axes[2], "analytic")[1][at], omega**2 * d2 + alpha * d1, atol=1e-7)
+
+
+def test_a_frame_differenced_as_open_draws_the_end_stencils_of_a_derived_quantity(four_bar):
+    """periodic=False on a full turn: mu differenced on the open grid, its one-sided ends drawn apart."""
+    sweep = four_bar.sweep
+    fd = finite_difference(sweep, OMEGA, periodic=False)
+    fig = figures.kinematics(sweep, "mu", finite={"c": fd})
+    h, mu = math.radians(1.0), _mu(sweep.inputs)
+    x, ends = line(fig.axes[1], "c: one-sided end stencil")
+    np.testing.assert_allclose(x, [0.0, 360.0], atol=1e-12)
+    one_sided = [(-3 * mu[0] + 4 * mu[1] - mu[2]) / (2 * h), (3 * mu[-1] - 4 * mu[-2] + mu[-3]) / (2 * h)]
+    np.testing.assert_allclose(ends, OMEGA * np.array(one_sided), atol=1e-8)
+    interior = line(fig.axes[1], "c")[1]
+    np.testing.assert_allclose(interior[1:-1], OMEGA * (mu[2:] - mu[:-2]) / (2 * h), atol=1e-8)
+
+
+def test_a_derived_quantity_that_does_not_close_is_differenced_open_and_says_why():
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"half": ("theta2/2", "angle")})
+    sweep = mech.sweep(np.radians(np.arange(0.0, 361.0, 2.0)))
+    fd = finite_difference(sweep, OMEGA)
+    assert fd.attrs["periodic"] is True  # the unknowns close
+    with pytest.warns(UserWarning, match=r"'half' does not return to its starting value after one turn of the "
+                                         r"input \(half\[-1\] - half\[0\] = 180°, not a whole number of turns\): "
+                                         r"half = theta2/2 is not periodic in theta2") as caught:
+        fig = figures.kinematics(sweep, "half", finite={"c": fd})
+    assert not any("branch" in str(w.message) for w in caught)
+    x, ends = line(fig.axes[1], "c: one-sided end stencil")  # its open grid's ends, drawn apart
+    np.testing.assert_allclose(x, [0.0, 360.0], atol=1e-12)
+    np.testing.assert_allclose(ends, OMEGA * 0.5, atol=1e-9)
+    spectral = finite_difference(sweep, OMEGA, method="spectral", second_method="spectral_second")
+    with pytest.raises(numkin.InputError, match=r"finite\['s'\]: scheme 'spectral' needs a quantity periodic over "
+                                                r"exactly one turn of the input, and 'half' does not return"):
+        figures.kinematics(sweep, "half", finite={"s": spectral})
+
+
+def test_a_derived_angle_undefined_on_part_of_the_sweep_is_drawn_where_it_is_defined():
+    """acos(mu / 1.3) exists only where mu <= 1.3 rad: NaN elsewhere and wherever a stencil reaches a gap."""
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"nanq": ("acos((theta4 - theta3)/1.3)", "angle")})
+    sweep = mech.sweep(np.radians(np.arange(0.0, 361.0, 2.0)))
+    with pytest.warns(RuntimeWarning, match=r"nanq is not finite at .* first at input 62°"):
+        fig = figures.kinematics(sweep, "nanq", analytic=analytic_kinematics(sweep, OMEGA),
+                                 finite={"c": finite_difference(sweep, OMEGA)})
+    with np.errstate(invalid="ignore"):
+        q = np.arccos(_mu(sweep.inputs) / 1.3)
+    h = math.radians(2.0)
+    ref = np.full(q.size, np.nan)
+    ref[1:-1] = (q[2:] - q[:-2]) / (2 * h)
+    _, drawn = line(fig.axes[1], "c")
+    np.testing.assert_array_equal(np.isnan(drawn[1:-1]), np.isnan(ref[1:-1]))
+    np.testing.assert_allclose(drawn[1:-1], OMEGA * ref[1:-1], atol=1e-8)
+    assert np.isnan(drawn).sum() > np.isnan(q).sum()  # the stencils at each gap's edge are left out

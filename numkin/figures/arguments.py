@@ -27,12 +27,16 @@ __all__ = ["got", "need_angle", "need_angles", "need_figure", "need_frame", "nee
            "need_result", "need_sweep", "need_table", "need_tables"]
 
 
+def _items(n: int) -> str:
+    return f"{n} item" if n == 1 else f"{n} items"
+
+
 def got(value) -> str:
     """``"str 'abc'"``: the type and a short repr of a wrong argument, for messages."""
     text = repr(value)
     if "\n" in text:  # a DataFrame, or a list of them: its type (and length) says enough
-        size = f" of {len(value)} items" if isinstance(value, (list, tuple)) else ""
-        return f"{type(value).__name__}{size}"
+        size = f" of {_items(len(value))}" if isinstance(value, (list, tuple)) else ""
+        return f"a {type(value).__name__}{size}" if size else type(value).__name__
     if len(text) > 60:
         text = text[:57] + "..."
     return f"{type(value).__name__} {text}"
@@ -50,12 +54,30 @@ def need_sweep(sweep, where: str) -> None:
     raise InputError(f"{where}: sweep must be a numkin Sweep (Mechanism.sweep(inputs)), got {got(sweep)}{hint}")
 
 
-def need_names(names, parameter: str, where: str) -> None:
-    """`names` must be None, a string or a sequence of strings."""
+def _listed(values):
+    """A non-string iterable as a list (a generator is read once), or None if `values` is not iterable."""
+    if isinstance(values, (str, bytes)) or _is_frame(values) or not hasattr(values, "__iter__"):
+        return None
+    import numpy as np
+
+    if isinstance(values, np.ndarray) and values.ndim == 0:
+        return None
+    return list(values)
+
+
+def need_names(names, parameter: str, where: str):
+    """`names` must be None, a string or an iterable of strings (a list, tuple, array, ``dict.keys()``...).
+
+    Returns
+    -------
+    None, str or list of str
+        `names` itself for None or a string; else its items as a list.
+    """
     if names is None or isinstance(names, str):
-        return
-    if isinstance(names, (list, tuple)) and all(isinstance(n, str) for n in names):
-        return
+        return names
+    listed = _listed(names)
+    if listed is not None and all(isinstance(n, str) for n in listed):
+        return listed
     raise InputError(f"{where}: {parameter} must be a name or a list of names (str), got {got(names)}")
 
 
@@ -77,17 +99,29 @@ def need_frame(frame, parameter: str, where: str, *, optional: bool = True) -> N
     raise InputError(f"{where}: {parameter} must be a DataFrame (numkin.analytic.kinematics), got {got(frame)}")
 
 
-def need_frames(frames, parameter: str, where: str, *, optional: bool = True) -> None:
-    """`frames` must be a mapping scheme name -> DataFrame (or None when `optional`)."""
+def need_frames(frames, parameter: str, where: str, *, optional: bool = True):
+    """`frames` must be a mapping scheme name -> DataFrame, or pairs ``(name, DataFrame)`` (None when
+    `optional`).
+
+    Returns
+    -------
+    None or mapping
+        `frames` itself, or the pairs as a dict.
+    """
     if frames is None and optional:
-        return
+        return None
     if _is_frame(frames):
         raise InputError(f"{where}: {parameter} must map scheme names to DataFrames, got one DataFrame; "
                          f"give {{'centred': frame}}")
     if not isinstance(frames, Mapping):
-        raise InputError(f"{where}: {parameter} must map scheme names to DataFrames "
-                         f"({{'centred': numkin.kinematics.finite_difference(...)}}), got {got(frames)}")
+        listed = _listed(frames)
+        if listed and all(isinstance(p, tuple) and len(p) == 2 and isinstance(p[0], str) for p in listed):
+            frames = dict(listed)
+        else:
+            raise InputError(f"{where}: {parameter} must map scheme names to DataFrames "
+                             f"({{'centred': numkin.kinematics.finite_difference(...)}}), got {got(frames)}")
     _each_frame(frames, parameter, where)
+    return frames
 
 
 def _is_number(value) -> bool:
@@ -105,19 +139,35 @@ def need_angle(angle, parameter: str, where: str) -> None:
                      f"got {got(angle)}")
 
 
-def need_angles(angles, parameter: str, where: str) -> None:
-    """`angles` must be None, a number or a sequence (or array) of numbers, in rad."""
+def _is_real(value) -> bool:
+    """A real number: a Python or numpy number (a bool too: 0 or 1 rad) or a 0-d numeric array."""
     import numpy as np
 
-    if angles is None or _is_number(angles):
-        return
-    if isinstance(angles, np.ndarray) and angles.dtype.kind in "iuf":
-        return
-    if isinstance(angles, (str, bytes, Mapping, np.ndarray)) or not hasattr(angles, "__iter__"):
+    if isinstance(value, np.ndarray):
+        return value.ndim == 0 and value.dtype.kind in "biuf"
+    return isinstance(value, numbers.Real)
+
+
+def need_angles(angles, parameter: str, where: str):
+    """`angles` must be None, a number or an iterable (or array) of numbers, in rad.
+
+    Returns
+    -------
+    `angles` itself, or its items as a list (a generator is read once).
+    """
+    import numpy as np
+
+    if angles is None or _is_real(angles):
+        return angles
+    if isinstance(angles, np.ndarray) and angles.dtype.kind in "biuf":
+        return angles
+    if isinstance(angles, (str, bytes, Mapping)) or not hasattr(angles, "__iter__"):
         raise InputError(f"{where}: {parameter} must be input angles in rad (numbers), got {got(angles)}")
-    bad = [a for a in angles if not _is_number(a)]
+    listed = list(np.ravel(angles)) if isinstance(angles, np.ndarray) else list(angles)
+    bad = [a for a in listed if not _is_real(a)]
     if bad:
         raise InputError(f"{where}: {parameter} must be input angles in rad (numbers), got {got(bad[0])} among them")
+    return listed
 
 
 def need_table(table, parameter: str, where: str) -> None:

@@ -57,7 +57,7 @@ def position(sweep, names: Sequence[str] | None = None):
     'numkin-doc-phi.png'
     """
     need_sweep(sweep, "position")
-    need_names(names, "names", "position")
+    names = need_names(names, "names", "position")
     if isinstance(names, str):
         names = [names]
     if names is None:
@@ -86,10 +86,20 @@ def position(sweep, names: Sequence[str] | None = None):
         degree_ticks(axes[-1, 0], x)
         title = f"{', '.join(sym(n) for n in names)} against {sym(input_name(sweep))}"
         head = mechanism_title(sweep.mechanism)
-        # a long title on two lines (the width of its text, symbols counted as one character each)
-        plain = len(head) + len(names) * 4 + 10
-        axes[0, 0].set_title(f"{head}\n{title}" if plain > 78 else f"{head}: {title}")
+        _title(fig, axes[0, 0], head, title)
     return fig
+
+
+def _title(fig, ax, head: str, title: str) -> None:
+    """``head: title`` on one line, or on two lines when the rendered line would not fit in the figure's width.
+
+    The width is measured by the figure's renderer, in the title's font,
+    less a margin of 3 % on each side.
+    """
+    text = ax.set_title(f"{head}: {title}")
+    width = text.get_window_extent(fig.canvas.get_renderer()).width
+    if width > 0.94 * fig.bbox.width:
+        text.set_text(f"{head}\n{title}")
 
 
 def _derivative_units(sweep, name: str) -> tuple[str, str]:
@@ -128,7 +138,7 @@ def derivative(sweep, name: str, schemes: Sequence[str] = ("forward", "centred")
 
     need_sweep(sweep, "derivative")
     check_unknown(sweep, name, "derivative: name")
-    need_names(schemes, "schemes", "derivative")
+    schemes = need_names(schemes, "schemes", "derivative")
     h = uniform_step(sweep)
     if isinstance(schemes, str):
         schemes = [schemes]
@@ -253,7 +263,11 @@ def kinematics(
     :func:`numkin.analytic.derived_kinematics` at the analytic frame's input
     speed, unless the frame holds them already; its finite-difference rates
     by each frame's own schemes applied to its sampled values (see
-    :func:`numkin.figures.series.with_rates`).
+    :func:`numkin.figures.series.with_rates`). Where its expression is
+    undefined (``acos`` of more than 1) its samples are NaN, and so is every
+    rate whose stencil reaches one: the curves break there. A frame that
+    cannot give it rates (its attrs lost, its inputs not the sweep's) is
+    refused by name.
 
     Parameters
     ----------
@@ -284,9 +298,9 @@ def kinematics(
     need_sweep(sweep, "kinematics")
     check_unknown(sweep, name, "kinematics: name")
     need_frame(analytic, "analytic", "kinematics")
-    need_frames(finite, "finite", "kinematics")
-    need_angles(check_angles, "check_angles", "kinematics")
-    analytic, finite = with_rates(sweep, name, analytic, finite)
+    finite = need_frames(finite, "finite", "kinematics")
+    check_angles = need_angles(check_angles, "check_angles", "kinematics")
+    analytic, finite = with_rates(sweep, name, analytic, finite, where="kinematics")
     vcol, acol = rate_columns(sweep, name)
     # the sources of each panel: every frame that holds its column, analytic last (drawn on top)
     panels = []
@@ -423,10 +437,10 @@ def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
     need_sweep(sweep, "acceleration_comparison")
     check_unknown(sweep, name, "acceleration_comparison: name")
     need_frame(analytic, "analytic", "acceleration_comparison")
-    need_frames(finite, "finite", "acceleration_comparison")
+    finite = need_frames(finite, "finite", "acceleration_comparison")
     if analytic is None or not finite:
         raise InputError(f"acceleration of {name!r}: needs both the analytic frame and finite-difference frames")
-    analytic, finite = with_rates(sweep, name, analytic, finite)
+    analytic, finite = with_rates(sweep, name, analytic, finite, where="acceleration_comparison")
     _, acol = rate_columns(sweep, name)
     _, _, alabel = quantity_labels(sweep, name)
     unit = unit_of(alabel)

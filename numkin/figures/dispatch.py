@@ -14,7 +14,8 @@ from .curves import acceleration_comparison, derivative, difference, kinematics,
 from .drawing import mechanism
 from .error_plots import convergence, jacobian_of, newton_residuals, roundoff, work_precision
 from .arguments import need_names, need_result
-from .labels import check_points, check_unknown, derived_of, input_name, is_angle, rate_columns, table_column
+from .labels import (check_points, check_unknown, derived_of, frame_input, input_name, is_angle, rate_columns,
+                     table_column)
 from .series import with_rates
 from .style import METADATA, gc_paused, save
 
@@ -216,16 +217,20 @@ def _joined(analytic, derived, sweep):
     """The analytic kinematics with the columns of :func:`numkin.analytic.derived_kinematics` beside them.
 
     Either may be absent; the derived frame's columns are joined only when
-    it lies on the same inputs (it always does in a scene's result).
+    it lies on the same inputs, row by row (it always does in a scene's
+    result); otherwise it is left out with a warning.
     """
     if not hasattr(derived, "columns"):
         return analytic
     if analytic is None:
         return derived
-    if sweep is None or len(derived) != len(analytic):
-        return analytic
     new = [c for c in derived.columns if c not in analytic.columns]
     if not new:
+        return analytic
+    if sweep is None or len(derived) != len(analytic) or not np.allclose(
+            frame_input(derived, sweep), frame_input(analytic, sweep), rtol=0.0, atol=1e-12):
+        warn("derived_kinematics lies on other inputs than the analytic kinematics: its columns "
+             f"{new} are not joined (compute both from the same sweep)", UserWarning)
         return analytic
     out = analytic.copy()
     for c in new:
@@ -299,7 +304,7 @@ def _build(kind: str, arg, d: _Data):
         sweep = d.need_sweep()
         name = d.unknown(arg, "angle" if kind == "kinematics" else "length")
         vcol, acol = rate_columns(sweep, name)
-        analytic, finite = with_rates(sweep, name, d.analytic, d.finite)
+        analytic, finite = with_rates(sweep, name, d.analytic, d.finite, where=f"figure '{kind}'", strict=False)
         frames = [f for f in [analytic, *finite.values()] if f is not None]
         if not any(vcol in f.columns or acol in f.columns for f in frames):
             raise _Missing(f"no velocity or acceleration of {name!r} in the result (ask for them in the scene)")
@@ -310,7 +315,8 @@ def _build(kind: str, arg, d: _Data):
         sweep = d.need_sweep()
         name = d.unknown(arg, "length")
         _, acol = rate_columns(sweep, name)
-        analytic, finite = with_rates(sweep, name, d.analytic, d.finite)
+        analytic, finite = with_rates(sweep, name, d.analytic, d.finite, where="figure 'acceleration'",
+                                      strict=False)
         if analytic is None or acol not in analytic.columns:
             raise _Missing(f"no analytic {acol} in the result (ask for accelerations in the scene)")
         finite = {k: f for k, f in finite.items() if acol in f.columns}
@@ -392,7 +398,7 @@ def render(result, names: Sequence[str] | None = None, out_dir=".", formats: Seq
     ['mechanism.png', 'mechanism.svg']
     """
     need_result(result, "render")
-    need_names(names, "names", "render")
+    names = need_names(names, "names", "render")
     if names is None:
         names = getattr(result, "figures", None)
         if names is None:
@@ -402,7 +408,7 @@ def render(result, names: Sequence[str] | None = None, out_dir=".", formats: Seq
     specs = [(spec, *parse_spec(spec)) for spec in names]
     if isinstance(formats, str):
         formats = (formats,)
-    need_names(formats, "formats", "render")
+    formats = need_names(formats, "formats", "render")
     bad = [f for f in formats if str(f).lower().lstrip(".") not in METADATA]
     if bad or not formats:
         raise InputError(

@@ -389,8 +389,8 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
 
     need_sweep(sweep, "mechanism")
     need_angle(at, "at", "mechanism")
-    need_names(traces, "traces", "mechanism")
-    need_names(arrow_points, "arrow_points", "mechanism")
+    traces = need_names(traces, "traces", "mechanism")
+    arrow_points = need_names(arrow_points, "arrow_points", "mechanism")
     mech = sweep.mechanism
     if not mech.points or not mech.links:
         raise InputError(f"{mech.name} has no named points and links to draw")

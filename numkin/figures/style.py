@@ -16,6 +16,7 @@ Examples
 
 from __future__ import annotations
 
+import os
 import re
 import sys
 from contextlib import contextmanager
@@ -199,10 +200,11 @@ def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
     from .arguments import got, need_figure, need_names
 
     need_figure(fig, "save")
-    if not isinstance(path_stem, (str, Path)) or not str(path_stem).strip():
+    if not isinstance(path_stem, (str, os.PathLike)) or not str(os.fspath(path_stem)).strip():
         raise InputError(f"save: path_stem must be a file path without its extension (str or Path), "
                          f"got {got(path_stem)}")
-    need_names(formats, "formats", "save")
+    path_stem = os.fspath(path_stem)
+    formats = need_names(formats, "formats", "save")
     if isinstance(formats, str):
         formats = (formats,)
     fmts = [str(f).lower().lstrip(".") for f in formats]
