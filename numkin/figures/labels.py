@@ -13,12 +13,12 @@ $\\theta_{2}$ 0.000 0°
 from __future__ import annotations
 
 import math
-import re
 
 import numpy as np
 
 from ..errors import InputError
 from ..quantities import GREEK, tex
+from ..units import with_length_unit
 
 __all__ = [
     "GREEK", "check_points", "check_unknown", "deg_text", "derived_of", "degree_ticks", "frame_column", "frame_input",
@@ -49,13 +49,7 @@ def mechanism_title(mechanism) -> str:
     >>> mechanism_title(linkages.slider_crank(80, 200))
     'slider-crank (crank 80 mm, rod 200 mm, offset 0 mm)'
     """
-    name, unit = str(mechanism.name), mechanism.length_unit
-    head, paren, rest = name.partition(" (")
-    if not paren or not rest.endswith(")"):
-        return name
-    items = rest[:-1].split(", ")
-    fixed = [re.sub(r"^(\w+ [-+0-9.eE]+)$", rf"\1 {unit}", item) for item in items]
-    return f"{head} ({', '.join(fixed)})"
+    return with_length_unit(mechanism.name, mechanism.length_unit)
 
 
 def input_label(sweep) -> str:
