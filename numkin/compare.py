@@ -32,7 +32,9 @@ errors, both dimensionless:
 
 * ``rel error = abs error / max|analytic|``, the error relative to the
   largest value of the quantity over the sweep. It stays meaningful where
-  the quantity crosses zero, and it is the one summarised;
+  the quantity crosses zero, and it is the one summarised (NaN where the
+  quantity is zero over the whole sweep, e.g. the acceleration of a length
+  linear in the input);
 * ``pointwise rel error = abs error / |analytic|``, which grows without
   bound near a zero crossing of the quantity (NaN where it is exactly 0).
 
@@ -295,8 +297,9 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
             "order": "spectral" if s.order == 0 else str(s.order),
             target.with_source("max").source_label("abs error"): float(np.nanmax(inner)),
             target.with_source("rms").source_label("abs error"): float(np.sqrt(np.nanmean(err[keep] ** 2))),
-            "max rel error": float(np.nanmax(np.where(keep, rel, np.nan))),
-            "rms rel error": float(np.sqrt(np.nanmean(rel[keep] ** 2))),
+            # (NaN where the analytic value is zero over the whole sweep: no error is relative to it)
+            "max rel error": float(np.nanmax(np.where(keep, rel, np.nan))) if scale > 0 else np.nan,
+            "rms rel error": float(np.sqrt(np.nanmean(rel[keep] ** 2))) if scale > 0 else np.nan,
             f"max at {in_col}": round(float(np.degrees(t[worst])), 9),  # no 6.000000000000001 from rad and back
         }
         if not rows.periodic:  # the one-sided end stencils, apart

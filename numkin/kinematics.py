@@ -264,7 +264,8 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
             msg = (
                 f"{bad_names} do not return to their starting value after one turn of the input "
                 f"(value[-1] - value[0] = {offset[~ok][0]:.6g}, not a whole number of turns): "
-                "the sweep is not periodic (did it change branch?)"
+                "they are not periodic in the input (an unknown that does not close has changed branch; a "
+                "derived quantity such as theta2/2 may simply not be periodic)"
             )
             if periodic is True:
                 raise InputError(msg)

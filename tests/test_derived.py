@@ -1,6 +1,7 @@
 """Derived quantities (numkin.derived, numkin.expressions): values and rates against closed forms."""
 
 import math
+import warnings
 
 import mpmath as mp
 import numpy as np
@@ -253,3 +254,26 @@ def test_a_scene_names_its_wrong_declaration(tmp_path):
                     .replace('"theta4 - theta3"', '"theta4 - phi"'))
     with pytest.raises(numkin.NumkinError, match=r"\[mechanism.quantities\].*names \['phi'\]"):
         run_scene(load_scene(str(path)))
+
+
+def test_a_derived_quantity_that_is_not_periodic_is_compared_on_an_open_grid_and_a_zero_rate_has_no_rel_error():
+    # half = theta2/2 + theta3 gains half a turn per turn; arc = r2 theta2 (a rack) has v = r2 omega, a = 0
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"half": ("theta2/2 + theta3", "angle"),
+                                                         "arc": ("r2*theta2", "length")})
+    sweep = mech.sweep(np.radians(np.arange(0.0, 361.0, 10.0)))
+    with pytest.warns(UserWarning, match=r"\['v_arc'\] do not return .* not periodic in the input .* derived quantity"):
+        v = compare(sweep, 10.0, "v_arc", schemes=["centred"])
+    np.testing.assert_allclose(v.table["centred [mm/s]"], 10.0, rtol=1e-13)   # centred is exact on a line
+    assert v.summary["ends abs error [mm/s]"].iloc[0] < 1e-12  # the one-sided end stencils, apart
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)  # no numpy warning about an all-NaN relative error
+        warnings.simplefilter("ignore", UserWarning)
+        a = compare(sweep, 10.0, "a_arc", schemes=["second_difference"])
+    assert np.isnan(a.summary["max rel error"].iloc[0]) and np.isnan(a.summary["rms rel error"].iloc[0])
+    assert a.summary.filter(like="max abs error").iloc[0, 0] < 1e-10
+    with pytest.warns(UserWarning, match=r"differenced as an open grid"):
+        h = compare(sweep, 10.0, "omega_half", schemes=["centred"])
+    t = np.radians(np.arange(0.0, 361.0, 10.0))
+    half = np.unwrap(np.asarray(sweep["theta3"])) + t / 2  # interior points: the centred rule, no wrap-round
+    centred = (half[2:] - half[:-2]) / (2 * math.radians(10.0)) * 10.0
+    np.testing.assert_allclose(h.table["centred [rad/s]"].to_numpy()[1:-1], centred, rtol=1e-12)
