@@ -25,6 +25,7 @@ W = 10.0  # rad/s
 MU = {"mu": ("theta4 - theta3", "angle")}
 R, L = 80.0, 200.0
 GAP = {"gap": ("x - r*cos(theta)", "length")}
+MU_ESTIMATE = "mu error estimate max|mu(x + dx) - mu(x)|, dx = -J^-1 F [rad]"
 
 
 # ----------------------------------------------------------------- references
@@ -209,9 +210,9 @@ def test_the_tolerance_table_of_mu_starts_from_the_closed_form(four_bar):
     assert table["omega_mu at theta2 = 100 deg [rad/s]"].iloc[0] == pytest.approx(W * d1, abs=1e-11)
     assert table["alpha_mu at theta2 = 100 deg [rad/s^2]"].iloc[0] == pytest.approx(W**2 * d2, abs=1e-9)
     tight = table[table["rule"] == "numkin, tol = 1e-12"].iloc[0]
-    assert tight["mu error estimate max|J^-1 F| [rad]"] < 1e-12
+    assert tight[MU_ESTIMATE] < 1e-12
     loose = table[table["rule"] == "residual"].iloc[0]
-    assert loose["mu error estimate max|J^-1 F| [rad]"] > 1e-9  # the loose rule leaves a visible step
+    assert loose[MU_ESTIMATE] > 1e-9  # the loose rule leaves a visible step
 
 
 # ----------------------------------------------------------------- a scene, through the command
@@ -326,3 +327,99 @@ def test_a_derived_quantity_equal_to_an_unknown_has_that_unknowns_tables():
         ro_b = report.roundoff_table(mech, quantity=derived, check_angle=math.radians(50))
         steps = list(ro_a.attrs["steps"])
         np.testing.assert_allclose(ro_b[steps].to_numpy(), ro_a[steps].to_numpy(), rtol=1e-12, atol=0)
+
+
+# ----------------------------------------------------------------- quantities that do not return to their start
+NOT_CLOSING = {"half": ("theta2/2 + theta3", "angle"), "arc": ("r2*theta2", "length"), "phi2": ("theta2 - pi/2", "angle")}
+
+
+@pytest.fixture(scope="module")
+def gear():
+    """half (a gear 1:2 on the crank, plus the coupler's angle), arc (a rack and pinion), phi2 (another convention)."""
+    return linkages.four_bar(4, 1, 3, 3).add_quantities(NOT_CLOSING)
+
+
+def half_closed(t):
+    return t / 2 + _four_bar(t)[0]
+
+
+def closed_samples(f, t):
+    """f, df/dt, d2f/dt2 at the inputs `t` (rad) by mpmath at 30 digits; the values unwrapped."""
+    with mp.workdps(30):
+        x = [mp.mpf(float(v)) for v in t]
+        values = np.unwrap(np.array([float(f(v)) for v in x]))
+        d1 = np.array([float(mp.diff(f, v)) for v in x])
+        d2 = np.array([float(mp.diff(f, v, 2)) for v in x])
+    return values, d1, d2
+
+
+def centred_open(y, h):
+    """The centred difference on an open grid, written out: (y[i+1] - y[i-1]) / 2h inside, the second-order
+    one-sided (-3 y0 + 4 y1 - y2) / 2h and (3 yN - 4 yN-1 + yN-2) / 2h at the ends."""
+    out = np.empty_like(y)
+    out[1:-1] = (y[2:] - y[:-2]) / (2 * h)
+    out[0] = (-3 * y[0] + 4 * y[1] - y[2]) / (2 * h)
+    out[-1] = (3 * y[-1] - 4 * y[-2] + y[-3]) / (2 * h)
+    return out
+
+
+def test_a_quantity_that_does_not_close_is_differenced_on_an_open_grid_over_all_its_points(gear):
+    """half gains half a turn per turn of the crank: its full turn is an open grid of N + 1 points, the statistics
+    over the points 1..N-1 where the centred stencil applies, the two ends in their own column."""
+    table = report.convergence_table(gear, omega=W, quantity="half", grids=(36,), schemes=("centred",),
+                                     check_angle=0.0)
+    t = np.linspace(0.0, 2 * np.pi, 37)
+    y, d1, _ = closed_samples(half_closed, t)
+    err = W * np.abs(centred_open(y, t[1]) - d1)
+    row = table.iloc[0]
+    assert row["max abs error [unit of quantity]"] == pytest.approx(err[1:-1].max(), rel=1e-8)  # 0.037942
+    assert row["RMS abs error [unit of quantity]"] == pytest.approx(np.sqrt(np.mean(err[1:-1] ** 2)), rel=1e-8)
+    assert row["max rel error [-]"] == pytest.approx(err[1:-1].max() / (W * np.abs(d1).max()), rel=1e-8)
+    assert row["ends abs error [unit of quantity]"] == pytest.approx(max(err[0], err[-1]), rel=1e-8)
+    assert row["abs error at theta2 = 0 deg [unit of quantity]"] == pytest.approx(err[0], rel=1e-8)
+    caption = table.attrs["caption"]
+    assert "half does not return to its start" in caption and "open grid" in caption
+    # the work-precision table takes the same points, and counts a stencil at each of the 37
+    wp = report.work_precision_table(gear, omega=W, quantity="half", grids=(36,), schemes=("centred",))
+    centred = wp[wp["method"] == "centred"].iloc[0]
+    assert centred["max abs error [unit of quantity]"] == pytest.approx(err[1:-1].max(), rel=1e-8)
+    assert centred["derivative work [evaluations]"] == 37 + 37  # stencils + the expression at every input
+    with pytest.raises(InputError, match="spectral"):
+        report.convergence_table(gear, omega=W, quantity="half", grids=(36,), schemes=("spectral",))
+
+
+def test_the_tolerance_table_of_a_quantity_that_does_not_close(gear):
+    """Every row of half differenced as an open grid: the tight row's largest errors are the closed form's
+    centred and second differences inside the grid (not the jump of a turn closed by force)."""
+    table = report.tolerance_table(gear, omega=W, quantity="half", check_angle=math.radians(30), points_per_turn=36)
+    t = np.linspace(0.0, 2 * np.pi, 37)
+    h = t[1]
+    y, d1, d2 = closed_samples(half_closed, t)
+    e1 = np.abs(centred_open(y, h) - d1)[1:-1]
+    e2 = np.abs((y[2:] - 2 * y[1:-1] + y[:-2]) / h**2 - d2[1:-1])
+    for rule in table["rule"][1:]:  # the loose rules' own position errors (<= 3e-6 rad) move them a little
+        row = table[table["rule"] == rule].iloc[0]
+        close = 1e-8 if rule == "numkin, tol = 1e-12" else 1e-2
+        assert row["omega_half max rel error [%]"] == pytest.approx(100 * e1.max() / np.abs(d1).max(), rel=close)
+        assert row["alpha_half max rel error [%]"] == pytest.approx(100 * e2.max() / np.abs(d2).max(), rel=close)
+    assert "half does not return to its start" in table.attrs["caption"]
+
+
+def test_a_quantity_with_a_zero_second_derivative_leaves_its_relative_error_blank(gear):
+    """arc = r2*theta2 and phi2 = theta2 - pi/2 are linear in the input: every difference of them is exact, the
+    exact second derivative is 0 and a relative error of it is undefined."""
+    for q in ("arc", "phi2"):
+        conv = report.convergence_table(gear, omega=W, quantity=q, grids=(36, 72))  # every scheme
+        first = conv[conv["quantity"].str.startswith(("v_", "omega_"))]
+        second = conv[conv["quantity"].str.startswith(("a_", "alpha_"))]
+        assert first["max rel error [-]"].max() < 1e-12  # exact: the slope is r2 = 1 (or 1)
+        assert second["max rel error [-]"].isna().all() and second["max abs error [unit of quantity]"].max() < 1e-9
+        assert "is 0 over the whole sweep" in conv.attrs["caption"]
+        wp = report.work_precision_table(gear, omega=W, quantity=q, grids=(36,))
+        assert wp[wp["quantity"].str.startswith(("a_", "alpha_"))]["max rel error [-]"].isna().all()
+        assert "is 0 over the whole sweep" in wp.attrs["caption"]
+    tol = report.tolerance_table(gear, omega=W, quantity="arc", check_angle=math.radians(30), points_per_turn=36)
+    loose = tol.iloc[1:]
+    assert loose["v_arc max rel error [%]"].max() < 1e-9  # a centred difference of a line is exact
+    assert loose["a_arc max rel error [%]"].isna().all()
+    assert tol["v_arc at theta2 = 30 deg [mm/s]"].iloc[1:].to_numpy() == pytest.approx(W * 1.0, rel=1e-12)

@@ -35,7 +35,11 @@ from .study import (
     TURN, check_quantity, differenced, exact_derivatives, quantity_labels, shared_result, table_quantities,
 )
 
-__all__ = ["StudiedQuantity", "studied_quantity"]
+__all__ = ["CLOSURE_TOL", "StudiedQuantity", "studied_quantity"]
+
+#: A derived quantity closes after a turn if its end is within this of its start (whole turns aside): rad, or
+#: times the mechanism's length scale (the closure test of :mod:`numkin.kinematics`).
+CLOSURE_TOL = 1e-7
 
 
 def _row(value, size: int) -> np.ndarray:
@@ -195,29 +199,80 @@ class StudiedQuantity:
         dq, d2q = exact_derivatives(sweep, quiet, fresh=fresh)
         return self.rates(sweep.values, sweep.inputs, dq, d2q)
 
-    def differenced(self, sweep, scheme, quiet: bool = True, *, fresh: bool = False, close: bool = False):
+    def closure_gap(self, sweep) -> float:
+        """How far the quantity's end misses its start over the full-turn `sweep`, whole turns aside (angle).
+
+        0 for an unknown: an unknown always closes after a turn of the input
+        (modulo whole turns). A derived quantity closes only if its values
+        at the two ends of the turn differ by whole turns (an angle) or by
+        nothing (a length): ``theta2/2 + theta3`` or ``r2*theta2`` do not.
+        Decide it on a tightly solved sweep (the tables' own), never on a
+        loosely solved one, whose end misses its start by its position error.
+        """
+        if not self.derived:
+            return 0.0
+        t = np.asarray(sweep.inputs, dtype=float)
+        ends = self.at(np.asarray(sweep.values)[:, [0, -1]], t[[0, -1]])
+        gap = float(ends[1] - ends[0])
+        return gap - TURN * round(gap / TURN) if self.is_angle else gap
+
+    def closes(self, sweep) -> bool:
+        """Whether the quantity returns to its start after the full turn `sweep` (:meth:`closure_gap`).
+
+        Within :data:`CLOSURE_TOL` (rad, or times the mechanism's length
+        scale for a length): the solve's accuracy is far finer, a quantity
+        that does not close misses by far more.
+
+        Examples
+        --------
+        >>> from numkin import linkages
+        >>> from numkin.report.study import TURN, grid_inputs
+        >>> m = linkages.four_bar(4, 1, 3, 3).add_quantities({"half": ("theta2/2 + theta3", "angle")})
+        >>> s = m.sweep(grid_inputs(36, 0.0, TURN))
+        >>> studied_quantity(m, "theta3").closes(s), studied_quantity(m, "half").closes(s)
+        (True, False)
+        >>> round(studied_quantity(m, "half").closure_gap(s), 6)   # half a turn
+        3.141593
+        """
+        scale = 1.0 if self.is_angle else float(self.mechanism.length_scale)
+        return abs(self.closure_gap(sweep)) <= CLOSURE_TOL * scale
+
+    def closure_text(self, sweep) -> str:
+        """A caption's sentence on a full turn differenced as an open grid because the quantity does not close."""
+        gap = f"{self.closure_gap(sweep):.6g} " + ("rad, whole turns aside" if self.is_angle else self.mechanism.length_unit)
+        return (
+            f" {self.name} does not return to its start after the turn (its end misses its start by {gap}): "
+            "the full turn is differenced as an open grid."
+        )
+
+    def differenced(self, sweep, scheme, quiet: bool = True, *, fresh: bool = False, close: bool = False,
+                    periodic: bool | None = None):
         """d/dtheta (or d2/dtheta2) of the quantity over `sweep` by the finite-difference `scheme` (a Scheme).
 
         An unknown's row of :func:`~numkin.report.study.differenced`; a derived quantity's
         values differenced as the unknowns are (angles unwrapped, a full
         turn as periodic). With `close`, a full turn is differenced as
         periodic even where its end misses its start by the solver's error
-        (:func:`numkin.kinematics.sweep_derivative`).
+        (:func:`numkin.kinematics.sweep_derivative`). ``periodic=False``
+        differences a derived quantity's full turn as an open grid (one that
+        does not close, :meth:`closes`); an unknown ignores it.
         """
         if not self.derived and not close:
             return differenced(sweep, scheme, quiet, fresh=fresh)[self.index]
         if not self.derived:
             return kinematics.sweep_derivative(sweep, scheme.name, periodic=True, close=True)[self.index]
+        if periodic is False:
+            close = False
 
         def compute():
             mech, t = self.mechanism, np.asarray(sweep.inputs, dtype=float)
-            periodic = True if close else "auto"
+            periodic_ = False if periodic is False else True if close else "auto"
             rows = kinematics.prepare_rows(self.values(sweep)[None], [self.is_angle], [self.name], t,
-                                           kinematics.sweep_grid(sweep, periodic), mech.length_scale, periodic,
+                                           kinematics.sweep_grid(sweep, periodic_), mech.length_scale, periodic_,
                                            close=close)
             return rows.apply(scheme)[0]
 
-        key = ("differenced", id(sweep), scheme.name, self.name, close)
+        key = ("differenced", id(sweep), scheme.name, self.name, close, periodic)
         return shared_result(key, compute, quiet, keep=(sweep,), fresh=fresh)
 
 
