@@ -423,3 +423,33 @@ def test_a_quantity_with_a_zero_second_derivative_leaves_its_relative_error_blan
     assert loose["v_arc max rel error [%]"].max() < 1e-9  # a centred difference of a line is exact
     assert loose["a_arc max rel error [%]"].isna().all()
     assert tol["v_arc at theta2 = 30 deg [mm/s]"].iloc[1:].to_numpy() == pytest.approx(W * 1.0, rel=1e-12)
+
+
+def test_the_complex_step_row_is_the_complex_step_of_the_quantity_itself():
+    """Im(gap(theta + i h)) / h of gap = sqrt(l^2 - r^2 sin^2 theta), by mpmath in complex arithmetic: the same
+    for the two ways of writing gap, and not the exact value (at h = 0.1 it errs by O(h^2)); abs() is not
+    analytic: no complex step through it."""
+    mech = linkages.slider_crank(R, L).add_quantities({
+        "gap": ("x - r*cos(theta)", "length"), "gap2": ("sqrt(l**2 - r**2*sin(theta)**2)", "length"),
+        "dist": ("abs(x - 250)", "length")})
+    theta = math.radians(60)
+
+    def gap(z):
+        return mp.sqrt(L**2 - R**2 * mp.sin(z) ** 2)
+
+    for name in ("gap", "gap2"):
+        ro = report.roundoff_table(mech, quantity=name, check_angle=theta, schemes=("complex_step",))
+        row = ro.iloc[0]
+        with mp.workdps(50):
+            exact = mp.diff(gap, mp.mpf(theta))
+            assert row["exact value [unit of quantity]"] == pytest.approx(float(exact), rel=1e-13)
+            for column, h in ro.attrs["steps"].items():
+                h = (theta + h) - theta  # the table's representable step
+                step = mp.im(gap(mp.mpf(theta) + 1j * mp.mpf(h))) / h
+                want = float(abs(step - exact) / abs(exact))
+                assert row[column] == pytest.approx(want, rel=1e-6, abs=1e-15), column
+        assert row["rel error at h = 1e-01 rad [-]"] == pytest.approx(7.108e-3, rel=1e-3)
+    ro = report.roundoff_table(mech, quantity="dist", check_angle=theta, schemes=("centred", "complex_step"))
+    steps = list(ro.attrs["steps"])
+    assert ro[steps].iloc[1].isna().all() and ro[steps].iloc[0].notna().all()
+    assert "not analytic (Abs)" in ro.attrs["caption"]
