@@ -453,3 +453,67 @@ def test_the_complex_step_row_is_the_complex_step_of_the_quantity_itself():
     steps = list(ro.attrs["steps"])
     assert ro[steps].iloc[1].isna().all() and ro[steps].iloc[0].notna().all()
     assert "not analytic (Abs)" in ro.attrs["caption"]
+
+
+# ----------------------------------------------------------------- the tolerance table's error columns
+def _mu_of(mech, sweep):
+    theta3, theta4 = (sweep.values[mech.unknowns.index(u)] for u in ("theta3", "theta4"))
+    return np.unwrap(theta4 - theta3)
+
+
+def test_the_tolerance_table_of_mu_differences_each_loose_sweep_as_written_out(four_bar):
+    """Turning backwards (omega < 0): each loosely solved sweep's mu, differenced here by the periodic centred and
+    second differences, gives the row's velocity and acceleration at the check angle and its largest relative
+    errors against the closed form; its error estimate is the distance of its mu from the closed form's."""
+    n, k, w = 72, 20, -W  # the check angle 100 deg is point 20
+    table = report.tolerance_table(four_bar, omega=w, quantity="mu", check_angle=math.radians(100),
+                                   points_per_turn=n)
+    t = np.linspace(0.0, 2 * np.pi, n + 1)
+    h = t[1]
+    exact, d1, d2 = closed_samples(mu_closed, t[:-1])
+    analytic = table.iloc[0]
+    assert analytic["omega_mu at theta2 = 100 deg [rad/s]"] == pytest.approx(w * d1[k], rel=1e-11)
+    assert analytic["alpha_mu at theta2 = 100 deg [rad/s^2]"] == pytest.approx(w * w * d2[k], rel=1e-10)
+    for rule in report.STUDENT_RULES:
+        sweep = report.student_sweep(four_bar, t, rule=rule, tol=1e-4)
+        y = _mu_of(four_bar, sweep)[:-1]  # mu returns to its value after the turn: periodic, the last point apart
+        c1 = w * (np.roll(y, -1) - np.roll(y, 1)) / (2 * h)
+        c2 = w * w * (np.roll(y, -1) - 2 * y + np.roll(y, 1)) / h**2
+        row = table.iloc[1 + report.STUDENT_RULES.index(rule)]
+        assert row["omega_mu at theta2 = 100 deg [rad/s]"] == pytest.approx(c1[k], rel=1e-9), rule
+        assert row["alpha_mu at theta2 = 100 deg [rad/s^2]"] == pytest.approx(c2[k], rel=1e-9), rule
+        assert row["omega_mu rel error at theta2 = 100 deg [%]"] == pytest.approx(
+            100 * abs(c1[k] - w * d1[k]) / abs(w * d1[k]), rel=1e-6)
+        assert row["omega_mu max rel error [%]"] == pytest.approx(
+            100 * np.abs(c1 - w * d1).max() / np.abs(w * d1).max(), rel=1e-6), rule
+        assert row["alpha_mu max rel error [%]"] == pytest.approx(
+            100 * np.abs(c2 - w * w * d2).max() / np.abs(w * w * d2).max(), rel=1e-6), rule
+        missed = np.abs(y - exact).max()  # Newton converges fast: one more step takes nearly all of it
+        if missed > 1e-9:
+            assert row[MU_ESTIMATE] == pytest.approx(missed, rel=1e-2), rule
+        else:
+            assert row[MU_ESTIMATE] < 1e-9
+
+
+def test_open_grids_take_end_stencils_in_their_own_column(four_bar):
+    """A part of a turn, 30 to 150 deg: the centred difference's statistics over the points 1..N-1, the one-sided
+    second-order ends apart; in the tolerance table the check angle 30 deg is an end point, whose value is the end
+    stencil's."""
+    start, span = math.radians(30), math.radians(120)
+    conv = report.convergence_table(four_bar, omega=-W, quantity="mu", grids=(72,), schemes=("centred",),
+                                    start=start, span=span, check_angle=start)
+    t = start + 2 * np.pi / 72 * np.arange(25)
+    y, d1, _ = closed_samples(mu_closed, t)
+    est = centred_open(y, t[1] - t[0])
+    err = W * np.abs(est - d1)
+    row = conv.iloc[0]
+    assert row["max abs error [unit of quantity]"] == pytest.approx(err[1:-1].max(), rel=1e-8)
+    assert row["ends abs error [unit of quantity]"] == pytest.approx(max(err[0], err[-1]), rel=1e-8)
+    assert row["abs error at theta2 = 30 deg [unit of quantity]"] == pytest.approx(err[0], rel=1e-8)
+    tol = report.tolerance_table(four_bar, omega=W, quantity="mu", check_angle=start, points_per_turn=72,
+                                 start=start, span=span)
+    tight = tol[tol["rule"] == "numkin, tol = 1e-12"].iloc[0]
+    assert tight["omega_mu at theta2 = 30 deg [rad/s]"] == pytest.approx(W * est[0], rel=1e-9)
+    assert tight["omega_mu max rel error [%]"] == pytest.approx(100 * err[1:-1].max() / (W * np.abs(d1).max()),
+                                                                 rel=1e-7)
+    assert "end point" in tol.attrs["caption"]
