@@ -288,8 +288,38 @@ def test_the_tables_refuse_a_name_that_is_neither(four_bar):
 def test_a_quantity_undefined_on_part_of_the_sweep_is_refused_by_name():
     """sqrt(x - 250): the piston's x is below 250 mm over part of the turn; no table of NaN."""
     mech = linkages.slider_crank(R, L).add_quantities({"root": ("sqrt(x - 250)", "length")})
-    with pytest.raises(InputError, match=r"quantity 'root = sqrt\(x - 250\)' is not finite at input"):
+    with pytest.raises(InputError, match=r"the value of the quantity 'root = sqrt\(x - 250\)' is not finite at input"):
         report.convergence_table(mech, omega=W, quantity="root", grids=(36,), schemes=("centred",))
+
+
+def test_the_roundoff_table_near_a_domain_edge_blanks_the_steps_that_leave_it():
+    """sqrt(x - 250) at 40 deg: x = 250 mm near 45.7 deg, so the stencils at h = 0.1 rad reach where it is
+    undefined; the smaller steps stand, the centred difference at h = 0.01 written out here."""
+    mech = linkages.slider_crank(R, L).add_quantities({"root": ("sqrt(x - 250)", "length")})
+    theta = math.radians(40)
+    ro = report.roundoff_table(mech, quantity="root", check_angle=theta, schemes=("centred", "complex_step"))
+
+    def root(t):
+        return mp.sqrt(R * mp.cos(t) + mp.sqrt(L**2 - R**2 * mp.sin(t) ** 2) - 250)
+
+    centred = ro.iloc[0]
+    assert math.isnan(centred["rel error at h = 1e-01 rad [-]"])
+    h = (theta + 1e-2) - theta
+    with mp.workdps(30):
+        exact = mp.diff(root, mp.mpf(theta))
+        by_hand = (root(mp.mpf(theta) + h) - root(mp.mpf(theta) - h)) / (2 * h)
+        assert centred["rel error at h = 1e-02 rad [-]"] == pytest.approx(float(abs(by_hand - exact) / abs(exact)),
+                                                                          rel=1e-6)
+    assert np.isfinite(ro.iloc[1]["rel error at h = 1e-01 rad [-]"])  # the complex step samples no other input
+    assert "outside its domain" in ro.attrs["caption"]
+
+
+def test_a_wrapped_derived_angle_warns_once_per_table():
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"ang": ("atan2(r2*sin(theta2), r2*cos(theta2) - r1)",
+                                                                 "angle")})
+    with pytest.warns(UserWarning, match="wrapped data") as caught:
+        report.convergence_table(mech, omega=W, quantity="ang", grids=(36, 72), schemes=("centred", "five_point"))
+    assert sum("wrapped data" in str(w.message) for w in caught) == 1
 
 
 def test_an_angle_reduced_by_atan2_is_differenced_across_its_cut():

@@ -11,7 +11,7 @@ from ..errors import InputError
 from ..schemes import own_stencil_points
 from .study import (
     DEFAULT_GRIDS, EPS, TURN, UNIT, check_index, deg_text, full_turn, grid_inputs, grid_positions, grid_study,
-    order_text, relative, set_caption, set_views, solve_sweep, zero_text,
+    order_text, relative, set_caption, set_views, solve_sweep, warned_once, zero_text,
 )
 
 __all__ = [
@@ -117,13 +117,14 @@ def convergence_table(
     at_end = set()  # schemes whose error at the check angle is their end stencil's
     floored = set()  # schemes whose error reached the round-off floor on some grid
     zero = set()  # the quantities (velocity, acceleration) whose exact value is 0 over the sweep
+    warned = set()  # the differences' warnings: once per table (a wrapped angle on every grid and scheme)
     for scheme in scheme_list:
         scale = w if scheme.derivative == 1 else w * w
         prev = None
         for n in grid_list:
             s, dq, d2q = data[n]
             exact = scale * (dq if scheme.derivative == 1 else d2q)
-            est = scale * studied.differenced(s, scheme, quiet=False, periodic=periodic)
+            est = scale * warned_once(warned, studied.differenced, s, scheme, quiet=False, periodic=periodic)
             err = np.abs(est - exact)
             # statistics where the scheme's own stencil applies: one period of a periodic grid; on an
             # open grid the first and last points (one-sided end stencils) have their own column

@@ -322,11 +322,15 @@ def roundoff_table(
     S = len(scan)
     offsets = sorted({int(k) for k, _ in stencils.values() for k in k} - {0})
     samples = {0: np.full(S, v0)}
+    outside = np.zeros(S, dtype=bool)
     if offsets:
         kk = np.array(offsets, dtype=float)
         tt = theta + eff[:, None] * kk[None, :]  # (S, K)
         solved = _samples(mechanism, base, tt.reshape(-1))
-        vals = studied.near(studied.at(solved, tt.reshape(-1)), v0).reshape(S, len(offsets))
+        # stencil samples outside the quantity's domain (its expression undefined at theta + k h): NaN, and
+        # the steps that take them are blank
+        vals = studied.near(studied.at(solved, tt.reshape(-1), check=False), v0).reshape(S, len(offsets))
+        outside = ~np.all(np.isfinite(vals), axis=1)
         samples.update({k: vals[:, c] for c, k in enumerate(offsets)})
     rows = []
     no_complex = ""
@@ -386,6 +390,12 @@ def roundoff_table(
             f" The exact {' and '.join(zero)} is 0 at this angle: errors are absolute, and symmetric stencils "
             "may be exact by symmetry; choose another angle to see the round-off floor."
         )
+    blank = [h for h in steps if outside[shown[h]]]
+    if blank:
+        caption += (
+            f" At h >= {min(blank):.0e} rad the stencils reach inputs theta + k h where {studied.title} is undefined "
+            "(outside its domain): those steps are blank for the schemes that use them."
+        )
     if no_complex:
         caption += f" The complex-step row is blank: {studied.title}: {no_complex}."
     key = ["scheme", "formal order", "quantity"]
@@ -426,7 +436,7 @@ def _error_at(studied, base, scheme, stencils, theta, h, exact) -> float:
         ks, ws = stencils[scheme.name]
         tt = theta + h * ks.astype(float)
         v0 = studied.values(base)[0]
-        vals = studied.near(studied.at(_samples(studied.mechanism, base, tt), tt), v0)
+        vals = studied.near(studied.at(_samples(studied.mechanism, base, tt), tt, check=False), v0)
         vals[ks == 0] = v0
         est = float(np.sum(ws * vals) / h**scheme.derivative)
     err = abs(est - exact)

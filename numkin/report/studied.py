@@ -140,8 +140,12 @@ class StudiedQuantity:
             )
         return values
 
-    def at(self, x, t) -> np.ndarray:
-        """Its values at the positions `x` (n, M) of the unknowns and the inputs `t` (M,), rad."""
+    def at(self, x, t, *, check: bool = True) -> np.ndarray:
+        """Its values at the positions `x` (n, M) of the unknowns and the inputs `t` (M,), rad.
+
+        An InputError where the expression is undefined (not finite) at finite positions; with
+        ``check=False``, NaN there instead.
+        """
         t = np.atleast_1d(np.asarray(t, dtype=float))
         x = np.asarray(x, dtype=float).reshape(-1, t.size)
         if not self.derived:
@@ -149,7 +153,7 @@ class StudiedQuantity:
         (f,) = self._functions(rates=False)
         with np.errstate(all="ignore"):
             e = _row(f(*x, t, *self.mechanism.parameter_values), t.size)
-        return self._finite(e, x, t, "the value")
+        return self._finite(e, x, t, "the value") if check else np.where(np.isfinite(e), e, np.nan)
 
     def complex_at(self, x, t):
         """Its values at complex positions `x` (n, M) and complex inputs `t` (M,), or a str saying why not.
@@ -227,7 +231,11 @@ class StudiedQuantity:
         x = np.asarray(x, dtype=float).reshape(-1, t.size)
         args = (*x, *dq, *(np.zeros_like(dq) if d2q is None else d2q), t, *self.mechanism.parameter_values)
         with np.errstate(all="ignore"):
-            first = self._finite(_row(f1(*args), t.size), np.vstack([x, dq]), t, "the first derivative")
+            first = _row(f1(*args), t.size)
+        if not np.all(np.isfinite(first)):
+            self.at(x, t)  # where the value itself is undefined, say so
+        with np.errstate(all="ignore"):
+            first = self._finite(first, np.vstack([x, dq]), t, "the first derivative")
             second = None if d2q is None else self._finite(_row(f2(*args), t.size), np.vstack([x, dq, d2q]), t,
                                                          "the second derivative")
         return first, second

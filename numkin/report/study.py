@@ -77,6 +77,7 @@ __all__ = [
     "grid_positions",
     "relative",
     "zero_text",
+    "warned_once",
 ]
 
 EPS = float(np.finfo(float).eps)
@@ -532,3 +533,33 @@ def zero_text(names) -> str:
         return ""
     return (f" The exact {' and '.join(sorted(names))} is 0 over the whole sweep: its relative error is undefined and "
             "left blank (its absolute errors stand).")
+
+
+def warned_once(seen: set, fn, *args, **kwargs):
+    """``fn(*args, **kwargs)``, its warnings raised again unless one like it was raised before under `seen`.
+
+    Alike: the same category and text but for its numbers (the same wrapped angle on every grid and
+    scheme of a table names other inputs), so a table warns once for each.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> seen = set()
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     for k in (1, 2):
+    ...         _ = warned_once(seen, warnings.warn, f"jump at {k}0 deg")
+    >>> [str(w.message) for w in caught]
+    ['jump at 10 deg']
+    """
+    import re
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        out = fn(*args, **kwargs)
+    for w in caught:
+        key = (w.category, re.sub(r"[-+]?\d[\d.eE+-]*", "#", str(w.message)))
+        if key not in seen:
+            seen.add(key)
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    return out
