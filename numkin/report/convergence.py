@@ -50,7 +50,10 @@ def convergence_table(
         schemes) are compared. A derived quantity's values over each sweep
         are differenced as an unknown's are (an angle unwrapped, a full turn
         as periodic) and compared with its exact derivatives
-        (:func:`numkin.expressions.derived_derivatives`).
+        (:func:`numkin.expressions.derived_derivatives`); one that does not
+        return to its start after the turn (``theta2/2 + theta3``) has its
+        full turn studied as an open grid. Where the exact derivative is 0
+        over the sweep, ``max rel error`` is blank (the caption says so).
     check_angle : float, optional
         Input angle (rad) where the error is also reported; NaN on a grid
         that does not hold it.

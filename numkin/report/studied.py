@@ -10,7 +10,10 @@ its values over a sweep or at any solved positions, its exact derivatives
 with respect to the input (for a derived quantity, the chain rule of
 :mod:`numkin.expressions` applied to the unknowns' rates), its finite
 differences (an angle unwrapped and a full turn differenced as periodic, as
-:mod:`numkin.kinematics` differences the unknowns), whether it is an angle,
+:mod:`numkin.kinematics` differences the unknowns; as an open grid where a
+derived quantity does not return to its start after the turn,
+:meth:`StudiedQuantity.closes`), its values in complex arithmetic for the
+complex step (:meth:`StudiedQuantity.complex_at`), whether it is an angle,
 and its labels and units (:mod:`numkin.quantities`).
 
 Examples

@@ -229,12 +229,17 @@ def tolerance_table(
         ``rule`` (a short name), ``stopping rule`` (in full), ``tol`` (in the rule's own terms), ``Newton iterations per point
         (mean)``, ``max |F| [length unit]``, ``<quantity> error estimate
         max|J^-1 F| [unit]`` (the studied unknown's Newton step still
-        missing; for a derived quantity, the change of its value that step
+        missing; for a derived quantity q, ``q error estimate max|q(x + dx)
+        - q(x)|, dx = -J^-1 F [unit]``: the change of its value that step
         would make), the velocity and acceleration at the check angle
         with their relative errors [%] (blank where the exact value is 0),
         their largest relative errors over
-        the sweep [%] (over ``max |exact|``) and where the acceleration error is
-        largest [deg], and ``note`` (a branch change is named there).
+        the sweep [%] (over ``max |exact|``; blank where the exact values are
+        all 0) and where the acceleration error is
+        largest [deg], and ``note`` (a branch change is named there). A
+        derived quantity that does not return to its start after a full
+        turn is differenced as an open grid on every row (decided on the
+        tight sweep).
 
     Examples
     --------
