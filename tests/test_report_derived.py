@@ -25,6 +25,7 @@ W = 10.0  # rad/s
 MU = {"mu": ("theta4 - theta3", "angle")}
 R, L = 80.0, 200.0
 GAP = {"gap": ("x - r*cos(theta)", "length")}
+MU_ESTIMATE = "mu error estimate max|mu(x + dx) - mu(x)|, dx = -J^-1 F [rad]"
 
 
 # ----------------------------------------------------------------- references
@@ -209,9 +210,9 @@ def test_the_tolerance_table_of_mu_starts_from_the_closed_form(four_bar):
     assert table["omega_mu at theta2 = 100 deg [rad/s]"].iloc[0] == pytest.approx(W * d1, abs=1e-11)
     assert table["alpha_mu at theta2 = 100 deg [rad/s^2]"].iloc[0] == pytest.approx(W**2 * d2, abs=1e-9)
     tight = table[table["rule"] == "numkin, tol = 1e-12"].iloc[0]
-    assert tight["mu error estimate max|J^-1 F| [rad]"] < 1e-12
+    assert tight[MU_ESTIMATE] < 1e-12
     loose = table[table["rule"] == "residual"].iloc[0]
-    assert loose["mu error estimate max|J^-1 F| [rad]"] > 1e-9  # the loose rule leaves a visible step
+    assert loose[MU_ESTIMATE] > 1e-9  # the loose rule leaves a visible step
 
 
 # ----------------------------------------------------------------- a scene, through the command
@@ -287,8 +288,38 @@ def test_the_tables_refuse_a_name_that_is_neither(four_bar):
 def test_a_quantity_undefined_on_part_of_the_sweep_is_refused_by_name():
     """sqrt(x - 250): the piston's x is below 250 mm over part of the turn; no table of NaN."""
     mech = linkages.slider_crank(R, L).add_quantities({"root": ("sqrt(x - 250)", "length")})
-    with pytest.raises(InputError, match=r"quantity 'root = sqrt\(x - 250\)' is not finite at input"):
+    with pytest.raises(InputError, match=r"the value of the quantity 'root = sqrt\(x - 250\)' is not finite at input"):
         report.convergence_table(mech, omega=W, quantity="root", grids=(36,), schemes=("centred",))
+
+
+def test_the_roundoff_table_near_a_domain_edge_blanks_the_steps_that_leave_it():
+    """sqrt(x - 250) at 40 deg: x = 250 mm near 45.7 deg, so the stencils at h = 0.1 rad reach where it is
+    undefined; the smaller steps stand, the centred difference at h = 0.01 written out here."""
+    mech = linkages.slider_crank(R, L).add_quantities({"root": ("sqrt(x - 250)", "length")})
+    theta = math.radians(40)
+    ro = report.roundoff_table(mech, quantity="root", check_angle=theta, schemes=("centred", "complex_step"))
+
+    def root(t):
+        return mp.sqrt(R * mp.cos(t) + mp.sqrt(L**2 - R**2 * mp.sin(t) ** 2) - 250)
+
+    centred = ro.iloc[0]
+    assert math.isnan(centred["rel error at h = 1e-01 rad [-]"])
+    h = (theta + 1e-2) - theta
+    with mp.workdps(30):
+        exact = mp.diff(root, mp.mpf(theta))
+        by_hand = (root(mp.mpf(theta) + h) - root(mp.mpf(theta) - h)) / (2 * h)
+        assert centred["rel error at h = 1e-02 rad [-]"] == pytest.approx(float(abs(by_hand - exact) / abs(exact)),
+                                                                          rel=1e-6)
+    assert np.isfinite(ro.iloc[1]["rel error at h = 1e-01 rad [-]"])  # the complex step samples no other input
+    assert "outside its domain" in ro.attrs["caption"]
+
+
+def test_a_wrapped_derived_angle_warns_once_per_table():
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"ang": ("atan2(r2*sin(theta2), r2*cos(theta2) - r1)",
+                                                                 "angle")})
+    with pytest.warns(UserWarning, match="wrapped data") as caught:
+        report.convergence_table(mech, omega=W, quantity="ang", grids=(36, 72), schemes=("centred", "five_point"))
+    assert sum("wrapped data" in str(w.message) for w in caught) == 1
 
 
 def test_an_angle_reduced_by_atan2_is_differenced_across_its_cut():
@@ -326,3 +357,193 @@ def test_a_derived_quantity_equal_to_an_unknown_has_that_unknowns_tables():
         ro_b = report.roundoff_table(mech, quantity=derived, check_angle=math.radians(50))
         steps = list(ro_a.attrs["steps"])
         np.testing.assert_allclose(ro_b[steps].to_numpy(), ro_a[steps].to_numpy(), rtol=1e-12, atol=0)
+
+
+# ----------------------------------------------------------------- quantities that do not return to their start
+NOT_CLOSING = {"half": ("theta2/2 + theta3", "angle"), "arc": ("r2*theta2", "length"), "phi2": ("theta2 - pi/2", "angle")}
+
+
+@pytest.fixture(scope="module")
+def gear():
+    """half (a gear 1:2 on the crank, plus the coupler's angle), arc (a rack and pinion), phi2 (another convention)."""
+    return linkages.four_bar(4, 1, 3, 3).add_quantities(NOT_CLOSING)
+
+
+def half_closed(t):
+    return t / 2 + _four_bar(t)[0]
+
+
+def closed_samples(f, t):
+    """f, df/dt, d2f/dt2 at the inputs `t` (rad) by mpmath at 30 digits; the values unwrapped."""
+    with mp.workdps(30):
+        x = [mp.mpf(float(v)) for v in t]
+        values = np.unwrap(np.array([float(f(v)) for v in x]))
+        d1 = np.array([float(mp.diff(f, v)) for v in x])
+        d2 = np.array([float(mp.diff(f, v, 2)) for v in x])
+    return values, d1, d2
+
+
+def centred_open(y, h):
+    """The centred difference on an open grid, written out: (y[i+1] - y[i-1]) / 2h inside, the second-order
+    one-sided (-3 y0 + 4 y1 - y2) / 2h and (3 yN - 4 yN-1 + yN-2) / 2h at the ends."""
+    out = np.empty_like(y)
+    out[1:-1] = (y[2:] - y[:-2]) / (2 * h)
+    out[0] = (-3 * y[0] + 4 * y[1] - y[2]) / (2 * h)
+    out[-1] = (3 * y[-1] - 4 * y[-2] + y[-3]) / (2 * h)
+    return out
+
+
+def test_a_quantity_that_does_not_close_is_differenced_on_an_open_grid_over_all_its_points(gear):
+    """half gains half a turn per turn of the crank: its full turn is an open grid of N + 1 points, the statistics
+    over the points 1..N-1 where the centred stencil applies, the two ends in their own column."""
+    table = report.convergence_table(gear, omega=W, quantity="half", grids=(36,), schemes=("centred",),
+                                     check_angle=0.0)
+    t = np.linspace(0.0, 2 * np.pi, 37)
+    y, d1, _ = closed_samples(half_closed, t)
+    err = W * np.abs(centred_open(y, t[1]) - d1)
+    row = table.iloc[0]
+    assert row["max abs error [unit of quantity]"] == pytest.approx(err[1:-1].max(), rel=1e-8)  # 0.037942
+    assert row["RMS abs error [unit of quantity]"] == pytest.approx(np.sqrt(np.mean(err[1:-1] ** 2)), rel=1e-8)
+    assert row["max rel error [-]"] == pytest.approx(err[1:-1].max() / (W * np.abs(d1).max()), rel=1e-8)
+    assert row["ends abs error [unit of quantity]"] == pytest.approx(max(err[0], err[-1]), rel=1e-8)
+    assert row["abs error at theta2 = 0 deg [unit of quantity]"] == pytest.approx(err[0], rel=1e-8)
+    caption = table.attrs["caption"]
+    assert "half does not return to its start" in caption and "open grid" in caption
+    # the work-precision table takes the same points, and counts a stencil at each of the 37
+    wp = report.work_precision_table(gear, omega=W, quantity="half", grids=(36,), schemes=("centred",))
+    centred = wp[wp["method"] == "centred"].iloc[0]
+    assert centred["max abs error [unit of quantity]"] == pytest.approx(err[1:-1].max(), rel=1e-8)
+    assert centred["derivative work [evaluations]"] == 37 + 37  # stencils + the expression at every input
+    with pytest.raises(InputError, match="spectral"):
+        report.convergence_table(gear, omega=W, quantity="half", grids=(36,), schemes=("spectral",))
+
+
+def test_the_tolerance_table_of_a_quantity_that_does_not_close(gear):
+    """Every row of half differenced as an open grid: the tight row's largest errors are the closed form's
+    centred and second differences inside the grid (not the jump of a turn closed by force)."""
+    table = report.tolerance_table(gear, omega=W, quantity="half", check_angle=math.radians(30), points_per_turn=36)
+    t = np.linspace(0.0, 2 * np.pi, 37)
+    h = t[1]
+    y, d1, d2 = closed_samples(half_closed, t)
+    e1 = np.abs(centred_open(y, h) - d1)[1:-1]
+    e2 = np.abs((y[2:] - 2 * y[1:-1] + y[:-2]) / h**2 - d2[1:-1])
+    for rule in table["rule"][1:]:  # the loose rules' own position errors (<= 3e-6 rad) move them a little
+        row = table[table["rule"] == rule].iloc[0]
+        close = 1e-8 if rule == "numkin, tol = 1e-12" else 1e-2
+        assert row["omega_half max rel error [%]"] == pytest.approx(100 * e1.max() / np.abs(d1).max(), rel=close)
+        assert row["alpha_half max rel error [%]"] == pytest.approx(100 * e2.max() / np.abs(d2).max(), rel=close)
+    assert "half does not return to its start" in table.attrs["caption"]
+
+
+def test_a_quantity_with_a_zero_second_derivative_leaves_its_relative_error_blank(gear):
+    """arc = r2*theta2 and phi2 = theta2 - pi/2 are linear in the input: every difference of them is exact, the
+    exact second derivative is 0 and a relative error of it is undefined."""
+    for q in ("arc", "phi2"):
+        conv = report.convergence_table(gear, omega=W, quantity=q, grids=(36, 72))  # every scheme
+        first = conv[conv["quantity"].str.startswith(("v_", "omega_"))]
+        second = conv[conv["quantity"].str.startswith(("a_", "alpha_"))]
+        assert first["max rel error [-]"].max() < 1e-12  # exact: the slope is r2 = 1 (or 1)
+        assert second["max rel error [-]"].isna().all() and second["max abs error [unit of quantity]"].max() < 1e-9
+        assert "is 0 over the whole sweep" in conv.attrs["caption"]
+        wp = report.work_precision_table(gear, omega=W, quantity=q, grids=(36,))
+        assert wp[wp["quantity"].str.startswith(("a_", "alpha_"))]["max rel error [-]"].isna().all()
+        assert "is 0 over the whole sweep" in wp.attrs["caption"]
+    tol = report.tolerance_table(gear, omega=W, quantity="arc", check_angle=math.radians(30), points_per_turn=36)
+    loose = tol.iloc[1:]
+    assert loose["v_arc max rel error [%]"].max() < 1e-9  # a centred difference of a line is exact
+    assert loose["a_arc max rel error [%]"].isna().all()
+    assert tol["v_arc at theta2 = 30 deg [mm/s]"].iloc[1:].to_numpy() == pytest.approx(W * 1.0, rel=1e-12)
+
+
+def test_the_complex_step_row_is_the_complex_step_of_the_quantity_itself():
+    """Im(gap(theta + i h)) / h of gap = sqrt(l^2 - r^2 sin^2 theta), by mpmath in complex arithmetic: the same
+    for the two ways of writing gap, and not the exact value (at h = 0.1 it errs by O(h^2)); abs() is not
+    analytic: no complex step through it."""
+    mech = linkages.slider_crank(R, L).add_quantities({
+        "gap": ("x - r*cos(theta)", "length"), "gap2": ("sqrt(l**2 - r**2*sin(theta)**2)", "length"),
+        "dist": ("abs(x - 250)", "length")})
+    theta = math.radians(60)
+
+    def gap(z):
+        return mp.sqrt(L**2 - R**2 * mp.sin(z) ** 2)
+
+    for name in ("gap", "gap2"):
+        ro = report.roundoff_table(mech, quantity=name, check_angle=theta, schemes=("complex_step",))
+        row = ro.iloc[0]
+        with mp.workdps(50):
+            exact = mp.diff(gap, mp.mpf(theta))
+            assert row["exact value [unit of quantity]"] == pytest.approx(float(exact), rel=1e-13)
+            for column, h in ro.attrs["steps"].items():
+                h = (theta + h) - theta  # the table's representable step
+                step = mp.im(gap(mp.mpf(theta) + 1j * mp.mpf(h))) / h
+                want = float(abs(step - exact) / abs(exact))
+                assert row[column] == pytest.approx(want, rel=1e-6, abs=1e-15), column
+        assert row["rel error at h = 1e-01 rad [-]"] == pytest.approx(7.108e-3, rel=1e-3)
+    ro = report.roundoff_table(mech, quantity="dist", check_angle=theta, schemes=("centred", "complex_step"))
+    steps = list(ro.attrs["steps"])
+    assert ro[steps].iloc[1].isna().all() and ro[steps].iloc[0].notna().all()
+    assert "not analytic (Abs)" in ro.attrs["caption"]
+
+
+# ----------------------------------------------------------------- the tolerance table's error columns
+def _mu_of(mech, sweep):
+    theta3, theta4 = (sweep.values[mech.unknowns.index(u)] for u in ("theta3", "theta4"))
+    return np.unwrap(theta4 - theta3)
+
+
+def test_the_tolerance_table_of_mu_differences_each_loose_sweep_as_written_out(four_bar):
+    """Turning backwards (omega < 0): each loosely solved sweep's mu, differenced here by the periodic centred and
+    second differences, gives the row's velocity and acceleration at the check angle and its largest relative
+    errors against the closed form; its error estimate is the distance of its mu from the closed form's."""
+    n, k, w = 72, 20, -W  # the check angle 100 deg is point 20
+    table = report.tolerance_table(four_bar, omega=w, quantity="mu", check_angle=math.radians(100),
+                                   points_per_turn=n)
+    t = np.linspace(0.0, 2 * np.pi, n + 1)
+    h = t[1]
+    exact, d1, d2 = closed_samples(mu_closed, t[:-1])
+    analytic = table.iloc[0]
+    assert analytic["omega_mu at theta2 = 100 deg [rad/s]"] == pytest.approx(w * d1[k], rel=1e-11)
+    assert analytic["alpha_mu at theta2 = 100 deg [rad/s^2]"] == pytest.approx(w * w * d2[k], rel=1e-10)
+    for rule in report.STUDENT_RULES:
+        sweep = report.student_sweep(four_bar, t, rule=rule, tol=1e-4)
+        y = _mu_of(four_bar, sweep)[:-1]  # mu returns to its value after the turn: periodic, the last point apart
+        c1 = w * (np.roll(y, -1) - np.roll(y, 1)) / (2 * h)
+        c2 = w * w * (np.roll(y, -1) - 2 * y + np.roll(y, 1)) / h**2
+        row = table.iloc[1 + report.STUDENT_RULES.index(rule)]
+        assert row["omega_mu at theta2 = 100 deg [rad/s]"] == pytest.approx(c1[k], rel=1e-9), rule
+        assert row["alpha_mu at theta2 = 100 deg [rad/s^2]"] == pytest.approx(c2[k], rel=1e-9), rule
+        assert row["omega_mu rel error at theta2 = 100 deg [%]"] == pytest.approx(
+            100 * abs(c1[k] - w * d1[k]) / abs(w * d1[k]), rel=1e-6)
+        assert row["omega_mu max rel error [%]"] == pytest.approx(
+            100 * np.abs(c1 - w * d1).max() / np.abs(w * d1).max(), rel=1e-6), rule
+        assert row["alpha_mu max rel error [%]"] == pytest.approx(
+            100 * np.abs(c2 - w * w * d2).max() / np.abs(w * w * d2).max(), rel=1e-6), rule
+        missed = np.abs(y - exact).max()  # Newton converges fast: one more step takes nearly all of it
+        if missed > 1e-9:
+            assert row[MU_ESTIMATE] == pytest.approx(missed, rel=1e-2), rule
+        else:
+            assert row[MU_ESTIMATE] < 1e-9
+
+
+def test_open_grids_take_end_stencils_in_their_own_column(four_bar):
+    """A part of a turn, 30 to 150 deg: the centred difference's statistics over the points 1..N-1, the one-sided
+    second-order ends apart; in the tolerance table the check angle 30 deg is an end point, whose value is the end
+    stencil's."""
+    start, span = math.radians(30), math.radians(120)
+    conv = report.convergence_table(four_bar, omega=-W, quantity="mu", grids=(72,), schemes=("centred",),
+                                    start=start, span=span, check_angle=start)
+    t = start + 2 * np.pi / 72 * np.arange(25)
+    y, d1, _ = closed_samples(mu_closed, t)
+    est = centred_open(y, t[1] - t[0])
+    err = W * np.abs(est - d1)
+    row = conv.iloc[0]
+    assert row["max abs error [unit of quantity]"] == pytest.approx(err[1:-1].max(), rel=1e-8)
+    assert row["ends abs error [unit of quantity]"] == pytest.approx(max(err[0], err[-1]), rel=1e-8)
+    assert row["abs error at theta2 = 30 deg [unit of quantity]"] == pytest.approx(err[0], rel=1e-8)
+    tol = report.tolerance_table(four_bar, omega=W, quantity="mu", check_angle=start, points_per_turn=72,
+                                 start=start, span=span)
+    tight = tol[tol["rule"] == "numkin, tol = 1e-12"].iloc[0]
+    assert tight["omega_mu at theta2 = 30 deg [rad/s]"] == pytest.approx(W * est[0], rel=1e-9)
+    assert tight["omega_mu max rel error [%]"] == pytest.approx(100 * err[1:-1].max() / (W * np.abs(d1).max()),
+                                                                 rel=1e-7)
+    assert "end point" in tol.attrs["caption"]

@@ -39,10 +39,17 @@ names either). A derived quantity is studied as an unknown is: its values
 over each sweep are differenced by the same schemes (an angle unwrapped, a
 full turn as periodic, whole turns included) and compared with its exact
 derivatives (the chain rule through the unknowns' analytic rates,
-:func:`numkin.expressions.derived_derivatives`); the round-off table
-differences its values at the positions solved at ``theta + k h``; its
-complex step is the unknowns' complex-step rates carried through that chain
-rule; the tolerance table differences its values on each loosely solved
+:func:`numkin.expressions.derived_derivatives`). Unlike an unknown, a derived
+quantity need not return to its start after a turn (``theta2/2 + theta3``,
+``r2*theta2``): decided on the tight sweep, such a quantity's full turn is an
+open grid in every table, with end stencils, its own "ends" column and a
+caption note; where its exact derivative is 0 over the sweep, relative
+errors are blank. The round-off table
+differences its values at the positions solved at ``theta + k h`` (steps
+whose samples leave its domain blank); its complex step is the quantity's
+own, ``Im(q(x(theta + i h), theta + i h)) / h`` (blank where its expression
+is not analytic); the work-precision table's complex-step rows are the
+unknowns' complex-step rates carried through its chain rule; the tolerance table differences its values on each loosely solved
 sweep. The Newton and Jacobian tables study the solve of all the unknowns at
 once and take no quantity: they are the same whichever quantity the report
 studies. One object, :class:`~numkin.report.studied.StudiedQuantity`, gives

@@ -10,8 +10,8 @@ import numpy as np
 from ..errors import InputError
 from ..schemes import own_stencil_points
 from .study import (
-    DEFAULT_GRIDS, EPS, TURN, UNIT, check_index, deg_text, grid_inputs, grid_positions, grid_study, order_text,
-    set_caption, set_views, solve_sweep,
+    DEFAULT_GRIDS, EPS, TURN, UNIT, check_index, deg_text, full_turn, grid_inputs, grid_positions, grid_study,
+    order_text, relative, set_caption, set_views, solve_sweep, warned_once, zero_text,
 )
 
 __all__ = [
@@ -50,7 +50,10 @@ def convergence_table(
         schemes) are compared. A derived quantity's values over each sweep
         are differenced as an unknown's are (an angle unwrapped, a full turn
         as periodic) and compared with its exact derivatives
-        (:func:`numkin.expressions.derived_derivatives`).
+        (:func:`numkin.expressions.derived_derivatives`); one that does not
+        return to its start after the turn (``theta2/2 + theta3``) has its
+        full turn studied as an open grid. Where the exact derivative is 0
+        over the sweep, ``max rel error`` is blank (the caption says so).
     check_angle : float, optional
         Input angle (rad) where the error is also reported; NaN on a grid
         that does not hold it.
@@ -94,7 +97,8 @@ def convergence_table(
     >>> print(t["quantity"].iloc[0], round(float(t["observed order [-]"].iloc[1]), 2))
     omega_mu [rad/s] 2.0
     """
-    w, studied, grid_list, periodic, scheme_list = grid_study(mechanism, omega, quantity, grids, span, schemes)
+    w, studied, grid_list, periodic, scheme_list = grid_study(mechanism, omega, quantity, grids, span, schemes,
+                                                              start, guess)
     lab = studied.labels
     check_col = (
         f"abs error at {lab['input']} = {deg_text(check_angle)} deg {UNIT}" if check_angle is not None else None
@@ -115,13 +119,15 @@ def convergence_table(
     rows = []
     at_end = set()  # schemes whose error at the check angle is their end stencil's
     floored = set()  # schemes whose error reached the round-off floor on some grid
+    zero = set()  # the quantities (velocity, acceleration) whose exact value is 0 over the sweep
+    warned = set()  # the differences' warnings: once per table (a wrapped angle on every grid and scheme)
     for scheme in scheme_list:
         scale = w if scheme.derivative == 1 else w * w
         prev = None
         for n in grid_list:
             s, dq, d2q = data[n]
             exact = scale * (dq if scheme.derivative == 1 else d2q)
-            est = scale * studied.differenced(s, scheme, quiet=False)
+            est = scale * warned_once(warned, studied.differenced, s, scheme, quiet=False, periodic=periodic)
             err = np.abs(est - exact)
             # statistics where the scheme's own stencil applies: one period of a periodic grid; on an
             # open grid the first and last points (one-sided end stencils) have their own column
@@ -137,7 +143,7 @@ def convergence_table(
                 "h [deg]": 360.0 / n,
                 f"max abs error {UNIT}": e_max,
                 f"RMS abs error {UNIT}": float(np.sqrt(np.mean(inner**2))),
-                "max rel error [-]": e_max / float(np.max(np.abs(exact[: err.size - 1 if periodic else None]))),
+                "max rel error [-]": relative(e_max, exact[: err.size - 1 if periodic else None]),
             }
             if not periodic:
                 ends = np.ones(err.size, dtype=bool)
@@ -157,6 +163,8 @@ def convergence_table(
             row["observed order [-]"] = order
             if at_floor:
                 floored.add(scheme.name)
+            if math.isnan(row["max rel error [-]"]):
+                zero.add(lab[f"name{scheme.derivative}"])
             prev = (e_max, h, at_floor)
             rows.append(row)
     import pandas as pd
@@ -178,6 +186,7 @@ def convergence_table(
         + (f"; the check angle is an end point for {', '.join(sorted(at_end))}, whose error there is the end "
            "stencil's" if at_end else "") + "."
     )
+    closure_text = "" if periodic or not full_turn(span) else studied.closure_text(data[grid_list[0]][0])
     floor_text = "" if not floored else (
         f" An observed order is left blank where either grid's error is at the round-off floor "
         f"({ROUNDOFF_UNITS:g} eps max|q| |omega|^n / h^n for an n-th derivative): {', '.join(sorted(floored))}."
@@ -187,6 +196,6 @@ def convergence_table(
         f"Convergence: {mechanism.name}, {studied.title}, input speed {w:g} rad/s; error of each scheme "
         "against the analytic solution over the sweep; observed order from successive grids. Absolute errors "
         f"in {lab['unit1']} ({lab['name1']}, first-derivative schemes) or {lab['unit2']} ({lab['name2']}, "
-        "second-derivative schemes)." + ends_text + floor_text,
+        "second-derivative schemes)." + closure_text + ends_text + floor_text + zero_text(zero),
         grid_positions(mechanism, {n: data[n][0] for n in grid_list}, check_angle),
     )

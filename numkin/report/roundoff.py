@@ -24,6 +24,7 @@ __all__ = [
     "stencil",
     "fitted_optimum",
     "complex_step_scan",
+    "quantity_complex_step",
 ]
 
 #: Default schemes of :func:`roundoff_table` (``"complex_step"`` is not a finite difference).
@@ -156,6 +157,14 @@ def complex_step_scan(mechanism, point, steps) -> np.ndarray:
     >>> print(round(float(d[1, 1]), 12))     # dx/dtheta = -r at 90 deg
     -80.0
     """
+    x, failed, h = _complex_scan(mechanism, point, steps)
+    d = x.imag / h
+    d[:, failed] = np.nan
+    return d
+
+
+def _complex_scan(mechanism, point, steps) -> tuple:
+    """``(x, failed, h)``: the complex positions (n, S) at ``theta + i h`` for every step of `steps` (S,)."""
     from ..analytic import complex_positions
 
     h = np.asarray(steps, dtype=float).reshape(-1)
@@ -164,8 +173,38 @@ def complex_step_scan(mechanism, point, steps) -> np.ndarray:
     q = np.repeat(np.asarray(point.values, dtype=float)[:, :1], h.size, axis=1)
     t = np.full(h.size, float(np.asarray(point.inputs, dtype=float)[0]))
     x, failed, _ = complex_positions(mechanism, q, t, h)
-    d = x.imag / h
-    d[:, failed] = np.nan
+    return x, failed, h
+
+
+def quantity_complex_step(studied, point, steps):
+    """d/dtheta of the studied quantity at one solved point by its own complex step, for many steps h.
+
+    ``Im(q(x(theta + i h), theta + i h)) / h``: the unknowns solved at the
+    complex input (:func:`complex_step_scan`'s Newton) and the quantity's
+    expression evaluated there in complex arithmetic
+    (:meth:`~numkin.report.studied.StudiedQuantity.complex_at`). For an
+    unknown, :func:`complex_step_scan`'s row. A str saying why, where the
+    expression is not analytic. NaN where the complex solve fails.
+
+    Examples
+    --------
+    >>> import math
+    >>> from numkin import linkages
+    >>> from numkin.report.study import branch_point
+    >>> from numkin.report.studied import studied_quantity
+    >>> m = linkages.slider_crank(80, 200).add_quantities({"gap": ("x - r*cos(theta)", "length")})
+    >>> gap = studied_quantity(m, "gap")
+    >>> d = quantity_complex_step(gap, branch_point(m, math.radians(90)), [1e-30])
+    >>> print(round(float(d[0]), 12))   # d/dtheta sqrt(l^2 - r^2 sin^2) = 0 at 90 deg
+    0.0
+    """
+    x, failed, h = _complex_scan(studied.mechanism, point, steps)
+    t = np.full(h.size, float(np.asarray(point.inputs, dtype=float)[0])) + 1j * h
+    q = studied.complex_at(x, t)
+    if isinstance(q, str):
+        return q
+    d = np.asarray(q).imag / h
+    d[failed] = np.nan
     return d
 
 
@@ -218,9 +257,11 @@ def roundoff_table(
         The unknown, or derived quantity (:mod:`numkin.derived`),
         differentiated. A derived quantity's stencil samples are its
         expression at the unknowns solved at ``theta + k h``; its complex
-        step is the unknowns' complex-step rate through its exact chain rule
-        (``e_q q' + e_theta``: the complex step's own error, carried
-        through), so its floor is still eps.
+        step is its own, ``Im(q(x(theta + i h), theta + i h)) / h`` with the
+        unknowns solved at the complex input and its expression evaluated
+        in complex arithmetic (:func:`quantity_complex_step`); blank, with
+        the reason in the caption, where the expression is not analytic
+        (``abs``, ``atan2``, ...).
     check_angle : float
         Input angle (rad).
     schemes : sequence of str
@@ -281,20 +322,27 @@ def roundoff_table(
     S = len(scan)
     offsets = sorted({int(k) for k, _ in stencils.values() for k in k} - {0})
     samples = {0: np.full(S, v0)}
+    outside = np.zeros(S, dtype=bool)
     if offsets:
         kk = np.array(offsets, dtype=float)
         tt = theta + eff[:, None] * kk[None, :]  # (S, K)
         solved = _samples(mechanism, base, tt.reshape(-1))
-        vals = studied.near(studied.at(solved, tt.reshape(-1)), v0).reshape(S, len(offsets))
+        # stencil samples outside the quantity's domain (its expression undefined at theta + k h): NaN, and
+        # the steps that take them are blank
+        vals = studied.near(studied.at(solved, tt.reshape(-1), check=False), v0).reshape(S, len(offsets))
+        outside = ~np.all(np.isfinite(vals), axis=1)
         samples.update({k: vals[:, c] for c, k in enumerate(offsets)})
     rows = []
+    no_complex = ""
     scan_errors = {}
     shown = {h: k for k, h in enumerate(scan)}
     for name, scheme in zip(names, sch):
         if scheme is None:
             deriv, order, exact = 1, 2, q1
-            est = studied.rates(np.repeat(base.values, S, axis=1), np.repeat(base.inputs, S),
-                                complex_step_scan(mechanism, base, eff))[0]
+            est = quantity_complex_step(studied, base, eff)
+            if isinstance(est, str):  # not analytic: no complex step of the quantity
+                no_complex = est
+                est = np.full(S, math.nan)
         else:
             deriv, order = scheme.derivative, scheme.order
             exact = q1 if deriv == 1 else q2
@@ -342,6 +390,14 @@ def roundoff_table(
             f" The exact {' and '.join(zero)} is 0 at this angle: errors are absolute, and symmetric stencils "
             "may be exact by symmetry; choose another angle to see the round-off floor."
         )
+    blank = [h for h in steps if outside[shown[h]]]
+    if blank:
+        caption += (
+            f" At h >= {min(blank):.0e} rad the stencils reach inputs theta + k h where {studied.title} is undefined "
+            "(outside its domain): those steps are blank for the schemes that use them."
+        )
+    if no_complex:
+        caption += f" The complex-step row is blank: {studied.title}: {no_complex}."
     key = ["scheme", "formal order", "quantity"]
     cols = [c for c in df.columns if c.startswith("rel error at h =")]
     third = (len(cols) + 2) // 3
@@ -375,13 +431,12 @@ def _error_at(studied, base, scheme, stencils, theta, h, exact) -> float:
     """The relative error of one scheme (None: the complex step) measured at the step `h`."""
     h = (theta + h) - theta
     if scheme is None:
-        dq = silenced(analytic.complex_step, base, h=float(h), order=1)
-        est = float(studied.rates(base.values, base.inputs, dq)[0][0])
+        est = float(quantity_complex_step(studied, base, [h])[0])
     else:
         ks, ws = stencils[scheme.name]
         tt = theta + h * ks.astype(float)
         v0 = studied.values(base)[0]
-        vals = studied.near(studied.at(_samples(studied.mechanism, base, tt), tt), v0)
+        vals = studied.near(studied.at(_samples(studied.mechanism, base, tt), tt, check=False), v0)
         vals[ks == 0] = v0
         est = float(np.sum(ws * vals) / h**scheme.derivative)
     err = abs(est - exact)

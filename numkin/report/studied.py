@@ -10,7 +10,10 @@ its values over a sweep or at any solved positions, its exact derivatives
 with respect to the input (for a derived quantity, the chain rule of
 :mod:`numkin.expressions` applied to the unknowns' rates), its finite
 differences (an angle unwrapped and a full turn differenced as periodic, as
-:mod:`numkin.kinematics` differences the unknowns), whether it is an angle,
+:mod:`numkin.kinematics` differences the unknowns; as an open grid where a
+derived quantity does not return to its start after the turn,
+:meth:`StudiedQuantity.closes`), its values in complex arithmetic for the
+complex step (:meth:`StudiedQuantity.complex_at`), whether it is an angle,
 and its labels and units (:mod:`numkin.quantities`).
 
 Examples
@@ -35,7 +38,11 @@ from .study import (
     TURN, check_quantity, differenced, exact_derivatives, quantity_labels, shared_result, table_quantities,
 )
 
-__all__ = ["StudiedQuantity", "studied_quantity"]
+__all__ = ["CLOSURE_TOL", "StudiedQuantity", "studied_quantity"]
+
+#: A derived quantity closes after a turn if its end is within this of its start (whole turns aside): rad, or
+#: times the mechanism's length scale (the closure test of :mod:`numkin.kinematics`).
+CLOSURE_TOL = 1e-7
 
 
 def _row(value, size: int) -> np.ndarray:
@@ -136,8 +143,12 @@ class StudiedQuantity:
             )
         return values
 
-    def at(self, x, t) -> np.ndarray:
-        """Its values at the positions `x` (n, M) of the unknowns and the inputs `t` (M,), rad."""
+    def at(self, x, t, *, check: bool = True) -> np.ndarray:
+        """Its values at the positions `x` (n, M) of the unknowns and the inputs `t` (M,), rad.
+
+        An InputError where the expression is undefined (not finite) at finite positions; with
+        ``check=False``, NaN there instead.
+        """
         t = np.atleast_1d(np.asarray(t, dtype=float))
         x = np.asarray(x, dtype=float).reshape(-1, t.size)
         if not self.derived:
@@ -145,7 +156,49 @@ class StudiedQuantity:
         (f,) = self._functions(rates=False)
         with np.errstate(all="ignore"):
             e = _row(f(*x, t, *self.mechanism.parameter_values), t.size)
-        return self._finite(e, x, t, "the value")
+        return self._finite(e, x, t, "the value") if check else np.where(np.isfinite(e), e, np.nan)
+
+    def complex_at(self, x, t):
+        """Its values at complex positions `x` (n, M) and complex inputs `t` (M,), or a str saying why not.
+
+        What the complex step of the quantity needs: ``Im(q(x(theta + i h), theta + i h)) / h``. An
+        unknown's row; a derived quantity's compiled expression evaluated in complex arithmetic, where it
+        is analytic. An expression through a function that is not (``abs``, ``atan2``, ``sign``, ...),
+        or that the compiled function refuses or returns real for complex input, gives the reason
+        instead: a complex step through it is meaningless.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from numkin import linkages
+        >>> m = linkages.slider_crank(80, 200).add_quantities({"g": ("x - r*cos(theta)", "length"),
+        ...                                                     "a": ("abs(x - 250)", "length")})
+        >>> x, t = np.array([[0.0], [280.0 + 1e-20j]]), np.array([0.0 + 1e-20j])
+        >>> print(studied_quantity(m, "g").complex_at(x, t).imag / 1e-20)   # x' + r sin(theta): 1 + 0
+        [1.]
+        >>> studied_quantity(m, "a").complex_at(x, t)
+        'its expression is not analytic (Abs): no complex step through it'
+        """
+        t = np.atleast_1d(np.asarray(t, dtype=complex))
+        x = np.asarray(x, dtype=complex).reshape(-1, t.size)
+        if not self.derived:
+            return x[self.index].copy()
+        import sympy as sp
+
+        (f,) = self._functions(rates=False)
+        kinds = (sp.Abs, sp.atan2, sp.sign, sp.Heaviside, sp.Min, sp.Max, sp.floor, sp.ceiling, sp.re, sp.im,
+                 sp.arg, sp.conjugate, sp.Piecewise, sp.Mod)
+        found = sorted({type(a).__name__ for e in getattr(f, "expressions", ()) for a in e.atoms(*kinds)})
+        if found:
+            return f"its expression is not analytic ({', '.join(found)}): no complex step through it"
+        try:
+            with np.errstate(all="ignore"):
+                e = np.asarray(f(*x, t, *self.mechanism.parameter_values))
+        except (TypeError, ValueError, AttributeError) as exc:
+            return f"its compiled expression refuses complex input ({type(exc).__name__}): no complex step through it"
+        if not np.iscomplexobj(e):
+            return "its compiled expression returns real values for complex input: no complex step through it"
+        return np.array(np.broadcast_to(e.reshape(-1), (t.size,)))
 
     def near(self, values, reference) -> np.ndarray:
         """`values` moved by whole turns to lie within pi of `reference`, for an angle; as they are otherwise.
@@ -181,7 +234,11 @@ class StudiedQuantity:
         x = np.asarray(x, dtype=float).reshape(-1, t.size)
         args = (*x, *dq, *(np.zeros_like(dq) if d2q is None else d2q), t, *self.mechanism.parameter_values)
         with np.errstate(all="ignore"):
-            first = self._finite(_row(f1(*args), t.size), np.vstack([x, dq]), t, "the first derivative")
+            first = _row(f1(*args), t.size)
+        if not np.all(np.isfinite(first)):
+            self.at(x, t)  # where the value itself is undefined, say so
+        with np.errstate(all="ignore"):
+            first = self._finite(first, np.vstack([x, dq]), t, "the first derivative")
             second = None if d2q is None else self._finite(_row(f2(*args), t.size), np.vstack([x, dq, d2q]), t,
                                                          "the second derivative")
         return first, second
@@ -195,29 +252,80 @@ class StudiedQuantity:
         dq, d2q = exact_derivatives(sweep, quiet, fresh=fresh)
         return self.rates(sweep.values, sweep.inputs, dq, d2q)
 
-    def differenced(self, sweep, scheme, quiet: bool = True, *, fresh: bool = False, close: bool = False):
+    def closure_gap(self, sweep) -> float:
+        """How far the quantity's end misses its start over the full-turn `sweep`, whole turns aside (angle).
+
+        0 for an unknown: an unknown always closes after a turn of the input
+        (modulo whole turns). A derived quantity closes only if its values
+        at the two ends of the turn differ by whole turns (an angle) or by
+        nothing (a length): ``theta2/2 + theta3`` or ``r2*theta2`` do not.
+        Decide it on a tightly solved sweep (the tables' own), never on a
+        loosely solved one, whose end misses its start by its position error.
+        """
+        if not self.derived:
+            return 0.0
+        t = np.asarray(sweep.inputs, dtype=float)
+        ends = self.at(np.asarray(sweep.values)[:, [0, -1]], t[[0, -1]])
+        gap = float(ends[1] - ends[0])
+        return gap - TURN * round(gap / TURN) if self.is_angle else gap
+
+    def closes(self, sweep) -> bool:
+        """Whether the quantity returns to its start after the full turn `sweep` (:meth:`closure_gap`).
+
+        Within :data:`CLOSURE_TOL` (rad, or times the mechanism's length
+        scale for a length): the solve's accuracy is far finer, a quantity
+        that does not close misses by far more.
+
+        Examples
+        --------
+        >>> from numkin import linkages
+        >>> from numkin.report.study import TURN, grid_inputs
+        >>> m = linkages.four_bar(4, 1, 3, 3).add_quantities({"half": ("theta2/2 + theta3", "angle")})
+        >>> s = m.sweep(grid_inputs(36, 0.0, TURN))
+        >>> studied_quantity(m, "theta3").closes(s), studied_quantity(m, "half").closes(s)
+        (True, False)
+        >>> round(abs(studied_quantity(m, "half").closure_gap(s)), 6)   # half a turn
+        3.141593
+        """
+        scale = 1.0 if self.is_angle else float(self.mechanism.length_scale)
+        return abs(self.closure_gap(sweep)) <= CLOSURE_TOL * scale
+
+    def closure_text(self, sweep) -> str:
+        """A caption's sentence on a full turn differenced as an open grid because the quantity does not close."""
+        gap = f"{self.closure_gap(sweep):.6g} " + ("rad, whole turns aside" if self.is_angle else self.mechanism.length_unit)
+        return (
+            f" {self.name} does not return to its start after the turn (its end misses its start by {gap}): "
+            "the full turn is differenced as an open grid."
+        )
+
+    def differenced(self, sweep, scheme, quiet: bool = True, *, fresh: bool = False, close: bool = False,
+                    periodic: bool | None = None):
         """d/dtheta (or d2/dtheta2) of the quantity over `sweep` by the finite-difference `scheme` (a Scheme).
 
         An unknown's row of :func:`~numkin.report.study.differenced`; a derived quantity's
         values differenced as the unknowns are (angles unwrapped, a full
         turn as periodic). With `close`, a full turn is differenced as
         periodic even where its end misses its start by the solver's error
-        (:func:`numkin.kinematics.sweep_derivative`).
+        (:func:`numkin.kinematics.sweep_derivative`). ``periodic=False``
+        differences a derived quantity's full turn as an open grid (one that
+        does not close, :meth:`closes`); an unknown ignores it.
         """
         if not self.derived and not close:
             return differenced(sweep, scheme, quiet, fresh=fresh)[self.index]
         if not self.derived:
             return kinematics.sweep_derivative(sweep, scheme.name, periodic=True, close=True)[self.index]
+        if periodic is False:
+            close = False
 
         def compute():
             mech, t = self.mechanism, np.asarray(sweep.inputs, dtype=float)
-            periodic = True if close else "auto"
+            periodic_ = False if periodic is False else True if close else "auto"
             rows = kinematics.prepare_rows(self.values(sweep)[None], [self.is_angle], [self.name], t,
-                                           kinematics.sweep_grid(sweep, periodic), mech.length_scale, periodic,
+                                           kinematics.sweep_grid(sweep, periodic_), mech.length_scale, periodic_,
                                            close=close)
             return rows.apply(scheme)[0]
 
-        key = ("differenced", id(sweep), scheme.name, self.name, close)
+        key = ("differenced", id(sweep), scheme.name, self.name, close, periodic)
         return shared_result(key, compute, quiet, keep=(sweep,), fresh=fresh)
 
 

@@ -75,6 +75,9 @@ __all__ = [
     "set_caption",
     "set_views",
     "grid_positions",
+    "relative",
+    "zero_text",
+    "warned_once",
 ]
 
 EPS = float(np.finfo(float).eps)
@@ -216,19 +219,34 @@ def grid_list(grids) -> list:
     return out
 
 
-def grid_study(mechanism, omega, quantity: str, grids, span: float, schemes) -> tuple:
+def grid_study(mechanism, omega, quantity: str, grids, span: float, schemes, start: float = 0.0,
+               guess=None) -> tuple:
     """The checked arguments of a study over grids: ``(w, studied, grids, periodic, schemes)``.
 
     `w` is the input speed in rad/s, `studied` the :class:`StudiedQuantity`
     of `quantity` (an unknown or a derived quantity), `periodic` whether
-    `span` is a full turn.
+    `span` is a full turn and the quantity returns to its start over it
+    (:meth:`StudiedQuantity.closes`, decided on the tight sweep of the
+    coarsest grid): a derived quantity that does not is studied on an open
+    grid, as a part of a turn is.
     """
     from .studied import studied_quantity
 
     w = input_speed(omega)
     studied = studied_quantity(mechanism, quantity)
+    grids = grid_list(grids)
     periodic = full_turn(span)
-    return w, studied, grid_list(grids), periodic, scheme_list(schemes, periodic)
+    if periodic and studied.derived:
+        coarse = solve_sweep(mechanism, grid_inputs(min(grids), start, span), guess)
+        periodic = studied.closes(coarse)
+        bad = [] if periodic or schemes is None else [
+            s.name for s in map(get_scheme, [schemes] if isinstance(schemes, str) else schemes) if s.periodic_only]
+        if bad:
+            raise InputError(
+                f"scheme(s) {bad} need a quantity that returns to its start after the turn; {studied.name} misses "
+                f"it by {studied.closure_gap(coarse):.6g} (whole turns aside): leave the spectral schemes out"
+            )
+    return w, studied, grids, periodic, scheme_list(schemes, periodic)
 
 
 def check_index(inputs: np.ndarray, angle: float | None) -> int | None:
@@ -491,4 +509,57 @@ def grid_positions(mechanism, sweeps: Mapping, angle: float | None) -> list:
         k = s.inputs.size // 2 if angle is None else check_index(s.inputs, angle)
         if k is not None:
             out.append(position_record(f"{n} points per turn", mechanism, s.inputs[k], s.values[:, k]))
+    return out
+
+
+def relative(error: float, exact) -> float:
+    """``error / max|exact|``; NaN where the exact values are all 0 (a relative error is undefined there).
+
+    The exact derivative of a quantity linear in the input (``r2*theta2``) is 0 to the last bit: the
+    chain rule of :mod:`numkin.expressions` gives it so; then say so in the caption (:func:`zero_text`).
+
+    Examples
+    --------
+    >>> relative(0.5, [1.0, -2.0]), relative(0.5, [0.0, 0.0])
+    (0.25, nan)
+    """
+    peak = float(np.max(np.abs(np.asarray(exact, dtype=float))))
+    return error / peak if peak > 0 else math.nan
+
+
+def zero_text(names) -> str:
+    """A caption's sentence on the quantities whose exact value is 0 over the whole sweep (relative errors blank)."""
+    if not names:
+        return ""
+    return (f" The exact {' and '.join(sorted(names))} is 0 over the whole sweep: its relative error is undefined and "
+            "left blank (its absolute errors stand).")
+
+
+def warned_once(seen: set, fn, *args, **kwargs):
+    """``fn(*args, **kwargs)``, its warnings raised again unless one like it was raised before under `seen`.
+
+    Alike: the same category and text but for its numbers (the same wrapped angle on every grid and
+    scheme of a table names other inputs), so a table warns once for each.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> seen = set()
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     for k in (1, 2):
+    ...         _ = warned_once(seen, warnings.warn, f"jump at {k}0 deg")
+    >>> [str(w.message) for w in caught]
+    ['jump at 10 deg']
+    """
+    import re
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        out = fn(*args, **kwargs)
+    for w in caught:
+        key = (w.category, re.sub(r"[-+]?\d[\d.eE+-]*", "#", str(w.message)))
+        if key not in seen:
+            seen.add(key)
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     return out

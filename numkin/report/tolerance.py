@@ -13,8 +13,8 @@ from ..newton_rules import check_tol
 from ..schemes import own_stencil_points
 from ..sweep import Sweep
 from .study import (
-    TURN, check_index, deg_text, full_turn, grid_inputs, input_speed, position_record, set_caption, set_views,
-    solve_sweep,
+    TURN, check_index, deg_text, full_turn, grid_inputs, input_speed, position_record, relative, set_caption,
+    set_views, solve_sweep, zero_text,
 )
 from .studied import studied_quantity
 
@@ -229,12 +229,17 @@ def tolerance_table(
         ``rule`` (a short name), ``stopping rule`` (in full), ``tol`` (in the rule's own terms), ``Newton iterations per point
         (mean)``, ``max |F| [length unit]``, ``<quantity> error estimate
         max|J^-1 F| [unit]`` (the studied unknown's Newton step still
-        missing; for a derived quantity, the change of its value that step
+        missing; for a derived quantity q, ``q error estimate max|q(x + dx)
+        - q(x)|, dx = -J^-1 F [unit]``: the change of its value that step
         would make), the velocity and acceleration at the check angle
         with their relative errors [%] (blank where the exact value is 0),
         their largest relative errors over
-        the sweep [%] (over ``max |exact|``) and where the acceleration error is
-        largest [deg], and ``note`` (a branch change is named there).
+        the sweep [%] (over ``max |exact|``; blank where the exact values are
+        all 0) and where the acceleration error is
+        largest [deg], and ``note`` (a branch change is named there). A
+        derived quantity that does not return to its start after a full
+        turn is differenced as an open grid on every row (decided on the
+        tight sweep).
 
     Examples
     --------
@@ -274,6 +279,9 @@ def tolerance_table(
         "wm": f"{lab['name1']} max rel error [%]",
         "am": f"{lab['name2']} max rel error [%]",
         "where": f"{lab['name2']} largest error at {lab['input']} [deg]",
+        # the Newton step still missing, dx = -J^-1 F: its own row for an unknown; what it changes for a derived quantity
+        "est": (f"{quantity} error estimate max|{quantity}(x + dx) - {quantity}(x)|, dx = -J^-1 F [{lab['unit']}]"
+                if studied.derived else f"{quantity} error estimate max|J^-1 F| [{lab['unit']}]"),
     }
     lu = mechanism.length_unit
     rows = [
@@ -283,13 +291,13 @@ def tolerance_table(
             "tol": math.nan,
             "Newton iterations per point (mean)": math.nan,
             f"max |F| [{lu}]": math.nan,
-            f"{quantity} error estimate max|J^-1 F| [{lab['unit']}]": math.nan,
+            cols["est"]: math.nan,
             cols["w"]: float(w_ex[k]),
             cols["we"]: 0.0,
             cols["a"]: float(a_ex[k]),
             cols["ae"]: 0.0,
             cols["wm"]: 0.0,
-            cols["am"]: 0.0,
+            cols["am"]: 0.0 if np.any(a_ex != 0) else math.nan,
             cols["where"]: math.nan,
             "note": "",
         }
@@ -307,7 +315,8 @@ def tolerance_table(
     comp, p = mechanism.compiled, mechanism.parameter_values
     angle_rows = np.array([u in mechanism.angles for u in mechanism.unknowns])
     # the largest errors where each scheme's own stencil applies (one period; an open grid's ends apart)
-    periodic = full_turn(span)
+    # a derived quantity that does not return to its start after the turn: an open grid (decided on the tight sweep)
+    periodic = full_turn(span) and studied.closes(ref)
     keep1, keep2 = (own_stencil_points([s], inputs.size, periodic) for s in (s1, s2))
     ends = [] if periodic else [s.name for s, keep in ((s1, keep1), (s2, keep2)) if not keep.start <= k < keep.stop]
     positions = []
@@ -335,8 +344,8 @@ def tolerance_table(
             warnings.simplefilter("ignore")
             try:
                 # periodic: every row alike, a loose sweep's end mismatch is its position error
-                d1 = w * studied.differenced(s, s1, close=periodic)
-                d2 = w * w * studied.differenced(s, s2, close=periodic)
+                d1 = w * studied.differenced(s, s1, close=periodic, periodic=periodic)
+                d2 = w * w * studied.differenced(s, s2, close=periodic, periodic=periodic)
             except ValueError as exc:  # e.g. a student sweep that cannot be differenced
                 d1 = d2 = np.full(inputs.size, math.nan)
                 note = (note + "; " if note else "") + f"not differenced: {exc}"
@@ -348,13 +357,13 @@ def tolerance_table(
                 "tol": float(tol),
                 "Newton iterations per point (mean)": float(np.mean(s.iterations)),
                 f"max |F| [{lu}]": float(np.max(np.abs(f))),
-                f"{quantity} error estimate max|J^-1 F| [{lab['unit']}]": _missing(studied, s, step),
+                cols["est"]: _missing(studied, s, step),
                 cols["w"]: float(d1[k]),
                 cols["we"]: _percent(d1[k], w_ex[k], w_ex),
                 cols["a"]: float(d2[k]),
                 cols["ae"]: _percent(d2[k], a_ex[k], a_ex),
-                cols["wm"]: 100.0 * float(np.max(e1) / np.max(np.abs(w_ex))),
-                cols["am"]: 100.0 * float(np.max(e2) / np.max(np.abs(a_ex))),
+                cols["wm"]: 100.0 * relative(float(np.max(e1)), w_ex),
+                cols["am"]: 100.0 * relative(float(np.max(e2)), a_ex),
                 cols["where"]: (
                     math.degrees(float(inputs[keep2][int(np.nanargmax(e2))])) if np.any(np.isfinite(e2)) else math.nan
                 ),
@@ -366,7 +375,7 @@ def tolerance_table(
     set_views(df, [
         ("the stopping rules", ["rule", "stopping rule", "tol"]),
         ("what each leaves in the positions", ["rule", "Newton iterations per point (mean)", f"max |F| [{lu}]",
-                                               f"{quantity} error estimate max|J^-1 F| [{lab['unit']}]", "note"]),
+                                               cols["est"], "note"]),
         (f"velocity and acceleration {at}", ["rule", cols["w"], cols["we"], cols["a"], cols["ae"]]),
         ("largest errors over the sweep", ["rule", cols["wm"], cols["am"], cols["where"]]),
     ], row_keys=["rule"])
@@ -380,8 +389,9 @@ def tolerance_table(
            "by its position error)" if periodic else
            "; largest errors over the points where each scheme's own stencil applies (one-sided end stencils "
            "at the first and last points)")
+        + ("" if periodic or not full_turn(span) else ";" + studied.closure_text(ref)[:-1])
         + (f"; at the check angle, an end point, {' and '.join(ends)} use the one-sided end stencil" if ends else "")
-        + ".",
+        + "." + zero_text([lab[f"name{d}"] for d, ex in ((1, w_ex), (2, a_ex)) if math.isnan(relative(1.0, ex))]),
         positions,
     )
 

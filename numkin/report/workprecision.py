@@ -12,8 +12,8 @@ from ..errors import InputError
 from ..schemes import get_scheme, own_stencil_points
 from .counting import count_evaluations, stencil_evaluations, sweep_evaluations
 from .study import (
-    DEFAULT_GRIDS, EPS, TURN, UNIT, VARIES, exact_derivatives, grid_inputs, grid_positions, grid_study, median_time,
-    set_caption, set_views, silenced, solve_sweep, timing_repeats,
+    DEFAULT_GRIDS, EPS, TURN, UNIT, VARIES, exact_derivatives, full_turn, grid_inputs, grid_positions, grid_study,
+    median_time, relative, set_caption, set_views, silenced, solve_sweep, timing_repeats, zero_text,
 )
 
 __all__ = [
@@ -132,11 +132,13 @@ def work_precision_table(
     """
     import pandas as pd
 
-    w, studied, grid_list, periodic, scheme_list = grid_study(mechanism, omega, quantity, grids, span, schemes)
+    w, studied, grid_list, periodic, scheme_list = grid_study(mechanism, omega, quantity, grids, span, schemes,
+                                                              start, guess)
     lab = studied.labels
     repeat = timing_repeats(repeat)
     rows = []
     per_grid = {}
+    zero = set()  # the quantities (velocity, acceleration) whose exact value is 0 over the sweep
     for n in grid_list:
         inputs = grid_inputs(n, start, span)
 
@@ -159,8 +161,9 @@ def work_precision_table(
         done[1] = (cs1, solve_count)
         done[2] = (cs2, solve_count + cs_count.total)
         t_sweep = median_time(run_sweep, repeat) if repeat else math.nan
-        per_grid[n] = (run_sweep, s, dq, d2q, cs1, cs2, t_sweep, sweep_evaluations(s),
-                       stencil_evaluations(s), done)
+        # a derived quantity that does not close is differenced at every sample of its open grid
+        stencils = stencil_evaluations(s) if periodic or not studied.derived else int(s.inputs.size)
+        per_grid[n] = (run_sweep, s, dq, d2q, cs1, cs2, t_sweep, sweep_evaluations(s), stencils, done)
 
     def analytic_rates(s, order):  # the quantity's; counted (and timed): never taken from shared results
         if order == 1:
@@ -182,7 +185,8 @@ def work_precision_table(
         ]
         for scheme in scheme_list:
             if scheme.derivative == order:
-                fns.append((scheme.name, lambda s, sc=scheme: studied.differenced(s, sc, fresh=True), True))
+                fns.append((scheme.name, lambda s, sc=scheme: studied.differenced(s, sc, fresh=True, periodic=periodic),
+                            True))
         return fns
 
     for order in (1, 2):
@@ -203,7 +207,6 @@ def work_precision_table(
                 else:
                     est, ref = out, exact
                 err = abs(scale) * np.abs(est - ref)  # the input may turn either way: omega < 0
-                ref_peak = float(np.max(np.abs(scale * ref)))
                 # one period; on an open grid the points where a scheme's own stencil applies (as the
                 # convergence table), the one-sided ends apart; every point for the exact methods
                 own = own_stencil_points([get_scheme(name)], err.size, periodic) if differences else (
@@ -225,7 +228,9 @@ def work_precision_table(
                     row[f"derivative time [ms] {VARIES}"] = 1e3 * t_diff
                     row[f"sweep + derivative time [ms] {VARIES}"] = 1e3 * t_both
                 row[f"max abs error {UNIT}"] = e_max
-                row["max rel error [-]"] = e_max / ref_peak
+                row["max rel error [-]"] = relative(e_max, scale * ref)
+                if math.isnan(row["max rel error [-]"]):
+                    zero.add(lab[f"name{order}"])
                 rows.append(row)
     df = pd.DataFrame(rows)
     df.attrs["quantities"] = studied.quantities
@@ -252,7 +257,8 @@ def work_precision_table(
         "difference, both exact to round-off)"
         + ("" if periodic else "; on this open grid a scheme's error is over the points where its own stencil "
            "applies (the one-sided end stencils at the first and last points apart, as in the convergence table)")
-        + ".",
+        + "." + ("" if periodic or not full_turn(span) else studied.closure_text(per_grid[grid_list[0]][1]))
+        + zero_text(zero),
         grid_positions(mechanism, {n: per_grid[n][1] for n in grid_list}, None),
     )
 
