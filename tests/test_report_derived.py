@@ -547,3 +547,28 @@ def test_open_grids_take_end_stencils_in_their_own_column(four_bar):
     assert tight["omega_mu max rel error [%]"] == pytest.approx(100 * err[1:-1].max() / (W * np.abs(d1).max()),
                                                                  rel=1e-7)
     assert "end point" in tol.attrs["caption"]
+
+
+def test_a_quantity_within_the_closure_tolerance_keeps_its_own_small_gap_in_the_tolerance_table():
+    """apx = theta3 + 1.5e-8 theta2 closes within 1e-7 rad (its end misses its start by 9.4e-8): its second
+    difference is theta3's (the linear term has none), so the tight row's largest relative error of alpha is
+    the periodic second difference of theta3 from the closed form; a period closed by force to whole turns
+    puts the 9.4e-8 gap into a jump of gap / h^2 at the ends of the turn."""
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"apx": ("theta3 + 1.5e-8*theta2", "angle")})
+    table = report.tolerance_table(mech, omega=W, quantity="apx", check_angle=0.0, points_per_turn=360)
+    tight = table[table["rule"] == "numkin, tol = 1e-12"].iloc[0]
+    with mp.workdps(30):
+        t = [2 * mp.pi * k / 360 for k in range(360)]
+        y = np.array([float(_four_bar(x)[0]) for x in t])
+        d2 = np.array([float(mp.diff(lambda s: _four_bar(s)[0], x, 2)) for x in t])
+    y = np.unwrap(y)
+    h = 2 * math.pi / 360
+    second = (np.roll(y, -1) - 2 * y + np.roll(y, 1)) / h**2  # periodic: theta3 closes after the turn
+    expected = 100 * np.abs(second - d2).max() / np.abs(d2).max()
+    assert tight["alpha_apx max rel error [%]"] == pytest.approx(expected, rel=1e-4)
+
+
+def test_the_spectral_refusal_gives_a_length_gap_in_its_unit():
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"arc": ("r2*theta2", "length")})
+    with pytest.raises(InputError, match=r"arc misses it by 6\.28319 mm: leave the spectral schemes out"):
+        report.convergence_table(mech, omega=W, quantity="arc", grids=(36,), schemes=("spectral",))

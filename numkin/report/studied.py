@@ -292,21 +292,29 @@ class StudiedQuantity:
 
     def closure_text(self, sweep) -> str:
         """A caption's sentence on a full turn differenced as an open grid because the quantity does not close."""
-        gap = f"{self.closure_gap(sweep):.6g} " + ("rad, whole turns aside" if self.is_angle else self.mechanism.length_unit)
         return (
-            f" {self.name} does not return to its start after the turn (its end misses its start by {gap}): "
-            "the full turn is differenced as an open grid."
+            f" {self.name} does not return to its start after the turn (its end misses its start by "
+            f"{self.gap_text(sweep)}): the full turn is differenced as an open grid."
         )
 
+    def gap_text(self, sweep) -> str:
+        """:meth:`closure_gap` with its unit, for messages (``"3.14159 rad, whole turns aside"``, ``"6.28319 mm"``)."""
+        unit = "rad, whole turns aside" if self.is_angle else self.mechanism.length_unit
+        return f"{self.closure_gap(sweep):.6g} {unit}"
+
     def differenced(self, sweep, scheme, quiet: bool = True, *, fresh: bool = False, close: bool = False,
-                    periodic: bool | None = None):
+                    periodic: bool | None = None, gap: float = 0.0):
         """d/dtheta (or d2/dtheta2) of the quantity over `sweep` by the finite-difference `scheme` (a Scheme).
 
         An unknown's row of :func:`~numkin.report.study.differenced`; a derived quantity's
         values differenced as the unknowns are (angles unwrapped, a full
         turn as periodic). With `close`, a full turn is differenced as
         periodic even where its end misses its start by the solver's error
-        (:func:`numkin.kinematics.sweep_derivative`). ``periodic=False``
+        (:func:`numkin.kinematics.sweep_derivative`): the period offset is
+        then whole turns plus ``gap``, the derived quantity's own
+        :meth:`closure_gap` measured on a tightly solved sweep (a quantity
+        within :data:`CLOSURE_TOL` of closing, ``theta3 + 1e-8*theta2``,
+        keeps its small gap). ``periodic=False``
         differences a derived quantity's full turn as an open grid (one that
         does not close, :meth:`closes`); an unknown ignores it.
         """
@@ -323,9 +331,11 @@ class StudiedQuantity:
             rows = kinematics.prepare_rows(self.values(sweep)[None], [self.is_angle], [self.name], t,
                                            kinematics.sweep_grid(sweep, periodic_), mech.length_scale, periodic_,
                                            close=close)
+            if close and rows.periodic and gap:
+                rows.offset = rows.offset + gap  # whole turns (the solver's error dropped) and the quantity's own gap
             return rows.apply(scheme)[0]
 
-        key = ("differenced", id(sweep), scheme.name, self.name, close, periodic)
+        key = ("differenced", id(sweep), scheme.name, self.name, close, periodic, gap)
         return shared_result(key, compute, quiet, keep=(sweep,), fresh=fresh)
 
 

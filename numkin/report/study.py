@@ -244,7 +244,7 @@ def grid_study(mechanism, omega, quantity: str, grids, span: float, schemes, sta
         if bad:
             raise InputError(
                 f"scheme(s) {bad} need a quantity that returns to its start after the turn; {studied.name} misses "
-                f"it by {studied.closure_gap(coarse):.6g} (whole turns aside): leave the spectral schemes out"
+                f"it by {studied.gap_text(coarse)}: leave the spectral schemes out"
             )
     return w, studied, grids, periodic, scheme_list(schemes, periodic)
 

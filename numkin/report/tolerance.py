@@ -317,6 +317,7 @@ def tolerance_table(
     # the largest errors where each scheme's own stencil applies (one period; an open grid's ends apart)
     # a derived quantity that does not return to its start after the turn: an open grid (decided on the tight sweep)
     periodic = full_turn(span) and studied.closes(ref)
+    gap = studied.closure_gap(ref) if periodic else 0.0  # a derived quantity's own, measured on the tight sweep
     keep1, keep2 = (own_stencil_points([s], inputs.size, periodic) for s in (s1, s2))
     ends = [] if periodic else [s.name for s, keep in ((s1, keep1), (s2, keep2)) if not keep.start <= k < keep.stop]
     positions = []
@@ -344,8 +345,8 @@ def tolerance_table(
             warnings.simplefilter("ignore")
             try:
                 # periodic: every row alike, a loose sweep's end mismatch is its position error
-                d1 = w * studied.differenced(s, s1, close=periodic, periodic=periodic)
-                d2 = w * w * studied.differenced(s, s2, close=periodic, periodic=periodic)
+                d1 = w * studied.differenced(s, s1, close=periodic, periodic=periodic, gap=gap)
+                d2 = w * w * studied.differenced(s, s2, close=periodic, periodic=periodic, gap=gap)
             except ValueError as exc:  # e.g. a student sweep that cannot be differenced
                 d1 = d2 = np.full(inputs.size, math.nan)
                 note = (note + "; " if note else "") + f"not differenced: {exc}"
