@@ -39,7 +39,7 @@ from .errors import InputError, warn
 from .quantities import Quantity, input_quantity, point_quantities
 
 __all__ = ["point_derivatives", "point_kinematics", "derived_values", "derived_derivatives", "derived_kinematics",
-           "expression_functions", "warn_not_finite"]
+           "expression_functions", "derived_functions", "warn_not_finite"]
 
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
@@ -102,23 +102,53 @@ def expression_functions(mech, key, expressions, rates: bool = True):
     return cache[key]
 
 
-def _evaluate(sweep, key, expressions, names: list, rates: bool = True, at_change_point: str = "nan"):
+def _evaluate(sweep, groups, names: list, rates: bool = True, at_change_point: str = "nan"):
     """Values (and theta-derivatives) of the expressions named ``names`` over a sweep: (rows, N) arrays.
 
-    Values that are not finite where the unknowns are (an expression outside its
-    domain, ``sqrt`` of a negative number) are warned of, naming the quantity and the input.
+    ``groups``: ``(key, expressions, rows)`` for each point or derived quantity, compiled once per
+    mechanism and key (:func:`expression_functions`) whatever other names a call asks for with it;
+    the unknowns' rates are solved once for all. Values that are not finite where the unknowns are (an
+    expression outside its domain, ``sqrt`` of a negative number) are warned of, naming the quantity
+    and the input.
     """
     mech, t, q = check_sweep(sweep)
-    functions = expression_functions(mech, key, expressions, rates)
     args = (*q, t, *mech.parameter_values)
     if rates:
         dq, d2q = derivatives(sweep, at_change_point=at_change_point)
         args = (*q, *dq, *d2q, t, *mech.parameter_values)
-    rows = len(names)
+    blocks = []
     with np.errstate(all="ignore"):
-        out = [np.broadcast_to(np.asarray(f(*args), dtype=float).reshape(rows, -1), (rows, t.size)) for f in functions]
+        for key, expressions, rows in groups:
+            blocks.append([np.broadcast_to(np.asarray(f(*args), dtype=float).reshape(rows, -1), (rows, t.size))
+                           for f in expression_functions(mech, key, expressions, rates)])
+    out = [np.vstack(rows) for rows in zip(*blocks)]
     warn_not_finite(mech, names, out[0], q, t)
     return out
+
+
+def derived_functions(mech, name: str, rates: bool = True):
+    """:func:`expression_functions` of one derived quantity of ``mech`` (one row each), compiled once.
+
+    Examples
+    --------
+    >>> from numkin import linkages
+    >>> mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"mu": ("theta4 - theta3", "angle")})
+    >>> (f,) = derived_functions(mech, "mu", rates=False)
+    >>> f(0.5, 2.0, 0.0, *mech.parameter_values).tolist()   # theta3, theta4, theta2, r1..r4: one row
+    [1.5]
+    """
+    return expression_functions(mech, *_derived_group(mech, name)[:2], rates)
+
+
+def _derived_group(mech, name: str):
+    """``(key, expressions, rows)`` of one derived quantity for :func:`_evaluate`."""
+    d = mech.derived[name]
+    return ("derived", d.name, str(d.expression), d.dimension), (lambda: [bind(mech, d)]), 1
+
+
+def _point_group(mech, name: str):
+    """``(key, expressions, rows)`` of one named point (its x and y) for :func:`_evaluate`."""
+    return ("point", name), (lambda: list(mech.points[name])), 2
 
 
 def warn_not_finite(mech, names, rows, q, t) -> None:
@@ -194,7 +224,7 @@ def point_derivatives(sweep, points=None, *, at_change_point: str = "nan") -> di
     """
     mech = check_sweep(sweep)[0]
     names = _names(mech, points, list(mech.points), "points", "points=", "points")
-    P, dP, d2P = _evaluate(sweep, ("points", tuple(names)), lambda: [c for name in names for c in mech.points[name]],
+    P, dP, d2P = _evaluate(sweep, [_point_group(mech, name) for name in names],
                            [f"{axis}_{name}" for name in names for axis in "xy"], at_change_point=at_change_point)
     return {name: (P[2 * k : 2 * k + 2], dP[2 * k : 2 * k + 2], d2P[2 * k : 2 * k + 2]) for k, name in enumerate(names)}
 
@@ -263,8 +293,9 @@ def derived_derivatives(sweep, names=None, *, at_change_point: str = "nan") -> d
     183.3030 mm, 0.0000 mm/rad, 34.9149 mm/rad^2
     """
     mech = check_sweep(sweep)[0]
-    names, chosen, key = _derived(mech, names)
-    e, de, d2e = _evaluate(sweep, key, lambda: [bind(mech, d) for d in chosen], names, at_change_point=at_change_point)
+    names = _derived(mech, names)
+    e, de, d2e = _evaluate(sweep, [_derived_group(mech, name) for name in names], names,
+                           at_change_point=at_change_point)
     return {name: (e[k], de[k], d2e[k]) for k, name in enumerate(names)}
 
 
@@ -290,16 +321,15 @@ def derived_values(sweep, names=None) -> dict:
     >>> print(np.degrees(derived_values(mech.sweep(np.radians([0.0, 90.0])))["mu"]).round(4))
     [60.     86.8153]
     """
-    names, chosen, key = _derived(check_sweep(sweep)[0], names)
-    (e,) = _evaluate(sweep, key, lambda: [bind(sweep.mechanism, d) for d in chosen], names, rates=False)
+    mech = check_sweep(sweep)[0]
+    names = _derived(mech, names)
+    (e,) = _evaluate(sweep, [_derived_group(mech, name) for name in names], names, rates=False)
     return {name: e[k] for k, name in enumerate(names)}
 
 
 def _derived(mech, names):
-    """The names asked for, their :class:`~numkin.derived.Derived` and their cache key."""
-    names = _names(mech, names, list(mech.derived), "derived quantities", "quantities=", "names")
-    chosen = [mech.derived[n] for n in names]
-    return names, chosen, ("derived", tuple((d.name, str(d.expression), d.dimension) for d in chosen))
+    """The derived quantities' names asked for, checked."""
+    return _names(mech, names, list(mech.derived), "derived quantities", "quantities=", "names")
 
 
 def derived_kinematics(sweep, omega, alpha=0.0, names=None, *, at_change_point: str = "nan"):

@@ -124,13 +124,9 @@ class StudiedQuantity:
         return int(np.asarray(sweep.inputs).size) if self.derived else 0
 
     def _functions(self, rates: bool = True) -> tuple:
-        from ..derived import bind
-        from ..expressions import expression_functions
+        from ..expressions import derived_functions
 
-        mech = self.mechanism
-        d = mech.derived[self.name]
-        key = ("derived", ((d.name, str(d.expression), d.dimension),))  # compiled once per mechanism
-        return expression_functions(mech, key, lambda: [bind(mech, d)], rates)
+        return derived_functions(self.mechanism, self.name, rates)  # compiled once per mechanism
 
     def _finite(self, values, given, t, what: str) -> np.ndarray:
         """`values`, or an InputError naming the first input where they are not finite while `given` is."""
