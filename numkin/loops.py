@@ -92,8 +92,6 @@ class Loop:
     """
 
     def __init__(self, residuals: Sequence, unknowns: Sequence, *, name: str | None = None, angles=None):
-        import sympy as sp
-
         where = f"loop '{name}'" if name else "a loop"
         for argument, value in (("residuals", residuals), ("unknowns", unknowns)):
             if isinstance(value, (str, bytes)) or not isinstance(value, Iterable):
@@ -190,9 +188,10 @@ class Loop:
         return f"Loop({self.name!r}, unknowns={[str(u) for u in self.unknowns]})"
 
 
-def _expression(value, where: str):
+def _expression(value, where: str, symbols: Mapping | None = None):
     """``value`` (a sympy expression, a number or an arithmetic string) as a sympy expression; an InputError
-    naming ``where`` if it is none (a string is read with :func:`numkin.derived.names_in` first: never run)."""
+    naming ``where`` if it is none (a string is read with :func:`numkin.derived.names_in` first: never run).
+    ``symbols``: name -> symbol, what a name in a string means."""
     import sympy as sp
 
     from .derived import names_in
@@ -202,9 +201,9 @@ def _expression(value, where: str):
     if isinstance(value, str):
         names_in(value, where)
     try:
-        expr = sp.sympify(value, rational=False)
+        expr = sp.sympify(value, locals=dict(symbols or {}), rational=False)
     except (sp.SympifyError, SyntaxError, TypeError, ValueError) as error:
-        raise InputError(f"{where}: cannot read {value!r:.60} as an expression ({type(error).__name__})") from None
+        raise InputError(f"{where}: cannot read the expression {value!r:.60} ({type(error).__name__})") from None
     if not isinstance(expr, sp.Expr):
         raise InputError(f"{where}: {value!r:.60} is not a number-valued expression (an equation is written "
                          "as lhs - rhs, which is 0)")
@@ -341,8 +340,6 @@ def read_points(points, among, owner: str = "mechanism") -> dict:
     """
     import sympy as sp
 
-    from .derived import names_in
-
     if points is None:
         return {}
     if not isinstance(points, Mapping):
@@ -359,17 +356,7 @@ def read_points(points, among, owner: str = "mechanism") -> dict:
             raise InputError(f"{where} must be a pair (x, y) of expressions, got {xy!r:.60}")
         coordinates = []
         for axis, c in zip("xy", xy):
-            if isinstance(c, bool) or c is None:
-                raise InputError(f"{where} {axis}: {c!r} is not an expression")
-            if isinstance(c, str):
-                names_in(c, f"{where} {axis}")  # arithmetic only: sympy evaluates what it reads
-            try:
-                expr = sp.sympify(c, locals=dict(symbols), rational=False)
-            except (sp.SympifyError, SyntaxError, TypeError, ValueError) as error:
-                raise InputError(f"{where} {axis}: cannot read the expression {c!r:.60} "
-                                 f"({type(error).__name__})") from None
-            if not isinstance(expr, sp.Expr):
-                raise InputError(f"{where} {axis}: {c!r:.60} is not a number-valued expression")
+            expr = _expression(c, f"{where} {axis}", symbols)  # arithmetic only: sympy evaluates what it reads
             strangers = expr.free_symbols - own
             if strangers:  # a name means the mechanism's symbol of that name
                 expr = expr.xreplace({s: symbols[s.name] for s in strangers if s.name in symbols})

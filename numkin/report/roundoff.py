@@ -7,13 +7,12 @@ from typing import Sequence
 
 import numpy as np
 
-from .. import analytic
 from ..derivatives import get_scheme
 from ..errors import InputError
 from ..schemes import point_stencil
 from .study import (
     EPS, UNIT, branch_point, deg_text, exact_derivatives, order_text, position_record, set_caption, set_views,
-    silenced, solve_points,
+    solve_points,
 )
 from .studied import studied_quantity
 
