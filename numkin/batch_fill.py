@@ -79,6 +79,13 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
     # every column's left node (a node is its own left node, at s = 0); on an even grid only
     # the rarer tests below need it
     k = None if uniform else np.searchsorted(nodes, np.arange(N), side="right") - 1
+
+    def left_nodes():
+        nonlocal k
+        if k is None:
+            k = np.arange(N) // every
+        return k
+
     # the round-off floor of the residual: sines of the largest angles and inputs of the sweep
     big = float(np.maximum.reduce(np.abs(X.take(nodes, axis=1)), axis=None) * max(ctx.inv_xs))
     ctx.floor = residual_floor([big], max(abs(float(t[0])), abs(float(t[-1]))))
@@ -123,8 +130,7 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
             for kk in range(O.shape[0]):
                 okc &= o[kk] == On[kk, 0]
         else:
-            k = np.arange(N) // every if k is None else k
-            kc = k[c]
+            kc = left_nodes()[c]
             a = nodes.take(kc)
             b = nodes.take(np.minimum(kc + 1, nodes.size - 1))
             Oa, Ob = O.take(a, axis=1), O.take(b, axis=1)
@@ -147,7 +153,7 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
         if not np.maximum.reduce(steps, axis=None) < math.pi:  # (a NaN is no jump: looked at as a jump would be)
             jump = np.flatnonzero((steps if len(rows) == 1 else steps.max(axis=0)) >= math.pi)
             if jump.size:
-                k = np.arange(N) // every if k is None else k
+                k = left_nodes()
                 ok &= ~(fine_mask & np.isin(k, k.take(jump)))
     if cond is None:
         cond = _conds(ctx, jac, N)
@@ -165,7 +171,7 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
     # and the orientation test nothing to trust: its segments are marched.
     bad_nodes = (~(cond.take(nodes) <= COND_TANGENT)).nonzero()[0]
     if bad_nodes.size:
-        k = np.arange(N) // every if k is None else k
+        k = left_nodes()
         ok &= ~(fine_mask & (np.isin(k, bad_nodes) | np.isin(k + 1, bad_nodes)))
     redo = (~ok).nonzero()[0]
     if redo.size:
