@@ -55,7 +55,8 @@ from .analytic import check_sweep, input_rates, kinematics_frame
 from .conditioning import DIGITS_RTOL, rounding_error, warn_rounding
 from .errors import InputError, warn
 
-__all__ = ["finite_difference", "rounding_error", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "PARTNER"]
+__all__ = ["finite_difference", "rounding_error", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "PARTNER",
+           "CLOSURE_TOL"]
 
 #: First-derivative scheme used with each second-derivative scheme (for the
 #: ``alpha_in * q'`` term of an accelerating input, and by :mod:`numkin.compare`):
@@ -161,11 +162,17 @@ def _unwrapped(y: np.ndarray, angle: np.ndarray, names, inputs) -> np.ndarray:
     return y
 
 
+#: A row closes after one turn of the input if its end is within this of its start (whole turns
+#: aside for an angle): rad, or times the mechanism's length scale for a length. Far above a solved
+#: sweep's error, far below what a quantity that does not close misses by.
+CLOSURE_TOL = 1e-7
+
+
 def _closure(y: np.ndarray, angle: np.ndarray, length_scale: float) -> tuple[np.ndarray, np.ndarray]:
     """Period offsets ``y[:, -1] - y[:, 0]`` and whether each row closes after one turn."""
     offset = y[:, -1] - y[:, 0]
     turns = np.round(offset / _TURN)
-    ok = np.where(angle, np.abs(offset - _TURN * turns) <= 1e-7, np.abs(offset) <= 1e-7 * length_scale)
+    ok = np.where(angle, np.abs(offset - _TURN * turns) <= CLOSURE_TOL, np.abs(offset) <= CLOSURE_TOL * length_scale)
     return offset, ok
 
 

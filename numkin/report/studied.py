@@ -34,15 +34,13 @@ import numpy as np
 
 from .. import kinematics
 from ..errors import InputError
+from ..kinematics import CLOSURE_TOL
 from .study import (
     TURN, check_quantity, differenced, exact_derivatives, quantity_labels, shared_result, table_quantities,
 )
 
-__all__ = ["CLOSURE_TOL", "StudiedQuantity", "studied_quantity"]
+__all__ = ["StudiedQuantity", "studied_quantity"]
 
-#: A derived quantity closes after a turn if its end is within this of its start (whole turns aside): rad, or
-#: times the mechanism's length scale (the closure test of :mod:`numkin.kinematics`).
-CLOSURE_TOL = 1e-7
 
 
 def _row(value, size: int) -> np.ndarray:
@@ -268,7 +266,7 @@ class StudiedQuantity:
     def closes(self, sweep) -> bool:
         """Whether the quantity returns to its start after the full turn `sweep` (:meth:`closure_gap`).
 
-        Within :data:`CLOSURE_TOL` (rad, or times the mechanism's length
+        Within :data:`numkin.kinematics.CLOSURE_TOL` (rad, or times the mechanism's length
         scale for a length): the solve's accuracy is far finer, a quantity
         that does not close misses by far more.
 
@@ -309,7 +307,7 @@ class StudiedQuantity:
         (:func:`numkin.kinematics.sweep_derivative`): the period offset is
         then whole turns plus ``gap``, the derived quantity's own
         :meth:`closure_gap` measured on a tightly solved sweep (a quantity
-        within :data:`CLOSURE_TOL` of closing, ``theta3 + 1e-8*theta2``,
+        within :data:`numkin.kinematics.CLOSURE_TOL` of closing, ``theta3 + 1e-8*theta2``,
         keeps its small gap). ``periodic=False``
         differences a derived quantity's full turn as an open grid (one that
         does not close, :meth:`closes`); an unknown ignores it.
