@@ -164,8 +164,12 @@ def deg_text(angle: float) -> str:
     return f"{math.degrees(angle):.6g}"
 
 
-def scheme_list(names, periodic: bool | None = None) -> list:
-    """Scheme objects for `names` (default: every registered scheme, the spectral ones only if periodic)."""
+def scheme_list(names, periodic: bool | None = None, why: str | None = None) -> list:
+    """Scheme objects for `names` (default: every registered scheme, the spectral ones only if periodic).
+
+    A spectral scheme named on a grid that is not periodic is refused: ``why`` says what it needs
+    (default: a grid over one full turn).
+    """
     if names is None:
         return [s for s in SCHEMES.values() if periodic or not s.periodic_only]
     if isinstance(names, str):
@@ -176,7 +180,7 @@ def scheme_list(names, periodic: bool | None = None) -> list:
     if periodic is False:
         bad = [s.name for s in out if s.periodic_only]
         if bad:
-            raise InputError(f"scheme(s) {bad} need a grid over one full turn (span = 2 pi)")
+            raise InputError(f"scheme(s) {bad} need {why or 'a grid over one full turn (span = 2 pi)'}")
     return out
 
 
@@ -235,18 +239,14 @@ def grid_study(mechanism, omega, quantity: str, grids, span: float, schemes, sta
     w = input_speed(omega)
     studied = studied_quantity(mechanism, quantity)
     grids = grid_list(grids)
-    periodic = full_turn(span)
+    periodic, why = full_turn(span), None
     if periodic and studied.derived:
         coarse = solve_sweep(mechanism, grid_inputs(min(grids), start, span), guess)
         periodic = studied.closes(coarse)
-        bad = [] if periodic or schemes is None else [
-            s.name for s in map(get_scheme, [schemes] if isinstance(schemes, str) else schemes) if s.periodic_only]
-        if bad:
-            raise InputError(
-                f"scheme(s) {bad} need a quantity that returns to its start after the turn; {studied.name} misses "
-                f"it by {studied.gap_text(coarse)}: leave the spectral schemes out"
-            )
-    return w, studied, grids, periodic, scheme_list(schemes, periodic)
+        if not periodic:
+            why = (f"a quantity that returns to its start after the turn; {studied.name} misses it by "
+                   f"{studied.gap_text(coarse)}: leave the spectral schemes out")
+    return w, studied, grids, periodic, scheme_list(schemes, periodic, why)
 
 
 def check_index(inputs: np.ndarray, angle: float | None) -> int | None:
