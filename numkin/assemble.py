@@ -375,22 +375,22 @@ def _check_names(scene: Scene, mech) -> None:
                     f"unknown key '{key}'{nearest(key, valid + ['at_deg', 'tolerance'])}; "
                     f"quantities: {', '.join(valid)}",
                 )
+    # the error tables study, and the figures draw, an unknown or a derived quantity
+    named = unknowns + list(mech.derived)
+    listed = f"unknowns: {', '.join(unknowns)}" + (
+        f"; derived quantities ([mechanism.quantities]): {', '.join(mech.derived)}" if mech.derived else "")
     quantity = scene.report.get("quantity")
-    studied = unknowns + list(mech.derived)  # the error tables study an unknown or a derived quantity
-    if quantity is not None and quantity not in studied:
-        derived = f"; derived quantities ([mechanism.quantities]): {', '.join(mech.derived)}" if mech.derived else ""
+    if quantity is not None and quantity not in named:
         scene.fail("[report] quantity", f"'{quantity}' is neither an unknown nor a derived quantity"
-                                        f"{nearest(quantity, studied)}; unknowns: {', '.join(unknowns)}{derived}")
+                                        f"{nearest(quantity, named)}; {listed}")
     if scene.figures:
         from .figures import parse_spec  # does not import matplotlib
 
         for spec in scene.figures:
             kind, arg = parse_spec(spec)
-            named = [*unknowns, *mech.derived]  # a derived quantity is drawn as an unknown is
             if arg is not None and kind != "mechanism" and arg not in named:
                 scene.fail("[output] figures", f"{spec!r}: '{arg}' is not an unknown or derived quantity"
-                                               f"{nearest(arg, named)}; unknowns: {', '.join(unknowns)}"
-                                               + (f"; derived quantities: {', '.join(mech.derived)}" if mech.derived else ""))
+                                               f"{nearest(arg, named)}; {listed}")
 
 
 def guess_values(scene: Scene, mech) -> dict | None:
