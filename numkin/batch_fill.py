@@ -1,9 +1,12 @@
 """The grid points between a sweep's nodes, solved in one Newton batch, and the sweep's singular points.
 
-A Hermite predictor from the nodes' values, tangents and curvatures (quintic;
-cubic next to a node whose curvature is unknown; with few points per node,
-curvatures from the neighbouring nodes, used where they save an iteration),
-then Newton on all points at once; points that fail the acceptance tests, and every
+A predictor from the nodes (on an even grid round a whole turn, the
+trigonometric polynomial through their values and tangents where it is
+trusted: :mod:`numkin.turn_predictor`; else Hermite polynomials through their
+values, tangents and curvatures: quintic; cubic next to a node whose
+curvature is unknown; with few points per node, curvatures from the
+neighbouring nodes, used where they save an iteration), then Newton on all
+points at once; points that fail the acceptance tests, and every
 segment where batch points land on another turn, are marched point by point.
 """
 
@@ -27,6 +30,7 @@ from .predictors import (
     quintic_terms,
 )
 from .sweep import SingularityWarning, SweepEvent
+from .turn_predictor import turn_predict
 
 __all__ = ["nodes_of", "fill", "report_near_singular", "CHUNK"]
 
@@ -54,17 +58,23 @@ def nodes_of(t: np.ndarray, max_step: float, largest_step: float | None = None) 
 #: :func:`numkin.predictors.free_curvatures` (else by the cubic).
 FREE_CURVATURES = True
 
+#: Whether a sweep round a whole turn is predicted by :func:`numkin.turn_predictor.turn_predict` where
+#: it is trusted (else the Hermite predictors everywhere).
+TURN = True
+
 #: Grid points solved together in one Newton batch: the batch's temporaries stay this
 #: many columns wide however long the sweep.
 CHUNK = 8192
 
 
-def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
-    """Solve the grid points between nodes by Newton batches (a Hermite predictor from the nodes).
+def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None, even=False):
+    """Solve the grid points between nodes by Newton batches (predicted from the nodes).
 
-    The points are taken :data:`CHUNK` at a time. ``every``: the inputs are evenly spaced and
-    the nodes are every ``every``-th of them, the last included (one matrix product predicts
-    them: :func:`numkin.predictors.hermite_uniform`). Returns the scaled
+    The points are taken :data:`CHUNK` at a time. ``even``: the inputs are evenly spaced (on a
+    grid round a whole turn, the nodes' trigonometric polynomial predicts them where it is
+    trusted: :func:`numkin.turn_predictor.turn_predict`; else Hermite polynomials). ``every``:
+    besides, the nodes are every ``every``-th input, the last included (one matrix product
+    predicts them: :func:`numkin.predictors.hermite_uniform`). Returns the scaled
     residual norm (N,), the largest condition number of the loops' blocks
     (N,) and the Jacobian rows at every point of the sweep.
     """
@@ -99,15 +109,18 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None):
     # many points per segment: curvatures from the tangent field (a few kernel calls on the nodes);
     # fewer: from the nodes' values and tangents alone
     terms = None  # the quintic predictor's terms over the cubic, once for every chunk
-    if N >= QUINTIC_MIN_POINTS * nodes.size:
+    x_turn = turn_predict(t, X, D, nodes, angle_rows=ctx.angle_idx, inv_xs=ctx.inv_xs, even=even) if TURN else None
+    if x_turn is None and N >= QUINTIC_MIN_POINTS * nodes.size:
         terms = quintic_terms(t, X, D, node_curvatures(ctx, t, X, D, nodes), nodes)
-    elif FREE_CURVATURES and nodes.size >= 3:
+    elif x_turn is None and FREE_CURVATURES and nodes.size >= 3:
         alpha, beta, gap = free_quintic(t, X, D, nodes)
         terms = (alpha, beta) if quintic_pays(gap, ctx.inv_xs) else None
     for c0 in range(0, N, CHUNK):
         c = slice(c0, min(N, c0 + CHUNK))
         fm, tc = fine_mask[c], t[c]
-        if uniform:
+        if x_turn is not None:
+            x_pred = x_turn if c.stop - c.start == N else x_turn[:, c].copy()
+        elif uniform:
             x_pred = hermite_uniform(t.take(nodes), X, D, every, terms)
         else:
             x_pred = hermite(tc, t, X, D, None, nodes, k[c], terms)

@@ -32,7 +32,9 @@ Algorithm
    the nodes' values and tangents (cubic), and, where the segments hold many
    points, their curvatures too (quintic); with fewer points, the quintic on
    curvatures found from the neighbouring nodes where it is expected to save a
-   Newton iteration; then Newton on all points at once.
+   Newton iteration; on an even grid round a whole turn, the trigonometric
+   polynomial through the nodes where its highest harmonics show it is
+   accurate (:mod:`numkin.turn_predictor`); then Newton on all points at once.
    A point that fails the same acceptance tests (converged, small
    correction, the orientation of its nodes) is re-solved sequentially from
    its neighbour; a segment between two nodes where neighbouring batch
@@ -193,7 +195,7 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
         every = int(nodes[1]) if evenly and nodes.size > 1 else 0
         # the nodes every `every`-th input, the last one included, of an evenly spaced grid
         every = every if every and t.size - 1 == every * (nodes.size - 1) else None
-        residual, cond, jac = fill(ctx, t, X, D, O, iters, nodes, every=every)
+        residual, cond, jac = fill(ctx, t, X, D, O, iters, nodes, every=every, even=evenly)
         ctx.raise_pending()
         if ctx.crossings:
             ctx.describe_crossings(t, X, O, cond)

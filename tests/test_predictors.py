@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from numkin import linkages
+from numkin import batch_fill, linkages
 from numkin.batch_fill import nodes_of
 from numkin.march import Continuation
 from numkin.predictors import QUINTIC_MIN_POINTS, hermite, node_curvatures, predict
@@ -186,9 +186,10 @@ def test_even_grid_prediction_gives_the_sweep_of_the_general_one_to_rounding(bui
 
     mech = build()
     t = np.linspace(0.0, 2 * np.pi, 361)
+    monkeypatch.setattr(batch_fill, "TURN", False)  # the Hermite predictors on this whole turn too
     even = mech.sweep(t)
     general_fill = continuation.fill
-    monkeypatch.setattr(continuation, "fill", lambda *a, every=None: general_fill(*a, every=None))
+    monkeypatch.setattr(continuation, "fill", lambda *a, every=None, even=False: general_fill(*a, every=None))
     general = mech.sweep(t)
     scale = np.where([u in mech.angles for u in mech.unknowns], 1.0, float(mech.length_scale))[:, None]
     assert np.abs((even.values - general.values) / scale).max() < 1e-13

@@ -1,0 +1,177 @@
+"""The batch predictor of a sweep over a whole turn: a trigonometric polynomial through the nodes.
+
+Over one turn of the input angle, every unknown of a linkage is a periodic
+function of the input, plus whole turns of an angle that goes round with it,
+and away from singular positions an analytic one: its Fourier coefficients
+fall off geometrically. The trigonometric polynomial through the nodes'
+values and tangents (:func:`turn_predict`: K nodes evenly spaced round the turn,
+2K coefficients) then predicts the grid points between them far better than
+the Hermite polynomials of :mod:`numkin.predictors`, segment by segment: on
+a 1° grid with 30° nodes, 5.7e-9 rad on the four-bar 4:1:3:3 and 5.7e-10
+(scaled) on the slider-crank 80:200, against 4.3e-5 and 1.8e-4 for the
+quintic and the cubic, so that the batch's Newton stops after one step
+instead of two (the sweep of 361 points about 9 % faster, of 3601 points a
+quarter).
+
+The fit is taken only where it is expected to be that good: the amplitude
+of its three highest harmonics (scaled like the unknowns) at most
+:data:`TURN_TRUST`. Where the coefficients fall off slowly (a linkage that
+passes near a singular position, like the chained homework with 5e-4, or an
+input that is not an angle, whose unknowns do not repeat after 2 pi) the
+batch keeps the Hermite predictors. Either way the prediction is only where
+Newton starts: the batch's acceptance tests are the same.
+
+Examples
+--------
+A function with harmonics up to 4, from 8 nodes round the turn, predicted on a 1° grid:
+
+>>> import numpy as np
+>>> t = np.radians(np.arange(0.0, 361.0))
+>>> X = np.vstack([np.cos(t) + 0.1 * np.sin(4 * t), t + 0.2 * np.sin(t)])
+>>> D = np.vstack([-np.sin(t) + 0.4 * np.cos(4 * t), 1 + 0.2 * np.cos(t)])
+>>> pred = turn_predict(t, X, D, np.arange(0, 361, 45), angle_rows=[1], inv_xs=[1.0, 1.0])
+>>> bool(np.abs(pred - X).max() < 1e-13)
+True
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import numpy as np
+
+__all__ = ["turn_predict", "TURN_TRUST", "TURN_MIN_NODES", "TURN_MAX_POINTS"]
+
+#: Largest scaled amplitude of the fit's three highest harmonics, 1e-5, for which the fit is used:
+#: it overestimates the fit's error (the four-bar 4:1:3:3 at 30° nodes: 4.3e-7 against 5.7e-9; the six-bar
+#: 6.9e-7 against 1.1e-8), while the cubic and quintic err by 1e-5 to 1e-3 on grids of 30° nodes.
+TURN_TRUST = 1e-5
+#: Fewest nodes round the turn, 6 (harmonics up to 5: three of them to judge the fit by).
+TURN_MIN_NODES = 6
+#: Most grid points predicted by the fit, 8192 (the bases are kept per grid: 2K values per point).
+TURN_MAX_POINTS = 8192
+_TWO_PI = 2.0 * math.pi
+
+
+def turn_predict(t, X, D, nodes, *, angle_rows, inv_xs, even=True):
+    """The fit's prediction (n, N) at every grid point (the nodes' own values at ``nodes``), or None
+    where the grid is not one it applies to or the fit is not trusted.
+
+    It applies where the grid ``t`` is evenly spaced (``even``, as the caller found), a whole
+    number M of its steps make a turn (2 pi, to 1e-9 relative), the nodes are every e-th grid
+    point from the first with e dividing M (and the last: :func:`numkin.batch_fill.nodes_of`),
+    at least :data:`TURN_MIN_NODES` of them go once round, their values and tangents are
+    finite, and the grid has at most :data:`TURN_MAX_POINTS` points. It is trusted where the scaled amplitude of its three highest
+    harmonics is at most :data:`TURN_TRUST` and it meets every node it was not fitted to (one
+    turn on, or the last node of a grid that stops short of a turn) as closely. ``X``, ``D``
+    (n, N): values and tangents, read at the nodes; ``angle_rows``: the rows of ``X`` that are
+    angles (they may gain whole turns over a turn of the input: the gain is read at the node
+    one turn on, or, on a grid that stops short of it, rounded from the last nodes' values and
+    tangents); ``inv_xs``: the unknowns' inverse scales.
+    """
+    n, N = X.shape
+    if not even or N < 3 or N > TURN_MAX_POINTS or nodes.size < 3:
+        return None
+    h = (float(t[-1]) - float(t[0])) / (N - 1)
+    if h == 0.0 or not math.isfinite(h):
+        return None
+    M = round(_TWO_PI / abs(h))
+    e = int(nodes[1] - nodes[0])
+    if M < 1 or abs(M * abs(h) - _TWO_PI) > 1e-9 * _TWO_PI or e < 1 or M % e:
+        return None
+    K = M // e
+    if K < TURN_MIN_NODES or nodes.size < K or int(nodes[K - 1]) != (K - 1) * e:
+        return None
+    last = (K - 1) * e + 1
+    data = np.concatenate((X[:, 0:last:e], D[:, 0:last:e]), axis=1)  # (n, 2K): values, then tangents
+    factor = M * h / _TWO_PI  # d/dtau = factor d/dt: +-1 to rounding (the grid may run backwards)
+    if factor != 1.0:
+        data[:, K:] *= factor
+    shift = None  # whole turns gained over a turn of the input, by the angles
+    if angle_rows:
+        x0, dx0 = X[:, 0].tolist(), D[:, 0].tolist()
+        if M <= N - 1 and int(nodes[min(K, nodes.size - 1)]) == M:  # the node one turn on
+            gain = [a - b for a, b in zip(X[:, M].tolist(), x0)]
+        else:  # from the last node round to the first, by the trapezoid rule on their tangents
+            xl, dxl = X[:, last - 1].tolist(), D[:, last - 1].tolist()
+            gain = [xl[i] - x0[i] + 0.5 * (e * h) * (dxl[i] + dx0[i]) for i in range(n)]
+        turns = [round(gain[i] / _TWO_PI) if i in angle_rows else 0 for i in range(n)]
+        if any(turns):
+            shift = np.array(turns, dtype=float) * _TWO_PI
+            data -= np.outer(shift, _trend(K))
+    coef = data @ _inverse_t(K)  # (n, 2K) coefficients, one row per unknown
+    top = coef[:, 2 * K - 7 : 2 * K - 1]  # cos and sin of harmonics K - 3, K - 2, K - 1
+    top = top * top
+    amplitude2 = top[:, 0::2] + top[:, 1::2]
+    scale = None if all(w == 1.0 for w in inv_xs) else np.asarray(inv_xs, dtype=float)[:, None]
+    if scale is not None:
+        amplitude2 *= scale * scale
+    if not float(np.maximum.reduce(amplitude2, axis=None)) <= TURN_TRUST * TURN_TRUST:  # (NaN: not trusted)
+        return None
+    out = coef @ _bases_t(M, K, N)
+    if shift is not None:
+        out += np.outer(shift, _ramp(M, N))
+    others = nodes[K:]
+    if others.size:
+        miss = np.abs(out.take(others, axis=1) - X.take(others, axis=1))
+        if scale is not None:
+            miss *= scale
+        if not float(np.maximum.reduce(miss, axis=None)) <= TURN_TRUST:
+            return None
+    out[:, nodes] = X.take(nodes, axis=1)
+    return out
+
+
+def _basis_rows(tau, K):
+    """The 2K basis functions and their derivatives at the angles ``tau``: (len(tau), 2K) each.
+
+    Order: 1, cos tau, sin tau, ..., cos (K-1) tau, sin (K-1) tau, sin K tau (at K even nodes
+    ``cos K tau`` is the constant again; ``sin K tau`` is zero there, fixed by the tangents).
+    """
+    k = np.arange(1, K)
+    ang = np.outer(tau, k)
+    c, s = np.cos(ang), np.sin(ang)
+    B = np.empty((tau.size, 2 * K))
+    dB = np.empty((tau.size, 2 * K))
+    B[:, 0], dB[:, 0] = 1.0, 0.0
+    B[:, 1 : 2 * K - 1 : 2], B[:, 2 : 2 * K - 1 : 2] = c, s
+    dB[:, 1 : 2 * K - 1 : 2], dB[:, 2 : 2 * K - 1 : 2] = -s * k, c * k
+    B[:, -1], dB[:, -1] = np.sin(K * tau), K * np.cos(K * tau)
+    return B, dB
+
+
+@lru_cache(maxsize=8)
+def _inverse_t(K):
+    """The transposed inverse of the interpolation matrix at K even nodes (values, then tangents): (2K, 2K),
+    so that ``[values | tangents] @ _inverse_t(K)`` are the coefficients (read-only)."""
+    B, dB = _basis_rows(_TWO_PI * np.arange(K) / K, K)
+    inv = np.linalg.inv(np.vstack([B, dB])).T.copy()
+    inv.flags.writeable = False
+    return inv
+
+
+@lru_cache(maxsize=8)
+def _trend(K):
+    """What an unknown gaining 1 over a turn, ``j / M`` at grid point j, has at the K nodes and as
+    tangent (d/dtau: 1 / 2 pi), in the order of the fitted data: (2K,)."""
+    r = np.concatenate((np.arange(K) / K, np.full(K, 1.0 / _TWO_PI)))
+    r.flags.writeable = False
+    return r
+
+
+@lru_cache(maxsize=4)
+def _bases_t(M, K, N):
+    """The basis functions at the N grid points ``tau_j = 2 pi j / M``: (2K, N), read-only."""
+    B, _ = _basis_rows(_TWO_PI * (np.arange(N) % M) / M, K)
+    B = B.T.copy()
+    B.flags.writeable = False
+    return B
+
+
+@lru_cache(maxsize=4)
+def _ramp(M, N):
+    """``j / M`` at the N grid points (read-only): the share of a turn each has gone."""
+    r = np.arange(N) / M
+    r.flags.writeable = False
+    return r
