@@ -72,6 +72,7 @@ from .march import CROSSING_STEP, DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_TANGENT_
 from .newton import JACOBIANS, check_tol
 from .predictors import MAX_PREDICTION
 from .sweep import Sweep, record_evaluations
+from .units import number_array
 
 __all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION", "MAX_TANGENT_TURN", "TREND_REACH",
            "CROSSING_STEP", "EVEN_STEPS"]
@@ -88,15 +89,7 @@ def _validate_inputs(inputs):
     if type(inputs) is np.ndarray and inputs.dtype == np.float64:  # what np.asarray would return
         t = inputs
     else:
-        try:
-            raw = np.asarray(inputs)
-            # numbers only: not text (which numpy would read as numbers), None, booleans or complex values
-            if raw.dtype.kind not in "iuf" and (raw.dtype.kind != "O" or any(
-                    v is None or isinstance(v, (str, bytes, bool, np.bool_, complex)) for v in raw.ravel().tolist())):
-                raise TypeError(raw.dtype)
-            t = raw.astype(float)
-        except (TypeError, ValueError):
-            raise InputError(f"inputs must be numbers (input values, rad), got {inputs!r:.80}") from None
+        t = number_array(inputs, "inputs must be numbers (input values, rad)")
     if t.ndim == 0:
         t = t.reshape(1)
     if t.ndim != 1 or t.size == 0:

@@ -20,6 +20,7 @@ import numpy as np
 from .errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning, InputError, warn
 from .march import FAR, TWO_PI, Continuation, deg_text
 from .newton import COND_MAX, is_singular
+from .units import number_array
 
 __all__ = ["solve_start", "guess_vector", "far_guesses", "still_far", "degrees_hint", "unsolved", "never_closes"]
 
@@ -127,10 +128,7 @@ def guess_vector(mech, guess, at: float) -> np.ndarray:
         vec = [values[u] for u in mech.unknowns]
     else:
         vec = guess
-    try:
-        vec = np.asarray(vec, dtype=float).reshape(-1)
-    except (TypeError, ValueError):
-        raise InputError(f"guess must be numbers (rad for angles) for {list(mech.unknowns)}, got {guess!r:.80}") from None
+    vec = number_array(vec, f"guess must be numbers (rad for angles) for {list(mech.unknowns)}").reshape(-1)
     if vec.size != len(mech.unknowns):
         raise InputError(
             f"guess has {vec.size} values but {mech.name} has {len(mech.unknowns)} unknowns {list(mech.unknowns)}"

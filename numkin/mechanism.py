@@ -21,7 +21,7 @@ from .errors import AssemblyError, ConvergenceError, GuessWarning, InputError, w
 from .loops import (Loop, as_symbol, check_lengths, check_point_names, check_symbols, default_length_scale, describe,
                     read_parameters, read_points)
 from .newton import JACOBIANS, TOL_MIN, NewtonResult, check_tol, iterate, residual_floor, scaled_cond
-from .units import finite
+from .units import finite, number_array
 
 __all__ = ["Mechanism", "LENGTH_SCALE_RANGE"]
 
@@ -412,8 +412,7 @@ class Mechanism(CachedModel):
         >>> np.round(np.degrees(x[:, 0]), 8)
         array([ 32.5561258 , 119.37138726])
         """
-        t = np.asarray(inputs)
-        x = np.asarray(x)
+        x, t = self._positions(x, inputs, "polish", complex_ok=True)
         scaled = np.abs(x).max(axis=1, initial=0.0) / self.xscale if x.size else np.zeros(0)
         floor = residual_floor(scaled, float(np.abs(t).max(initial=0.0)))
         out = iterate(self.residual_function(t), self.jacobian_function(t), x, fscale=self.length_scale,
@@ -517,7 +516,7 @@ class Mechanism(CachedModel):
         """
         if not self.points:
             return {}
-        t = np.asarray(inputs)
+        x, t = self._positions(x, inputs, "point_coordinates")
         with np.errstate(all="ignore"):
             xy = self.point_function(*x, t, *self.parameter_values)
         if not np.all(np.isfinite(xy)):
@@ -530,11 +529,25 @@ class Mechanism(CachedModel):
 
     def check_assembly(self, inputs) -> None:
         """Raise :class:`AssemblyError` if the linkage cannot be assembled at some input."""
+        t = number_array(inputs, "check_assembly: inputs must be numbers (input values, rad)")
         if self.assembly_check is None:
             return
-        reason = self.assembly_check(np.asarray(inputs, dtype=float))
+        reason = self.assembly_check(t)
         if reason:
             raise AssemblyError(f"{self.name}: {reason}")
+
+    def _positions(self, x, inputs, where, complex_ok=False):
+        """``x`` (n, M) and ``inputs`` (M,) as arrays of numbers of those shapes, or an InputError naming
+        ``where`` and what is wrong (a single input and a vector of unknowns are one position)."""
+        t = number_array(inputs, f"{where}: inputs must be numbers (input values, rad)", complex_ok=complex_ok)
+        x = number_array(x, f"{where}: x must be numbers (the positions of {list(self.unknowns)})",
+                         complex_ok=complex_ok)
+        t = t.reshape(1) if t.ndim == 0 else t
+        x = x.reshape(-1, 1) if x.ndim == 1 and t.size == 1 else x
+        if t.ndim != 1 or x.shape != (len(self.unknowns), t.size):
+            raise InputError(f"{where}: x must have shape (unknowns, inputs) = ({len(self.unknowns)}, {t.size}) for "
+                             f"inputs of shape {t.shape}, got {x.shape}")
+        return x, t
 
     def __repr__(self) -> str:
         return f"Mechanism({self.name!r}, input={self.input_symbol}, unknowns={list(self.unknowns)}, loops={[lp.name for lp in self.loops]})"

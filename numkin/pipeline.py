@@ -31,6 +31,7 @@ from . import outputs
 from .assemble import scene_quantities, scene_unit
 from .schema import Scene, SceneReader, check_scene_argument, in_range, load_scene, nearest
 from .errors import InputError, warn
+from .units import is_number
 
 __all__ = ["CheckResult", "SceneResult", "run_scene", "render_figures", "written_tolerance", "in_scene_terms"]
 
@@ -242,7 +243,7 @@ def run_scene(
         check_scene_argument(scene, "scene")
     if out is not None:
         outputs.output_folder(out)
-    if at is not None and not _finite_number(at):
+    if at is not None and not is_number(at, finite=True):
         raise InputError(f"at must be an input angle in degrees (a finite number), got {type(at).__name__} {at!r:.60}")
     if not isinstance(figures, bool):
         raise InputError(f"figures must be True or False, got {figures!r:.60}")
@@ -255,16 +256,6 @@ def run_scene(
     with ExitStack() as scope:
         _run(scene, result, scope, out, at, figures, step)
     return result
-
-
-def _finite_number(value) -> bool:
-    """Whether ``value`` is one finite real number (a Python or numpy scalar; not a bool, a string or an array)."""
-    if isinstance(value, (bool, np.bool_, str, bytes)) or np.ndim(value) != 0:
-        return False
-    try:
-        return math.isfinite(float(value))
-    except (TypeError, ValueError):
-        return False
 
 
 def _run(scene: Scene, result: SceneResult, scope: ExitStack, out, at, figures: bool, step) -> None:

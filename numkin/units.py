@@ -31,6 +31,8 @@ from .errors import InputError
 
 __all__ = [
     "finite",
+    "is_number",
+    "number_array",
     "with_length_unit",
     "UnitError",
     "angular_speed",
@@ -323,6 +325,68 @@ def finite(name: str, value) -> float:
     if not math.isfinite(v):
         raise InputError(f"{name} = {value!r} is not finite")
     return v
+
+
+def is_number(value, *, finite: bool = False) -> bool:
+    """Whether ``value`` is one real number: a Python or numpy integer or float, or a 0-d array of one
+    (not a bool, text, None or a longer array); with ``finite``, a finite one.
+
+    Examples
+    --------
+    >>> [is_number(v) for v in (2, 0.5, np.float32(1), np.array(3.0), True, "1", None, [1.0])]
+    [True, True, True, True, False, False, False, False]
+    >>> is_number(float("inf")), is_number(float("inf"), finite=True)
+    (True, False)
+    """
+    if isinstance(value, (bool, np.bool_)):
+        return False
+    if not isinstance(value, numbers.Real) and not (
+            isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf"):
+        return False
+    return not finite or math.isfinite(float(value))
+
+
+#: What a number in an array of numbers is never, though numpy would read it as one (text as its value,
+#: a bool as 0 or 1).
+_NOT_NUMBERS = (str, bytes, bool, np.bool_)
+
+
+def number_array(value, what: str, *, complex_ok: bool = False) -> np.ndarray:
+    """``value`` (numbers, nested sequences of numbers or an array) as a float array, complex where
+    ``complex_ok`` and a value is complex; or an :class:`~numkin.errors.InputError` saying ``what``
+    it must be. Text, None and booleans are refused wherever they stand (numpy would read
+    ``"1"`` as 1.0, ``True`` as 1.0), complex numbers unless ``complex_ok``.
+
+    Examples
+    --------
+    >>> number_array([0, 0.5], "inputs must be numbers").tolist()
+    [0.0, 0.5]
+    >>> number_array([0.5, "1"], "inputs must be numbers")
+    Traceback (most recent call last):
+    ...
+    numkin.errors.InputError: inputs must be numbers, got [0.5, '1']
+    """
+    kinds = "iufc" if complex_ok else "iuf"
+    if type(value) in (list, tuple) and all(type(v) is float or type(v) is int for v in value):
+        return np.array(value, dtype=float)  # (a short cut for plain numbers)
+    try:
+        if isinstance(value, np.ndarray) and value.dtype.kind in kinds:
+            return value.astype(complex if value.dtype.kind == "c" else float, copy=False)
+        items = np.asarray(value, dtype=object).ravel().tolist()
+        for v in items:
+            if v is None or isinstance(v, _NOT_NUMBERS) or (not complex_ok and isinstance(v, complex)):
+                raise TypeError(type(v))
+        raw = np.asarray(value)
+        if raw.dtype.kind not in kinds and raw.dtype.kind != "O":
+            raise TypeError(raw.dtype)
+        try:
+            return raw.astype(float)
+        except TypeError:
+            if not complex_ok:
+                raise
+            return raw.astype(complex)
+    except (TypeError, ValueError):
+        raise InputError(f"{what}, got {value!r:.80}") from None
 
 
 _RATE_PARSERS = {"speed": ("omega", angular_speed), "acceleration": ("alpha", angular_acceleration)}

@@ -409,10 +409,40 @@ def test_sweep_inputs_as_sympy_numbers_are_numbers():
                                atol=1e-12)
 
 
-@pytest.mark.parametrize("guess", [{"theta3": "x", "theta4": 1.5}, ["a", 1.5], {"theta3": [0.5, 1.0], "theta4": 1.5}])
+@pytest.mark.parametrize("guess", [{"theta3": "x", "theta4": 1.5}, ["a", 1.5], {"theta3": [0.5, 1.0], "theta4": 1.5},
+                                   ["0.5", 1.5], {"theta3": 0.5, "theta4": "1.5"}, [True, 1.5], np.array([0.5, 1.5]) > 1])
 def test_a_guess_that_is_not_numbers_is_named(guess):
     with pytest.raises(InputError, match=r"^guess must be numbers \(rad for angles\) for \['theta3', 'theta4'\]"):
         linkages.four_bar(4, 1, 3, 3).sweep([0.0, 0.1], guess=guess)
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda m, s: m.polish("x", [0.0]), r"^polish: x must be numbers \(the positions of \['theta3', 'theta4'\]\), got 'x'"),
+    (lambda m, s: m.polish(s.values, "a"), r"^polish: inputs must be numbers \(input values, rad\), got 'a'"),
+    (lambda m, s: m.polish(s.values, [True, False]), r"^polish: inputs must be numbers"),
+    (lambda m, s: m.polish(s.values, np.radians([0.0, 90.0, 180.0])),
+     r"^polish: x must have shape \(unknowns, inputs\) = \(2, 3\) for inputs of shape \(3,\), got \(2, 2\)"),
+    (lambda m, s: m.polish(s.values[:1], s.inputs), r"^polish: x must have shape \(unknowns, inputs\) = \(2, 2\) .* got \(1, 2\)"),
+    (lambda m, s: m.check_assembly("x"), r"^check_assembly: inputs must be numbers \(input values, rad\), got 'x'"),
+    (lambda m, s: m.check_assembly(["1.0"]), r"^check_assembly: inputs must be numbers"),
+    (lambda m, s: m.point_coordinates(s.values, "a"), r"^point_coordinates: inputs must be numbers"),
+    (lambda m, s: m.point_coordinates([[0.5], ["1"]], [0.0]), r"^point_coordinates: x must be numbers"),
+])
+def test_positions_and_inputs_given_to_a_mechanism_are_numbers_of_matching_shapes(call, message):
+    mech = linkages.four_bar(4, 1, 3, 3)
+    sweep = mech.sweep(np.radians([0.0, 90.0]))
+    with pytest.raises(InputError, match=message):
+        call(mech, sweep)
+
+
+def test_a_position_polished_from_one_vector_and_complex_positions_are_refined():
+    mech = linkages.four_bar(4, 1, 3, 3)
+    t3, t4 = four_bar_closed_form(math.pi / 2)
+    got = mech.polish([t3 + 1e-6, t4 - 1e-6], math.pi / 2)  # one position: a vector and a number
+    np.testing.assert_allclose(got[:, 0], [t3, t4], rtol=0, atol=1e-14)
+    z = mech.polish(np.array([[t3 + 1e-6 + 1e-20j], [t4]]), np.array([math.pi / 2 + 1e-20j]))
+    assert z.dtype.kind == "c"
+    np.testing.assert_allclose(z.real[:, 0], [t3, t4], rtol=0, atol=1e-14)
 
 
 def test_the_analytic_rates_name_a_mechanism_given_for_a_sweep():

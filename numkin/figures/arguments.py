@@ -22,6 +22,7 @@ import numbers
 from collections.abc import Mapping
 
 from ..errors import InputError
+from ..units import is_number
 
 __all__ = ["got", "need_angle", "need_angles", "need_figure", "need_frame", "need_frames", "need_names",
            "need_result", "need_sweep", "need_table", "need_tables"]
@@ -124,28 +125,12 @@ def need_frames(frames, parameter: str, where: str, *, optional: bool = True):
     return frames
 
 
-def _is_number(value) -> bool:
-    return isinstance(value, numbers.Real) and not isinstance(value, bool)
-
-
 def need_angle(angle, parameter: str, where: str) -> None:
     """`angle` must be None or a number (rad); a string is refused (it would be read as radians)."""
-    import numpy as np
-
-    if angle is None or _is_number(angle) or isinstance(angle, np.ndarray) and angle.ndim == 0 \
-            and angle.dtype.kind in "iuf":
+    if angle is None or is_number(angle):
         return
     raise InputError(f"{where}: {parameter} must be an input angle in rad (a number, e.g. np.radians(30)), "
                      f"got {got(angle)}")
-
-
-def _is_real(value) -> bool:
-    """A real number: a Python or numpy number (a bool too: 0 or 1 rad) or a 0-d numeric array."""
-    import numpy as np
-
-    if isinstance(value, np.ndarray):
-        return value.ndim == 0 and value.dtype.kind in "biuf"
-    return isinstance(value, numbers.Real)
 
 
 def need_angles(angles, parameter: str, where: str):
@@ -157,14 +142,16 @@ def need_angles(angles, parameter: str, where: str):
     """
     import numpy as np
 
-    if angles is None or _is_real(angles):
+    if angles is None or is_number(angles):
         return angles
-    if isinstance(angles, np.ndarray) and angles.dtype.kind in "biuf":
+    if isinstance(angles, np.ndarray) and angles.dtype.kind in "iuf":
         return angles
+    if isinstance(angles, np.ndarray) and angles.dtype.kind != "O":
+        raise InputError(f"{where}: {parameter} must be input angles in rad (numbers), got an array of {angles.dtype}")
     if isinstance(angles, (str, bytes, Mapping)) or not hasattr(angles, "__iter__"):
         raise InputError(f"{where}: {parameter} must be input angles in rad (numbers), got {got(angles)}")
     listed = list(np.ravel(angles)) if isinstance(angles, np.ndarray) else list(angles)
-    bad = [a for a in listed if not _is_real(a)]
+    bad = [a for a in listed if not is_number(a)]
     if bad:
         raise InputError(f"{where}: {parameter} must be input angles in rad (numbers), got {got(bad[0])} among them")
     return listed
