@@ -8,14 +8,15 @@ values and tangents (:func:`turn_predict`: K nodes evenly spaced round the turn,
 2K coefficients) then predicts the grid points between them far better than
 the Hermite polynomials of :mod:`numkin.predictors`, segment by segment: on
 a 1° grid with 30° nodes, 5.7e-9 rad on the four-bar 4:1:3:3 and 5.7e-10
-(scaled) on the slider-crank 80:200, against 4.3e-5 and 1.8e-4 for the
-quintic and the cubic, so that the batch's Newton stops after one step
-instead of two (the sweep of 361 points about 9 % faster, of 3601 points a
-quarter).
+(scaled) on the slider-crank 80:200, against 4.3e-5 for the quintic on the
+four-bar and 1.8e-4 for the cubic on the slider-crank, so that the batch's
+Newton stops after one step instead of two (the sweep of 361 points about
+9 % faster, of 3601 points a quarter).
 
 The fit is taken only where it is expected to be that good: the amplitude
 of its three highest harmonics (scaled like the unknowns) at most
-:data:`TURN_TRUST`. Where the coefficients fall off slowly (a linkage that
+:data:`TURN_TRUST`, and between :data:`TURN_MIN_NODES` and
+:data:`TURN_MAX_NODES` nodes round the turn. Where the coefficients fall off slowly (a linkage that
 passes near a singular position, like the chained homework with 5e-4, or an
 input that is not an angle, whose unknowns do not repeat after 2 pi) the
 batch keeps the Hermite predictors. Either way the prediction is only where
@@ -41,16 +42,25 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["turn_predict", "TURN_TRUST", "TURN_MIN_NODES", "TURN_MAX_POINTS"]
+__all__ = ["turn_predict", "TURN_TRUST", "TURN_MIN_NODES", "TURN_MAX_NODES"]
 
-#: Largest scaled amplitude of the fit's three highest harmonics, 1e-5, for which the fit is used:
-#: it overestimates the fit's error (the four-bar 4:1:3:3 at 30° nodes: 4.3e-7 against 5.7e-9; the six-bar
-#: 6.9e-7 against 1.1e-8), while the cubic and quintic err by 1e-5 to 1e-3 on grids of 30° nodes.
+#: Largest scaled amplitude of the fit's three highest harmonics (and of its ``sin K tau`` term), 1e-5, for
+#: which the fit is used. On a motion whose harmonics fall off steadily it overestimates the fit's error
+#: (the four-bar 4:1:3:3 at 30° nodes: 4.3e-7 against 5.7e-9; the six-bar 6.9e-7 against 1.1e-8), while
+#: the cubic and quintic err by 1e-5 to 1e-3 on grids of 30° nodes. A motion made of harmonics that the
+#: top of the fit does not see (every one a multiple of 7 with 12 nodes: a crank geared 7 to 1) can
+#: deceive it; Newton then starts further off, as it would from a Hermite prediction there, and the
+#: batch's acceptance tests are the same.
 TURN_TRUST = 1e-5
 #: Fewest nodes round the turn, 6 (harmonics up to 5: three of them to judge the fit by).
 TURN_MIN_NODES = 6
-#: Most grid points predicted by the fit, 8192 (the bases are kept per grid: 2K values per point).
-TURN_MAX_POINTS = 8192
+#: Most nodes round the turn, 24 (15° apart; the default ``max_step`` of 30° gives 12): the fit's matrices
+#: grow as K^3 (440 KB at 24 nodes). Closer nodes come from a smaller ``max_step``, and they make the
+#: Hermite predictors more accurate too (their error falls as the fourth power of the nodes' spacing).
+TURN_MAX_NODES = 24
+#: Most entries of the segments' bases kept between sweeps (a grid with more points between nodes
+#: computes its own).
+_KEPT_BASES = 131072
 _TWO_PI = 2.0 * math.pi
 
 
@@ -62,7 +72,7 @@ def turn_predict(t, X, D, nodes, *, angle_rows, inv_xs, even=True):
     number M of its steps make a turn (2 pi, to 1e-9 relative), the nodes are every e-th grid
     point from the first with e dividing M (and the last: :func:`numkin.batch_fill.nodes_of`),
     at least :data:`TURN_MIN_NODES` of them go once round, their values and tangents are
-    finite, and the grid has at most :data:`TURN_MAX_POINTS` points. It is trusted where the scaled amplitude of its three highest
+    finite. It is trusted where the scaled amplitude of its three highest
     harmonics is at most :data:`TURN_TRUST` and it meets every node it was not fitted to (one
     turn on, or the last node of a grid that stops short of a turn) as closely. ``X``, ``D``
     (n, N): values and tangents, read at the nodes; ``angle_rows``: the rows of ``X`` that are
@@ -71,7 +81,7 @@ def turn_predict(t, X, D, nodes, *, angle_rows, inv_xs, even=True):
     tangents); ``inv_xs``: the unknowns' inverse scales.
     """
     n, N = X.shape
-    if not even or N < 3 or N > TURN_MAX_POINTS or nodes.size < 3:
+    if not even or N < 3 or nodes.size < 3:
         return None
     h = (float(t[-1]) - float(t[0])) / (N - 1)
     if h == 0.0 or not math.isfinite(h):
@@ -81,7 +91,7 @@ def turn_predict(t, X, D, nodes, *, angle_rows, inv_xs, even=True):
     if M < 1 or abs(M * abs(h) - _TWO_PI) > 1e-9 * _TWO_PI or e < 1 or M % e:
         return None
     K = M // e
-    if K < TURN_MIN_NODES or nodes.size < K or int(nodes[K - 1]) != (K - 1) * e:
+    if not TURN_MIN_NODES <= K <= TURN_MAX_NODES or nodes.size < K or int(nodes[K - 1]) != (K - 1) * e:
         return None
     last = (K - 1) * e + 1
     data = np.concatenate((X[:, 0:last:e], D[:, 0:last:e]), axis=1)  # (n, 2K): values, then tangents
@@ -101,17 +111,22 @@ def turn_predict(t, X, D, nodes, *, angle_rows, inv_xs, even=True):
             shift = np.array(turns, dtype=float) * _TWO_PI
             data -= np.outer(shift, _trend(K))
     coef = data @ _inverse_t(K)  # (n, 2K) coefficients, one row per unknown
-    top = coef[:, 2 * K - 7 : 2 * K - 1]  # cos and sin of harmonics K - 3, K - 2, K - 1
+    top = coef[:, 2 * K - 7 :]  # cos and sin of harmonics K - 3, K - 2, K - 1, and sin K tau
     top = top * top
-    amplitude2 = top[:, 0::2] + top[:, 1::2]
+    amplitude2 = top[:, 0::2]  # cos^2 of harmonics K - 3 ... K - 1, and sin K tau's own
+    amplitude2[:, :3] += top[:, 1::2]
     scale = None if all(w == 1.0 for w in inv_xs) else np.asarray(inv_xs, dtype=float)[:, None]
     if scale is not None:
         amplitude2 *= scale * scale
     if not float(np.maximum.reduce(amplitude2, axis=None)) <= TURN_TRUST * TURN_TRUST:  # (NaN: not trusted)
         return None
-    out = coef @ _bases_t(M, K, N)
+    out = _one_turn(coef, K, e)  # (n, M): grid points 0 ... M - 1
+    if N > M:  # a turn and more: the turn again (the angles' whole turns added below)
+        out = np.concatenate((out, out[:, : N - M]), axis=1) if N <= 2 * M else out.take(np.arange(N) % M, axis=1)
+    elif N < M:
+        out = out[:, :N]
     if shift is not None:
-        out += np.outer(shift, _ramp(M, N))
+        out += np.outer(shift, np.arange(N) / M)
     others = nodes[K:]
     if others.size:
         miss = np.abs(out.take(others, axis=1) - X.take(others, axis=1))
@@ -160,18 +175,47 @@ def _trend(K):
     return r
 
 
+def _one_turn(coef, K, e):
+    """The polynomials with coefficients ``coef`` (n, 2K) at the M = K e grid points of one turn: (n, M).
+
+    Segment by segment: on the segment from node m (``tau_m = 2 pi m / K``), at ``tau_m + delta``, each
+    harmonic is the node's rotation of it times ``cos k delta`` and ``sin k delta``, which are the same on
+    every segment (``delta = 2 pi i / M``, i = 0 ... e - 1): two small products, whatever the grid's length.
+    """
+    n = coef.shape[0]
+    per_node = (coef @ _rotations(K)).reshape(n * K, 2 * K)  # each node's coefficients in delta
+    return (per_node @ _segment_bases(K, e)).reshape(n, K * e)
+
+
 @lru_cache(maxsize=4)
-def _bases_t(M, K, N):
-    """The basis functions at the N grid points ``tau_j = 2 pi j / M``: (2K, N), read-only."""
-    B, _ = _basis_rows(_TWO_PI * (np.arange(N) % M) / M, K)
+def _rotations(K):
+    """(2K, 2K K): the coefficients in ``tau`` to those in ``delta`` on the segment from each node
+    (``a cos k(tau_m + delta) + b sin k(tau_m + delta)`` = ``(a cos k tau_m + b sin k tau_m) cos k delta``
+    + ``(b cos k tau_m - a sin k tau_m) sin k delta``; ``sin K tau_m`` is 0 and ``cos K tau_m`` 1)."""
+    R = np.zeros((2 * K, K, 2 * K))
+    R[0, :, 0] = 1.0
+    R[-1, :, -1] = 1.0
+    for k in range(1, K):
+        c, s = np.cos(k * _TWO_PI * np.arange(K) / K), np.sin(k * _TWO_PI * np.arange(K) / K)
+        i, j = 2 * k - 1, 2 * k  # cos k, sin k
+        R[i, :, i], R[j, :, i] = c, s
+        R[j, :, j], R[i, :, j] = c, -s
+    R = R.reshape(2 * K, K * 2 * K)
+    R.flags.writeable = False
+    return R
+
+
+def _segment_bases(K, e):
+    """(2K, e): the basis functions at ``delta = 2 pi i / (K e)``, i = 0 ... e - 1 (read-only; kept
+    between sweeps up to :data:`_KEPT_BASES` entries)."""
+    return _kept_segment_bases(K, e) if 2 * K * e <= _KEPT_BASES else _new_segment_bases(K, e)
+
+
+def _new_segment_bases(K, e):
+    B, _ = _basis_rows(_TWO_PI * np.arange(e) / (K * e), K)
     B = B.T.copy()
     B.flags.writeable = False
     return B
 
 
-@lru_cache(maxsize=4)
-def _ramp(M, N):
-    """``j / M`` at the N grid points (read-only): the share of a turn each has gone."""
-    r = np.arange(N) / M
-    r.flags.writeable = False
-    return r
+_kept_segment_bases = lru_cache(maxsize=8)(_new_segment_bases)

@@ -47,6 +47,8 @@ def _trig(t, turns=0):
     np.radians(np.arange(360.0, -1.0, -1.0)),  # backwards
     1.0 + np.radians(np.arange(0.0, 361.0, 0.5)),  # from 1 rad, in half degrees
     np.radians(np.arange(0.0, 721.0)),  # two turns
+    np.radians(np.arange(0.0, 365.0)),  # a turn and 4 steps
+    np.linspace(0.0, 2 * math.pi, 36001),  # 0.01°
 ])
 def test_trigonometric_polynomials_and_whole_turns_are_reproduced(t):
     (a, da), (b, db), (c, dc) = _trig(t), _trig(t, 1), _trig(t, -2)
@@ -69,7 +71,8 @@ def test_not_applied_where_the_grid_does_not_go_round_evenly():
     assert pred(np.radians(np.arange(0.0, 361.0, 7.0))) is None  # 7° steps: no whole number of them to a turn
     assert pred(full, step=math.radians(7.5)) is None  # nodes every 7 steps: 7 does not divide 360
     assert pred(full, step=math.radians(90.0)) is None  # 4 nodes round the turn: too few to judge the fit by
-    assert pred(np.radians(np.arange(0.0, 361.0 * 25, 1.0))) is None  # more grid points than the bases are kept for
+    assert pred(full, step=math.radians(10.0)) is None  # 36 nodes: more than the fit's matrices are built for
+    assert pred(full, step=math.radians(15.0)) is not None  # 24
 
 
 def test_refused_where_its_highest_harmonics_are_large_or_the_function_does_not_repeat():
@@ -90,6 +93,10 @@ def test_refused_where_its_highest_harmonics_are_large_or_the_function_does_not_
     s = t[:-1]
     assert turn_predict(s, (s / 2)[None, :], np.full((1, s.size), 0.5), nodes_of(s, THIRTY), angle_rows=[0],
                         inv_xs=[1.0]) is None
+    # harmonics 4, 8, 12 and 16 only (a crank geared 4 to 1): 9 to 11 are zero, but 12 shows in sin 12t
+    x = 0.3 * np.sin(4 * t) + 0.05 * np.cos(8 * t) + 0.01 * np.sin(12 * t) + 0.002 * np.cos(16 * t)
+    d = 1.2 * np.cos(4 * t) - 0.4 * np.sin(8 * t) + 0.12 * np.cos(12 * t) - 0.032 * np.sin(16 * t)
+    assert pred(x, d) is None
     # a fast harmonic the nodes cannot see (cos 12t at 30° nodes is 1 at every one): the tangents are zero
     # there too, so nothing can tell it; such a linkage is caught by Newton (one step falls short)
     assert pred(np.cos(12 * t), -12 * np.sin(12 * t)) is not None
