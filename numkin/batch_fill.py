@@ -88,12 +88,12 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None, even=False):
     uniform = every is not None and N <= CHUNK
     # every column's left node (a node is its own left node, at s = 0); on an even grid only
     # the rarer tests below need it
-    k = None if uniform else np.searchsorted(nodes, np.arange(N), side="right") - 1
+    k = None
 
     def left_nodes():
         nonlocal k
         if k is None:
-            k = np.arange(N) // every
+            k = np.arange(N) // every if uniform else np.searchsorted(nodes, np.arange(N), side="right") - 1
         return k
 
     # the round-off floor of the residual: sines of the largest angles and inputs of the sweep
@@ -123,7 +123,7 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None, even=False):
         elif uniform:
             x_pred = hermite_uniform(t.take(nodes), X, D, every, terms)
         else:
-            x_pred = hermite(tc, t, X, D, None, nodes, k[c], terms)
+            x_pred = hermite(tc, t, X, D, None, nodes, left_nodes()[c], terms)
         x, converged, it, f, jac_c = ctx.newton_batch(x_pred.copy(), tc, fm, overwrite=True)
         # accept a point if Newton converged on the turn of its prediction, the correction is
         # small and no loop changed orientation

@@ -14,8 +14,8 @@ Newton stops after one step instead of two (the sweep of 361 points about
 9 % faster, of 3601 points a quarter).
 
 The fit is taken only where it is expected to be that good: the amplitude
-of its three highest harmonics (scaled like the unknowns) at most
-:data:`TURN_TRUST`, and between :data:`TURN_MIN_NODES` and
+of its three highest harmonics and of its ``sin K tau`` term (scaled like the
+unknowns) at most :data:`TURN_TRUST`, and between :data:`TURN_MIN_NODES` and
 :data:`TURN_MAX_NODES` nodes round the turn. Where the coefficients fall off slowly (a linkage that
 passes near a singular position, like the chained homework with 5e-4, or an
 input that is not an angle, whose unknowns do not repeat after 2 pi) the
@@ -47,9 +47,10 @@ __all__ = ["turn_predict", "TURN_TRUST", "TURN_MIN_NODES", "TURN_MAX_NODES"]
 #: Largest scaled amplitude of the fit's three highest harmonics (and of its ``sin K tau`` term), 1e-5, for
 #: which the fit is used. On a motion whose harmonics fall off steadily it overestimates the fit's error
 #: (the four-bar 4:1:3:3 at 30° nodes: 4.3e-7 against 5.7e-9; the six-bar 6.9e-7 against 1.1e-8), while
-#: the cubic and quintic err by 1e-5 to 1e-3 on grids of 30° nodes. A motion made of harmonics that the
-#: top of the fit does not see (every one a multiple of 7 with 12 nodes: a crank geared 7 to 1) can
-#: deceive it; Newton then starts further off, as it would from a Hermite prediction there, and the
+#: the cubic and quintic err by 1e-5 to 1e-3 on grids of 30° nodes. A motion whose harmonics are all
+#: multiples of a divisor m of K (m = 4 with 12 nodes: harmonics 4, 8 and a ``cos 12 tau``, which is 1 at
+#: every node; a crank geared 4 to 1) leaves the top of the fit empty and can deceive it (2.4e-2 off with
+#: 12 nodes); Newton then starts further off, as it would from a Hermite prediction there, and the
 #: batch's acceptance tests are the same.
 TURN_TRUST = 1e-5
 #: Fewest nodes round the turn, 6 (harmonics up to 5: three of them to judge the fit by).
@@ -58,8 +59,8 @@ TURN_MIN_NODES = 6
 #: grow as K^3 (440 KB at 24 nodes). Closer nodes come from a smaller ``max_step``, and they make the
 #: Hermite predictors more accurate too (their error falls as the fourth power of the nodes' spacing).
 TURN_MAX_NODES = 24
-#: Most entries of the segments' bases kept between sweeps (a grid with more points between nodes
-#: computes its own).
+#: Most entries of one segment's bases (2K by the points per segment) kept between sweeps, in at most 8
+#: kept matrices: 8 MB in all (a grid with more points per segment builds its own for each sweep).
 _KEPT_BASES = 131072
 _TWO_PI = 2.0 * math.pi
 
@@ -73,7 +74,7 @@ def turn_predict(t, X, D, nodes, *, angle_rows, inv_xs, even=True):
     point from the first with e dividing M (and the last: :func:`numkin.batch_fill.nodes_of`),
     at least :data:`TURN_MIN_NODES` of them go once round, their values and tangents are
     finite. It is trusted where the scaled amplitude of its three highest
-    harmonics is at most :data:`TURN_TRUST` and it meets every node it was not fitted to (one
+    harmonics and of its ``sin K tau`` term is at most :data:`TURN_TRUST` and it meets every node it was not fitted to (one
     turn on, or the last node of a grid that stops short of a turn) as closely. ``X``, ``D``
     (n, N): values and tangents, read at the nodes; ``angle_rows``: the rows of ``X`` that are
     angles (they may gain whole turns over a turn of the input: the gain is read at the node
@@ -120,13 +121,11 @@ def turn_predict(t, X, D, nodes, *, angle_rows, inv_xs, even=True):
         amplitude2 *= scale * scale
     if not float(np.maximum.reduce(amplitude2, axis=None)) <= TURN_TRUST * TURN_TRUST:  # (NaN: not trusted)
         return None
-    out = _one_turn(coef, K, e)  # (n, M): grid points 0 ... M - 1
-    if N > M:  # a turn and more: the turn again (the angles' whole turns added below)
-        out = np.concatenate((out, out[:, : N - M]), axis=1) if N <= 2 * M else out.take(np.arange(N) % M, axis=1)
-    elif N < M:
-        out = out[:, :N]
+    out = _one_turn(coef, K, e, N)
     if shift is not None:
-        out += np.outer(shift, np.arange(N) / M)
+        ramp = np.arange(N) * (1.0 / M)
+        for i in np.flatnonzero(shift).tolist():
+            out[i] += float(shift[i]) * ramp
     others = nodes[K:]
     if others.size:
         miss = np.abs(out.take(others, axis=1) - X.take(others, axis=1))
@@ -175,16 +174,41 @@ def _trend(K):
     return r
 
 
-def _one_turn(coef, K, e):
-    """The polynomials with coefficients ``coef`` (n, 2K) at the M = K e grid points of one turn: (n, M).
+def _one_turn(coef, K, e, N):
+    """The polynomials with coefficients ``coef`` (n, 2K) at the N grid points ``tau_j = 2 pi j / M``,
+    M = K e (past a turn, the turn again): (n, N).
 
     Segment by segment: on the segment from node m (``tau_m = 2 pi m / K``), at ``tau_m + delta``, each
     harmonic is the node's rotation of it times ``cos k delta`` and ``sin k delta``, which are the same on
-    every segment (``delta = 2 pi i / M``, i = 0 ... e - 1): two small products, whatever the grid's length.
+    every segment (``delta = 2 pi i / M``, i = 0 ... e - 1): two products, with matrices of K^3 and of 2K
+    times the points per segment entries (as many as the grid's points of two unknowns).
     """
     n = coef.shape[0]
-    per_node = (coef @ _rotations(K)).reshape(n * K, 2 * K)  # each node's coefficients in delta
-    return (per_node @ _segment_bases(K, e)).reshape(n, K * e)
+    per_node = _product(coef, _rotations(K)).reshape(n * K, 2 * K)  # each node's coefficients in delta
+    at = _product(_segment_bases(K, e), per_node.T)  # (e, n K): point i of every segment, by row
+    M = K * e
+    out = np.empty((n, max(N, M)))
+    out[:, :M].reshape(n, K, e)[...] = at.T.reshape(n, K, e)  # (one strided copy)
+    if N > M:
+        out[:, M:] = out[:, : N - M] if N <= 2 * M else out.take(np.arange(M, N) % M, axis=1)
+    return out if N >= M else out[:, :N]
+
+
+#: Most multiply-adds in one matrix product of the predictor, 131072: below this OpenBLAS computes a
+#: product on one thread (a threaded product leaves its threads spinning on the other cores afterwards,
+#: CPU time taken from the rest of the sweep).
+_ONE_THREAD = 131072
+
+
+def _product(a, b):
+    """``a @ b`` in blocks of rows of ``a``, each product small enough for one thread (:data:`_ONE_THREAD`)."""
+    rows = max(1, _ONE_THREAD // max(1, a.shape[1] * b.shape[1]))
+    if a.shape[0] <= rows:
+        return a @ b
+    out = np.empty((a.shape[0], b.shape[1]))
+    for r in range(0, a.shape[0], rows):
+        np.matmul(a[r : r + rows], b, out=out[r : r + rows])
+    return out
 
 
 @lru_cache(maxsize=4)
@@ -206,14 +230,24 @@ def _rotations(K):
 
 
 def _segment_bases(K, e):
-    """(2K, e): the basis functions at ``delta = 2 pi i / (K e)``, i = 0 ... e - 1 (read-only; kept
+    """(e, 2K): the basis functions at ``delta = 2 pi i / (K e)``, i = 0 ... e - 1 (read-only; kept
     between sweeps up to :data:`_KEPT_BASES` entries)."""
     return _kept_segment_bases(K, e) if 2 * K * e <= _KEPT_BASES else _new_segment_bases(K, e)
 
 
 def _new_segment_bases(K, e):
-    B, _ = _basis_rows(_TWO_PI * np.arange(e) / (K * e), K)
-    B = B.T.copy()
+    """The bases of :func:`_segment_bases`: ``exp(i k delta)`` by repeated products of ``exp(i delta)``
+    (round-off of k ulps at harmonic k; a predictor's), ``sin K delta`` on its own."""
+    delta = _TWO_PI * np.arange(e) / (K * e)
+    B = np.empty((e, 2 * K))
+    B[:, 0] = 1.0
+    z = np.exp(1j * delta)
+    zk = z.copy()
+    for k in range(1, K):
+        B[:, 2 * k - 1], B[:, 2 * k] = zk.real, zk.imag
+        if k < K - 1:
+            zk *= z
+    B[:, -1] = np.sin(K * delta)
     B.flags.writeable = False
     return B
 
