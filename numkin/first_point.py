@@ -128,7 +128,8 @@ def guess_vector(mech, guess, at: float) -> np.ndarray:
         vec = [values[u] for u in mech.unknowns]
     else:
         vec = guess
-    vec = number_array(vec, f"guess must be numbers (rad for angles) for {list(mech.unknowns)}").reshape(-1)
+    vec = number_array(vec, lambda: f"guess must be numbers (rad for angles) for {list(mech.unknowns)}", shown=guess)
+    vec = vec.reshape(-1)
     if vec.size != len(mech.unknowns):
         raise InputError(
             f"guess has {vec.size} values but {mech.name} has {len(mech.unknowns)} unknowns {list(mech.unknowns)}"

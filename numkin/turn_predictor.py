@@ -10,8 +10,10 @@ the Hermite polynomials of :mod:`numkin.predictors`, segment by segment: on
 a 1° grid with 30° nodes, 5.7e-9 rad on the four-bar 4:1:3:3 and 5.7e-10
 (scaled) on the slider-crank 80:200, against 4.3e-5 for the quintic on the
 four-bar and 1.8e-4 for the cubic on the slider-crank, so that the batch's
-Newton stops after one step instead of two (the sweep of 361 points 6 to
-11 % faster, of 3601 to 360 001 points a fifth to a third).
+Newton stops after one step instead of two (their sweeps of 361 points 3
+to 11 % faster, of 3601 to 360 001 points a fifth to a third; where a
+trusted fit still leaves some points a second step, as on the six-bar at
+361 points, it costs its 11-13 µs).
 
 The fit is taken only where it is expected to be that good: the amplitude
 of its three highest harmonics and of its ``sin K tau`` term (scaled like the

@@ -327,35 +327,43 @@ def finite(name: str, value) -> float:
     return v
 
 
-def is_number(value, *, finite: bool = False) -> bool:
-    """Whether ``value`` is one real number: a Python or numpy integer or float, or a 0-d array of one
-    (not a bool, text, None or a longer array); with ``finite``, a finite one.
-
-    Examples
-    --------
-    >>> [is_number(v) for v in (2, 0.5, np.float32(1), np.array(3.0), True, "1", None, [1.0])]
-    [True, True, True, True, False, False, False, False]
-    >>> is_number(float("inf")), is_number(float("inf"), finite=True)
-    (True, False)
-    """
-    if isinstance(value, (bool, np.bool_)):
-        return False
-    if not isinstance(value, numbers.Real) and not (
-            isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf"):
-        return False
-    return not finite or math.isfinite(float(value))
-
-
 #: What a number in an array of numbers is never, though numpy would read it as one (text as its value,
 #: a bool as 0 or 1).
 _NOT_NUMBERS = (str, bytes, bool, np.bool_)
 
+#: Types of the items of a list read as numbers at once (no item looked at on its own).
+_PLAIN = {float, int, np.float64}
 
-def number_array(value, what: str, *, complex_ok: bool = False) -> np.ndarray:
+
+def is_number(value, *, finite: bool = False) -> bool:
+    """Whether ``value`` is one real number: anything ``float()`` reads as one that is not a bool, text
+    or an array of more than one value (a Python, numpy, ``Fraction``, ``Decimal`` or sympy number, a
+    0-d array); with ``finite``, a finite one. The items :func:`number_array` accepts.
+
+    Examples
+    --------
+    >>> [is_number(v) for v in (2, 0.5, np.float32(1), np.array(3.0), True, "1", None, [1.0], 1j)]
+    [True, True, True, True, False, False, False, False, False]
+    >>> is_number(float("inf")), is_number(float("inf"), finite=True)
+    (True, False)
+    """
+    if value is None or isinstance(value, _NOT_NUMBERS) or isinstance(value, complex):
+        return False
+    if isinstance(value, np.ndarray) and (value.ndim != 0 or value.dtype.kind not in "iufO"):
+        return False
+    try:
+        v = float(value)
+    except (TypeError, ValueError, OverflowError):
+        return False
+    return not finite or math.isfinite(v)
+
+
+def number_array(value, what: str, *, complex_ok: bool = False, shown=None) -> np.ndarray:
     """``value`` (numbers, nested sequences of numbers or an array) as a float array, complex where
     ``complex_ok`` and a value is complex; or an :class:`~numkin.errors.InputError` saying ``what``
-    it must be. Text, None and booleans are refused wherever they stand (numpy would read
-    ``"1"`` as 1.0, ``True`` as 1.0), complex numbers unless ``complex_ok``.
+    it must be (a string, or a function giving it) and the value given (or ``shown``). Text, None and booleans are refused wherever they
+    stand (numpy would read ``"1"`` as 1.0, ``True`` as 1.0), complex numbers unless ``complex_ok``; a
+    masked array is read as its data, as :func:`numpy.asarray` reads it.
 
     Examples
     --------
@@ -367,10 +375,11 @@ def number_array(value, what: str, *, complex_ok: bool = False) -> np.ndarray:
     numkin.errors.InputError: inputs must be numbers, got [0.5, '1']
     """
     kinds = "iufc" if complex_ok else "iuf"
-    if type(value) in (list, tuple) and all(type(v) is float or type(v) is int for v in value):
+    if type(value) in (list, tuple) and set(map(type, value)) <= _PLAIN:
         return np.array(value, dtype=float)  # (a short cut for plain numbers)
     try:
         if isinstance(value, np.ndarray) and value.dtype.kind in kinds:
+            value = np.asarray(value)  # (a subclass, a masked array: its data)
             return value.astype(complex if value.dtype.kind == "c" else float, copy=False)
         items = np.asarray(value, dtype=object).ravel().tolist()
         for v in items:
@@ -379,14 +388,17 @@ def number_array(value, what: str, *, complex_ok: bool = False) -> np.ndarray:
         raw = np.asarray(value)
         if raw.dtype.kind not in kinds and raw.dtype.kind != "O":
             raise TypeError(raw.dtype)
+        if raw.dtype.kind == "c":
+            return raw.astype(complex)
         try:
             return raw.astype(float)
         except TypeError:
             if not complex_ok:
                 raise
             return raw.astype(complex)
-    except (TypeError, ValueError):
-        raise InputError(f"{what}, got {value!r:.80}") from None
+    except (TypeError, ValueError, OverflowError):
+        what = what() if callable(what) else what
+        raise InputError(f"{what}, got {value if shown is None else shown!r:.80}") from None
 
 
 _RATE_PARSERS = {"speed": ("omega", angular_speed), "acceleration": ("alpha", angular_acceleration)}

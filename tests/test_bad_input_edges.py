@@ -440,9 +440,32 @@ def test_a_position_polished_from_one_vector_and_complex_positions_are_refined()
     t3, t4 = four_bar_closed_form(math.pi / 2)
     got = mech.polish([t3 + 1e-6, t4 - 1e-6], math.pi / 2)  # one position: a vector and a number
     np.testing.assert_allclose(got[:, 0], [t3, t4], rtol=0, atol=1e-14)
-    z = mech.polish(np.array([[t3 + 1e-6 + 1e-20j], [t4]]), np.array([math.pi / 2 + 1e-20j]))
-    assert z.dtype.kind == "c"
-    np.testing.assert_allclose(z.real[:, 0], [t3, t4], rtol=0, atol=1e-14)
+    # a complex step: the imaginary parts are the derivative times 1e-20, whether arrays or lists are given
+    h = 1e-20
+    d3, d4 = [(a - b) / 2e-7 for a, b in zip(four_bar_closed_form(math.pi / 2 + 1e-7),
+                                             four_bar_closed_form(math.pi / 2 - 1e-7))]
+    for x, t in ((np.array([[t3 + 0j], [t4 + 0j]]), np.array([math.pi / 2 + h * 1j])),
+                 ([[t3 + 0j], [t4]], [math.pi / 2 + h * 1j])):
+        z = mech.polish(x, t)
+        assert z.dtype.kind == "c"
+        np.testing.assert_allclose(z.real[:, 0], [t3, t4], rtol=0, atol=1e-14)
+        np.testing.assert_allclose(z.imag[:, 0] / h, [d3, d4], rtol=1e-6)
+
+
+def test_masked_arrays_and_other_numbers_are_read_as_numbers():
+    from decimal import Decimal
+    from fractions import Fraction
+
+    mech = linkages.four_bar(4, 1, 3, 3)
+    sweep = mech.sweep(np.ma.array([0.0, 0.5, 1.0], mask=[0, 1, 0]))  # a mask is not a numkin idea: the data
+    assert type(sweep.inputs) is np.ndarray and sweep.inputs.tolist() == [0.0, 0.5, 1.0]
+    np.testing.assert_allclose(sweep["theta4"][2], four_bar_closed_form(1.0)[1], atol=1e-12)
+    t3, t4 = four_bar_closed_form(math.pi / 2)
+    got = mech.polish(np.ma.array([[t3], [t4]]), np.ma.array([math.pi / 2]))
+    assert type(got) is np.ndarray
+    from numkin.units import is_number
+    assert all(is_number(v) for v in (Decimal("30"), Fraction(1, 3), sp.pi, np.array(2.0, dtype=object), np.int8(3)))
+    assert not any(is_number(v) for v in (sp.Symbol("x"), 1j, np.array([1.0]), np.bool_(True), b"1"))
 
 
 def test_the_analytic_rates_name_a_mechanism_given_for_a_sweep():
