@@ -35,6 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError
+from .outputs import made_folder
 from .figures.drawing import (
     arrow_scale, arrow_vectors, block_corners, block_directions, bounds, draw_ground, guided_points, link_colors,
     scale_text, slider_points, tip_offset,
@@ -221,7 +222,7 @@ def animate(sweep, path, frames: int = 72, fps: float = 24, *, dpi: int = 80, wi
     if turn == "full":
         sweep = full_turn(sweep) or sweep
     idx = frame_indices(sweep.inputs, frames)
-    path.parent.mkdir(parents=True, exist_ok=True)
+    made_folder(path.parent, "path")
 
     pts = sweep.points()
     ground = list(mech.ground or ())

@@ -25,7 +25,7 @@ import numpy as np
 
 from .errors import InputError
 
-__all__ = ["tables", "write_tables", "error_summary", "jsonable", "output_folder"]
+__all__ = ["tables", "write_tables", "error_summary", "jsonable", "output_folder", "made_folder"]
 
 
 def output_folder(out, argument: str = "out") -> Path:
@@ -66,8 +66,11 @@ def output_folder(out, argument: str = "out") -> Path:
     return path
 
 
-def _made(out, argument: str = "out") -> Path:
-    """:func:`output_folder`, made (with its parents); an OSError said as an InputError naming the folder."""
+def made_folder(out, argument: str = "out") -> Path:
+    """:func:`output_folder`, made (with its parents); an OSError said as an InputError naming the folder.
+
+    Every writer of numkin makes its folder with it (scene outputs, error tables, figures, animations).
+    """
     path = output_folder(out, argument)
     try:
         path.mkdir(parents=True, exist_ok=True)
@@ -257,7 +260,7 @@ def write_tables(scene, tables: dict, out: Path) -> list[Path]:
         if not isinstance(name, str) or not isinstance(frame, pd.DataFrame):
             raise InputError(f"tables[{name!r}] must be a pandas.DataFrame named by a string, got "
                              f"{type(frame).__name__} {frame!r:.60}")
-    out = _made(out)
+    out = made_folder(out)
     written = []
     if "csv" in scene.table_formats:
         for name, frame in tables.items():

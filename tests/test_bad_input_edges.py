@@ -145,6 +145,26 @@ def test_write_tables_names_the_file_in_the_way_and_makes_missing_folders(tmp_pa
     assert written and all(p.parent == tmp_path / "new" / "deeper" and p.is_file() for p in written)
 
 
+def test_the_library_writers_name_the_file_in_the_way(tmp_path):
+    import pandas as pd
+
+    from numkin import figures
+    from numkin.animate import animate
+    from numkin.report.writers import write_tables
+
+    file = tmp_path / "results"
+    file.write_text("a file")
+    sweep = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0.0, 361.0, 10.0)))
+    in_the_way = rf"cannot make the folder '{re.escape(str(file / 'a'))}': '{re.escape(str(file))}' is a file, not a folder"
+    with pytest.raises(InputError, match=rf"^out_dir: {in_the_way}"):
+        write_tables({"t": pd.DataFrame({"h [deg]": [1.0]})}, file / "a")
+    with pytest.raises(InputError, match=rf"^path_stem: {in_the_way}"):
+        figures.save(figures.position(sweep, ["x"]), file / "a" / "x", ["png"])
+    with pytest.raises(InputError, match=rf"^path: {in_the_way}"):
+        animate(sweep, file / "a" / "m.gif", frames=2)
+    assert file.read_text() == "a file"
+
+
 @pytest.mark.parametrize("comparisons, words", [
     ("x", r"^comparisons must be a mapping name -> numkin.compare.Comparison, got str"),
     ({"omega_theta3": 1.0}, r"^comparisons\['omega_theta3'\] must be a numkin.compare.Comparison .* got float"),

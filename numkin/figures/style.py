@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import Sequence
 
 from ..errors import InputError
+from ..outputs import made_folder
 from .registries import family_of
 
 __all__ = [
@@ -216,7 +217,7 @@ def save(fig, path_stem, formats: Sequence[str] = ("png", "svg")) -> list[Path]:
                 f"choose from {sorted(METADATA)}"
             )
         stem = Path(path_stem)
-        stem.parent.mkdir(parents=True, exist_ok=True)
+        made_folder(stem.parent, "path_stem")
         # One layout for every format, computed once at the saving resolution, then frozen: savefig
         # draws a figure that has no layout engine once (a figure with one is drawn twice, once to lay
         # it out), and the PNG is drawn with the renderer the layout measured its text with.

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 from typing import Mapping, Sequence
 
 import numpy as np
 
 from ..errors import InputError
+from ..outputs import made_folder
 
 __all__ = [
     "write_tables",
@@ -327,8 +327,7 @@ def write_tables(tables: Mapping, out_dir, formats: Sequence[str] = ("md", "csv"
     bad = [f for f in formats if f not in allowed]
     if bad:
         raise InputError(f"unknown table format(s) {bad}; choose from {list(allowed)}")
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    out = made_folder(out_dir, "out_dir")
     written = []
     for name, df in tables.items():
         for fmt in formats:
