@@ -34,7 +34,7 @@ from benchmarks import others, suites  # noqa: E402
 __all__ = ["main", "to_markdown", "machine", "GROUPS"]
 
 #: Table groups in the order they run.
-GROUPS = ("startup", "cli", "four-bar", "chained", "sweep", "loops", "rebuild")
+GROUPS = ("startup", "cli", "four-bar", "chained", "sweep", "predictors", "loops", "rebuild")
 
 
 def machine() -> list:
@@ -78,6 +78,8 @@ def _tables(group, settings, sizes):
             yield suites.contenders(settings, "chained homework", n, textbook=n <= 3601)
     elif group == "sweep":
         yield suites.sweep_scaling(settings, sizes=sizes)
+    elif group == "predictors":
+        yield suites.predictors(settings, sizes=sizes)
     elif group == "loops":
         yield suites.loop_scaling(settings)
     elif group == "rebuild":

@@ -267,6 +267,48 @@ def sweep_scaling(settings: Settings, sizes=None, linkages=("four-bar", "chained
     return table
 
 
+#: The built-in linkages of the predictor table, by the names its rows give them.
+PREDICTOR_LINKAGES = {
+    "four-bar 4:1:3:3": lambda lk: lk.four_bar(*FOUR_BAR),
+    "slider-crank 80:200": lambda lk: lk.slider_crank(80, 200),
+    "six-bar": lambda lk: lk.six_bar(),
+    "quick-return": lambda lk: lk.quick_return(),
+    "chained homework": lambda lk: lk.chained_four_bars(),
+}
+
+
+def predictors(settings: Settings, sizes=None) -> Table:
+    """The batch's predictor round a whole turn (``numkin.turn_predictor``) switched off and on in one process.
+
+    ``numkin.batch_fill.TURN`` is set before every call of each contender, so the two are the same sweep
+    with and without the fit; ``nfev`` counts the residual evaluations of one sweep of each.
+    """
+    from numkin import batch_fill
+    from numkin import linkages as lk
+
+    table = Table("The batch's predictor round a whole turn, off and on (one process)",
+                  ["linkage", "N", "off [ms]", "on [ms]", "on / off", "nfev off → on"])
+    was = batch_fill.TURN
+    try:
+        for name, build in PREDICTOR_LINKAGES.items():
+            mech = build(lk)
+            for n in sizes or settings.sizes:
+                t = _angles(n)
+
+                def sweep(flag, t=t, mech=mech):
+                    batch_fill.TURN = flag
+                    return mech.sweep(t)
+
+                times = interleaved({"off": lambda: sweep(False), "on": lambda: sweep(True)},
+                                    settings.repeat, settings.min_time)
+                table.rows.append([name, n, f"{_ms(times['off']):.4g}", f"{_ms(times['on']):.4g}",
+                                   f"{times['on'] / times['off']:.3f}", f"{sweep(False).nfev} → {sweep(True).nfev}"])
+    finally:
+        batch_fill.TURN = was
+    table.notes.append(f"CPU time, median of {settings.repeat} interleaved rounds; inputs np.linspace(0, 2 pi, N)")
+    return table
+
+
 def loop_scaling(settings: Settings, n: int = 361) -> Table:
     """Chains of K four-bars: sweep and sweep + ω, α against the closed form, K from 1 up."""
     from numkin import analytic

@@ -55,6 +55,16 @@ def test_one_table_as_markdown():
     assert "numkin / closed form" in text
 
 
+def test_the_predictor_table_gives_both_sweeps_and_leaves_the_flag_as_it_was():
+    from numkin import batch_fill
+
+    table = suites.predictors(suites.Settings.quick(), sizes=(37,))
+    rows = {row[0]: row for row in table.rows}
+    assert set(rows) == set(suites.PREDICTOR_LINKAGES) and batch_fill.TURN is True
+    assert rows["four-bar 4:1:3:3"][5] == "165 → 128"  # one batch step fewer per point with the fit
+    assert rows["chained homework"][5] == "244 → 244"  # the fit refused
+
+
 def test_the_tables_say_no_verdict():
     table = suites.sweep_scaling(suites.Settings.quick(), sizes=(36,), linkages=("four-bar",))
     words = " ".join(map(str, table.rows + table.columns + table.notes)).lower()
