@@ -75,9 +75,9 @@ def turn_predict(t, X, D, nodes, *, angle_rows, inv_xs, even=True):
     number M of its steps make a turn (2 pi, to 1e-9 relative), the nodes are every e-th grid
     point from the first with e dividing M (and the last: :func:`numkin.batch_fill.nodes_of`),
     at least :data:`TURN_MIN_NODES` of them go once round, their values and tangents are
-    finite. It is trusted where the scaled amplitude of its three highest
-    harmonics and of its ``sin K tau`` term is at most :data:`TURN_TRUST` and it meets every node it was not fitted to (one
-    turn on, or the last node of a grid that stops short of a turn) as closely. ``X``, ``D``
+    finite. It is trusted where the scaled amplitude of its three highest harmonics and of its
+    ``sin K tau`` term is at most :data:`TURN_TRUST` and it meets every node it was not fitted
+    to (one turn on, or the last node of a grid that stops short of a turn) as closely. ``X``, ``D``
     (n, N): values and tangents, read at the nodes; ``angle_rows``: the rows of ``X`` that are
     angles (they may gain whole turns over a turn of the input: the gain is read at the node
     one turn on, or, on a grid that stops short of it, rounded from the last nodes' values and
@@ -103,26 +103,26 @@ def turn_predict(t, X, D, nodes, *, angle_rows, inv_xs, even=True):
         data[:, K:] *= factor
     shift = None  # whole turns gained over a turn of the input, by the angles
     if angle_rows:
-        x0, dx0 = X[:, 0].tolist(), D[:, 0].tolist()
+        turns = [0] * n
         if M <= N - 1 and int(nodes[min(K, nodes.size - 1)]) == M:  # the node one turn on
-            gain = [a - b for a, b in zip(X[:, M].tolist(), x0)]
+            for i in angle_rows:
+                turns[i] = round((float(X[i, M]) - float(X[i, 0])) / _TWO_PI)
         else:  # from the last node round to the first, by the trapezoid rule on their tangents
-            xl, dxl = X[:, last - 1].tolist(), D[:, last - 1].tolist()
-            gain = [xl[i] - x0[i] + 0.5 * (e * h) * (dxl[i] + dx0[i]) for i in range(n)]
-        turns = [round(gain[i] / _TWO_PI) if i in angle_rows else 0 for i in range(n)]
+            for i in angle_rows:
+                gain = float(X[i, last - 1]) - float(X[i, 0]) + 0.5 * (e * h) * (float(D[i, last - 1]) + float(D[i, 0]))
+                turns[i] = round(gain / _TWO_PI)
         if any(turns):
             shift = np.array(turns, dtype=float) * _TWO_PI
             data -= np.outer(shift, _trend(K))
     coef = data @ _inverse_t(K)  # (n, 2K) coefficients, one row per unknown
-    top = coef[:, 2 * K - 7 :]  # cos and sin of harmonics K - 3, K - 2, K - 1, and sin K tau
-    top = top * top
-    amplitude2 = top[:, 0::2]  # cos^2 of harmonics K - 3 ... K - 1, and sin K tau's own
-    amplitude2[:, :3] += top[:, 1::2]
-    scale = None if all(w == 1.0 for w in inv_xs) else np.asarray(inv_xs, dtype=float)[:, None]
-    if scale is not None:
-        amplitude2 *= scale * scale
-    if not float(np.maximum.reduce(amplitude2, axis=None)) <= TURN_TRUST * TURN_TRUST:  # (NaN: not trusted)
-        return None
+    # the squared amplitudes of harmonics K - 3, K - 2, K - 1 (cos and sin) and of sin K tau, scaled (a few
+    # floats: plain arithmetic); NaN fails the tests
+    for (c0, s0, c1, s1, c2, s2, sk), w in zip(coef[:, 2 * K - 7 :].tolist(), inv_xs):
+        limit = (TURN_TRUST / w) ** 2
+        if not (c0 * c0 + s0 * s0 <= limit and c1 * c1 + s1 * s1 <= limit and c2 * c2 + s2 * s2 <= limit
+                and sk * sk <= limit):
+            return None
+    scale = None if max(inv_xs) == 1.0 == min(inv_xs) else np.asarray(inv_xs, dtype=float)[:, None]
     out = _one_turn(coef, K, e, N)
     if shift is not None:
         ramp = np.arange(N) * (1.0 / M)

@@ -93,6 +93,10 @@ def test_refused_where_its_highest_harmonics_are_large_or_the_function_does_not_
     s = t[:-1]
     assert turn_predict(s, (s / 2)[None, :], np.full((1, s.size), 0.5), nodes_of(s, THIRTY), angle_rows=[0],
                         inv_xs=[1.0]) is None
+    # each of the three highest harmonics at 12 nodes (9, 10, 11; represented exactly, but as large as 1e-3)
+    for k in (9, 10, 11):
+        assert pred(np.cos(t) + 1e-3 * np.cos(k * t), -np.sin(t) - 1e-3 * k * np.sin(k * t)) is None
+        assert pred(np.cos(t) + 1e-7 * np.cos(k * t), -np.sin(t) - 1e-7 * k * np.sin(k * t)) is not None
     # harmonics 4, 8, 12 and 16 only (a crank geared 4 to 1): 9 to 11 are zero, but 12 shows in sin 12t
     x = 0.3 * np.sin(4 * t) + 0.05 * np.cos(8 * t) + 0.01 * np.sin(12 * t) + 0.002 * np.cos(16 * t)
     d = 1.2 * np.cos(4 * t) - 0.4 * np.sin(8 * t) + 0.12 * np.cos(12 * t) - 0.032 * np.sin(16 * t)
