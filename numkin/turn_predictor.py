@@ -13,7 +13,7 @@ four-bar and 1.8e-4 for the cubic on the slider-crank, so that the batch's
 Newton stops after one step instead of two (their sweeps of 361 points 3
 to 11 % faster, of 3601 to 360 001 points a fifth to a third; where a
 trusted fit still leaves some points a second step, as on the six-bar at
-361 points, it costs its 11-13 µs).
+361 points, it costs the 20 µs of the fit).
 
 The fit is taken only where it is expected to be that good: the amplitude
 of its three highest harmonics and of its ``sin K tau`` term (scaled like the
