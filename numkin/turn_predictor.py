@@ -104,13 +104,15 @@ def turn_predict(t, X, D, nodes, *, angle_rows, inv_xs, even=True):
     shift = None  # whole turns gained over a turn of the input, by the angles
     if angle_rows:
         turns = [0] * n
-        if M <= N - 1 and int(nodes[min(K, nodes.size - 1)]) == M:  # the node one turn on
-            for i in angle_rows:
-                turns[i] = round((float(X[i, M]) - float(X[i, 0])) / _TWO_PI)
-        else:  # from the last node round to the first, by the trapezoid rule on their tangents
-            for i in angle_rows:
+        one_turn_on = M <= N - 1 and int(nodes[min(K, nodes.size - 1)]) == M
+        for i in angle_rows:
+            if one_turn_on:  # the node one turn on
+                gain = float(X[i, M]) - float(X[i, 0])
+            else:  # from the last node round to the first, by the trapezoid rule on their tangents
                 gain = float(X[i, last - 1]) - float(X[i, 0]) + 0.5 * (e * h) * (float(D[i, last - 1]) + float(D[i, 0]))
-                turns[i] = round(gain / _TWO_PI)
+            if not math.isfinite(gain):  # (a tangent unknown at a node: no fit)
+                return None
+            turns[i] = round(gain / _TWO_PI)
         if any(turns):
             shift = np.array(turns, dtype=float) * _TWO_PI
             data -= np.outer(shift, _trend(K))

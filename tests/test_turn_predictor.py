@@ -89,6 +89,11 @@ def test_refused_where_its_highest_harmonics_are_large_or_the_function_does_not_
     # half a turn per turn, and a length that grows: smooth on the nodes, but wrong one turn on
     assert pred(t / 2, np.full_like(t, 0.5)) is None
     assert pred(t, np.ones_like(t), angle=False) is None
+    # a tangent unknown at a node (a singular one): no fit, on a grid with the node one turn on or without
+    for grid in (t, t[:-1]):
+        x, d = _trig(grid, 1)
+        d[nodes_of(grid, THIRTY)[-2]] = np.nan
+        assert turn_predict(grid, x[None, :], d[None, :], nodes_of(grid, THIRTY), angle_rows=[0], inv_xs=[1.0]) is None
     # the same half turn on a grid that stops a step short (no node one turn on): the last node refuses it
     s = t[:-1]
     assert turn_predict(s, (s / 2)[None, :], np.full((1, s.size), 0.5), nodes_of(s, THIRTY), angle_rows=[0],
