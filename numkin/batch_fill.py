@@ -86,8 +86,8 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None, even=False):
     fine_mask.fill(True)
     fine_mask[nodes] = False
     uniform = every is not None and N <= CHUNK
-    # every column's left node (a node is its own left node, at s = 0); on an even grid only
-    # the rarer tests below need it
+    # every column's left node (a node is its own left node, at s = 0), made where first read: by the
+    # Hermite predictor off an even grid, and by the rarer tests below
     k = None
 
     def left_nodes():
@@ -106,8 +106,9 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None, even=False):
     residual = np.empty(N)
     cond = np.empty(N) if N <= CHUNK else None  # (a long sweep's after its batches: a lower peak of memory)
     jac = None
-    # many points per segment: curvatures from the tangent field (a few kernel calls on the nodes);
-    # fewer: from the nodes' values and tangents alone
+    # round a whole turn, the nodes' trigonometric polynomial where trusted; else Hermite: with many points
+    # per segment, curvatures from the tangent field (a few kernel calls on the nodes); with fewer, from the
+    # nodes' values and tangents alone
     terms = None  # the quintic predictor's terms over the cubic, once for every chunk
     x_turn = turn_predict(t, X, D, nodes, angle_rows=ctx.angle_idx, inv_xs=ctx.inv_xs, even=even) if TURN else None
     if x_turn is None and N >= QUINTIC_MIN_POINTS * nodes.size:
