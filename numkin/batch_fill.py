@@ -120,7 +120,7 @@ def fill(ctx: Continuation, t, X, D, O, iters, nodes, every=None, even=False):
         c = slice(c0, min(N, c0 + CHUNK))
         fm, tc = fine_mask[c], t[c]
         if x_turn is not None:
-            x_pred = x_turn if c.stop - c.start == N else x_turn[:, c].copy()
+            x_pred = x_turn[:, c]  # (its columns, kept for the correction: the batch iterates in a copy)
         elif uniform:
             x_pred = hermite_uniform(t.take(nodes), X, D, every, terms)
         else:
