@@ -161,8 +161,7 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
     iters = np.zeros(N, dtype=int)
 
     with np.errstate(all="ignore"):
-        x0, iters[0], v0 = solve_start(ctx, float(t[0]), guess, maxiter)
-        d0, o0 = ctx.local1(v0)
+        x0, iters[0], d0, o0 = solve_start(ctx, float(t[0]), guess, maxiter)
         X[:, 0], D[:, 0], O[:, 0] = x0, d0, o0
 
         nodes = nodes_of(t, max_step, largest_step)
@@ -180,6 +179,7 @@ def run_sweep(mech, inputs, guess=None, *, jacobian="symbolic", tol=1e-12, maxit
             ds.append(d if d is not None else [math.nan] * n)
             os_.append(o)
         if xs:
+            os_[-1] = ctx.unpassed_crossings(float(t[-1]), os_[-1])  # (at the last input: a toggle, or not passed)
             X[:, nodes[1:]] = np.array(xs).T
             D[:, nodes[1:]] = np.array(ds).T
             O[:, nodes[1:]] = np.array(os_).T

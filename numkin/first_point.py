@@ -143,7 +143,11 @@ def guess_vector(mech, guess, at: float) -> np.ndarray:
 def solve_start(ctx: Continuation, t0: float, guess, maxiter: int):
     """Solve the first point from the guess (continuing from ``guess_input`` if needed).
 
-    Returns ``(x, iterations, v)``.
+    Returns ``(x, iterations, d, o)``: the point (list), its Newton
+    iterations, and the tangent dq/dt and loop orientations the sweep goes on
+    with. Where the point was reached from ``guess_input`` these are the
+    march's (a point on or next to a singular position has no tangent or
+    orientation of its own: the guess's branch carries them there).
     """
     mech = ctx.mech
     g = mech.default_guess if guess is None else guess
@@ -152,9 +156,14 @@ def solve_start(ctx: Continuation, t0: float, guess, maxiter: int):
         tg = float(mech.guess_input)
         x_g, _, v = _solve_first(ctx, tg, guess_vector(mech, g, tg), maxiter, note=" (the default guess's input)")
         d, o = ctx.local1(v)
-        x, _, _, iters = ctx.march(tg, x_g, d, o, t0)
-        return x, iters, ctx.eval1(x, t0)
-    return _solve_first(ctx, t0, guess_vector(mech, g, t0), maxiter)
+        x, d_t0, o_t0, iters = ctx.march(tg, x_g, d, o, t0)
+        o_t0 = ctx.unpassed_crossings(t0, o_t0)  # a singular position at t0: passed (or not) by the sweep
+        if d_t0 is None or o_t0 is None:
+            d_t0, o_t0 = ctx.local1(ctx.eval1(x, t0))
+        return x, iters, d_t0, o_t0
+    x, iters, v = _solve_first(ctx, t0, guess_vector(mech, g, t0), maxiter)
+    d, o = ctx.local1(v)
+    return x, iters, d, o
 
 
 def _dependent(ctx, x, t0) -> bool:

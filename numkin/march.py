@@ -48,6 +48,9 @@ TREND_REACH = 2.0
 #: point: small enough to place it, large enough that the branches meeting there are still
 #: told apart (their distance, ~ step, stays far above Newton's noise, ~ eps / step).
 CROSSING_STEP = 1e-5
+#: A change point found within this (relative) distance of the input where a march stops is at that input:
+#: its Jacobian's determinant, linear between the last two points, is round-off there (the sign's noise).
+AT_END = 1e-10
 #: Newton steps allowed for a continuation corrector.
 CORRECTOR_ITERATIONS = 12
 #: Trial steps allowed for one march between nodes (accepted or refused).
@@ -349,6 +352,28 @@ class Continuation:
             self.pending = (tc, loop)
         if not any(abs(c - tc) <= 1e-6 * max(1.0, abs(tc)) and lp == loop for c, lp in self.crossings):
             self.crossings.append((tc, loop))
+
+    def unpassed_crossings(self, t_end, o):
+        """Forget the change points found at ``t_end``, where a march stops: no step went past them (a
+        toggle reached there, or a singular position the march ends on, shows either sign of the Jacobian,
+        and whether the linkage goes on there shows only in a step beyond). Returns the orientations ``o``
+        with those loops' as before them."""
+        if not self.crossings:
+            return o
+        o = list(o) if o is not None else None
+        kept = []
+        at_end = AT_END * max(1.0, abs(t_end))
+        for tc, loop in self.crossings:
+            if abs(tc - t_end) <= at_end:
+                if o is not None:
+                    k = self.loop_names.index(loop)
+                    o[k] = -o[k]
+            else:
+                kept.append((tc, loop))
+        self.crossings = kept
+        if self.pending is not None and abs(self.pending[0] - t_end) <= at_end:
+            self.pending = None
+        return o
 
     def raise_pending(self):
         """Raise the change point the march has gone past (``on_singular="raise"``), if any."""

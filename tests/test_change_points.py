@@ -99,3 +99,117 @@ def test_change_point_linkages_never_switch_branch(a, ratio, branch, start, coun
     assert miss[meeting].max(initial=0.0) < 1e-5
     if count > 1:  # and the angles are continuous: no neighbour step near a turn
         assert np.abs(np.diff(theta4)).max() < np.pi
+
+
+# ---------------------------------------------------------------- a singular position at a march's end
+def _four_bar_loop(dims, guess, guess_input):
+    """A four-bar written as a loop, with a default guess at ``guess_input`` (reached by a march)."""
+    import sympy as sp
+
+    from numkin import Loop, Mechanism
+
+    t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    r1, r2, r3, r4 = sp.symbols("r1 r2 r3 r4", positive=True)
+    loop = Loop.from_vectors([(r2, t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4], name="L")
+    return Mechanism([loop], t2, dict(zip((r1, r2, r3, r4), dims)), guess=guess, guess_input=guess_input)
+
+
+@pytest.mark.parametrize("dims, guess_input", [((5, 2, 5, 2), 1.0), ((3, 2, 3, 2), 0.5), ((3, 2, 3, 2), 1.0)])
+@pytest.mark.parametrize("start", [0.0, 1.7e-11, 1e-9])
+def test_a_start_on_a_change_point_reached_from_the_guess_keeps_the_guess_branch(dims, guess_input, start):
+    """The guess (theta3 = 0, theta4 = its input) is on the parallelogram; the march from it ends on the
+    change point at 0°, where the point's own tangent and orientation are noise: the sweep goes on with
+    the guess branch's, so it passes the change point (raised, or reported and kept) and never takes
+    the anti-parallelogram (theta3 = 1.333° at -1° for 5/2/5/2) nor calls the change point a toggle."""
+    mech = _four_bar_loop(dims, {"theta3": 0.0, "theta4": guess_input}, guess_input)
+    inputs = np.array([start, np.radians(-1.0), np.radians(-2.0)])
+    with pytest.raises(BranchError) as err:
+        mech.sweep(inputs)
+    assert err.value.kind == "change point" and abs(err.value.input_value) < 1e-4
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sweep = mech.sweep(inputs, on_singular="report")
+    assert [e.kind for e in sweep.events][0] == "change point"
+    np.testing.assert_allclose(sweep["theta3"], 0.0, atol=1e-7)  # the parallelogram: theta3 = 0, theta4 = theta2
+    np.testing.assert_allclose(sweep["theta4"], inputs, atol=1e-7)
+    # the other way from the change point: no passing, the parallelogram on the grid's side
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ahead = mech.sweep(np.radians([start, 1.0, 2.0]), on_singular="report")
+    np.testing.assert_allclose(ahead["theta4"], np.radians([start, 1.0, 2.0]), atol=1e-7)
+    assert "toggle" not in [e.kind for e in ahead.events]
+
+
+# The non-Grashof four-bar 4/3/2/2.5: its crank reaches a limit where coupler and rocker line up,
+# |A - O4| = r3 + r4, at cos t = (16 + 9 - 20.25) / 24.
+TOGGLE_DIMS = (4.0, 3.0, 2.0, 2.5)
+TOGGLE = float(np.arccos((16.0 + 9.0 - 4.5**2) / 24.0))
+
+
+def _toggle_branch(inputs):
+    """theta4 (rad) of the 4/3/2/2.5 on the guess's branch, by circle intersection."""
+    return closed_form(inputs, *TOGGLE_DIMS, 1.0)[1]
+
+
+@pytest.mark.parametrize("inputs", [
+    np.linspace(TOGGLE - 0.5, TOGGLE, 11),  # a sweep that ends on the toggle
+    np.linspace(TOGGLE - 0.5, TOGGLE, 2),
+    np.linspace(TOGGLE, TOGGLE - 0.5, 11),  # one that starts on it (reached from the guess) and goes back
+])
+@pytest.mark.parametrize("on_singular", ["raise", "report"])
+def test_a_toggle_at_a_march_end_is_reached_not_called_a_change_point(inputs, on_singular):
+    """The crank is driven up to its limit and no further: the point there is a solution (the two
+    assemblies meet), near-singular, and no change point is passed (a march ending on it saw either
+    sign of the Jacobian there: a change point was reported, or raised, before)."""
+    mech = _four_bar_loop(TOGGLE_DIMS, {"theta3": 0.5, "theta4": 1.5}, TOGGLE - 0.5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sweep = mech.sweep(inputs, on_singular=on_singular)
+    assert [e.kind for e in sweep.events] == ["near-singular"]
+    miss = _wrap(sweep["theta4"] - _toggle_branch(inputs))
+    at = np.abs(inputs - TOGGLE) < 1e-12
+    assert miss[~at].max() < 1e-9
+    assert miss[at].max() < 1e-6  # a double root: half the digits
+    with pytest.raises(BranchError) as err:  # and not past it
+        mech.sweep(np.linspace(TOGGLE - 0.5, TOGGLE + 0.01, 11), on_singular=on_singular)
+    assert err.value.kind == "toggle"
+
+
+# ------------------------------------------------------ where a change point is placed, and once
+@pytest.mark.parametrize("ratio", [0.9, 0.1, 0.01])
+def test_a_change_point_is_raised_where_it_is(ratio):
+    """a/b/a/b meets its other branch at 180°: on a grid around it (not on it), in raise mode, the
+    error's input is 180° to the localisation of a crossing (far below a 1e-5 rad step), whatever the crank."""
+    mech = linkages.four_bar(1.0, ratio, 1.0, ratio)
+    with pytest.raises(BranchError) as err:
+        mech.sweep(np.radians(np.arange(170.5, 190.0, 1.0)))
+    assert err.value.kind == "change point" and abs(err.value.input_value - np.pi) < 1e-6
+
+
+def test_a_change_point_passed_is_reported_once():
+    mech = linkages.four_bar(1.0, 0.01, 1.0, 0.01)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sweep = mech.sweep(np.radians(np.arange(170.0, 191.0)), on_singular="report")
+    changes = [e for e in sweep.events if e.kind == "change point"]
+    assert len(changes) == 1 and abs(changes[0].input_value - np.pi) < 1e-6
+    assert np.abs(_wrap(sweep["theta4"] - sweep.inputs)).max() < 1e-6  # the parallelogram, kept
+
+
+def test_nodes_on_change_points_keep_the_tangent_continuous_branch():
+    """4/0.2/8.2/4.4 (0.2 + 8.2 = 4 + 4.4) meets its other assembly at 0° each turn; with 1° nodes every
+    45° grid point is a node, 360° and 720° among them. The branch whose tangent is continuous swaps
+    circle intersections at each (closed form), and each change point is reported there."""
+    dims = (4.0, 0.2, 8.2, 4.4)
+    deg = np.arange(270.0, 946.0, 45.0)
+    inputs = np.radians(deg)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sweep = linkages.four_bar(*dims).sweep(inputs, on_singular="report", max_step=np.radians(1.0))
+    changes = sorted(e.input_value for e in sweep.events if e.kind == "change point")
+    np.testing.assert_allclose(changes, np.radians([360.0, 720.0]), atol=1e-6)
+    open_side = (deg < 360) | (deg > 720)
+    reference = np.where(open_side, closed_form(inputs, *dims, 1.0)[1], closed_form(inputs, *dims, -1.0)[1])
+    miss = _wrap(sweep["theta4"] - reference)
+    on = (deg == 360) | (deg == 720)
+    assert miss[~on].max() < 1e-12 and miss[on].max() < 1e-6
