@@ -38,7 +38,7 @@ Conventions of the student schemes
 ``forward_of_forward`` at sample i is ``(q[i+2] - 2 q[i+1] + q[i]) / h**2``,
 i.e. :func:`~numkin.derivatives.forward` applied twice, with the result
 kept at the left sample i, as the homework computed it. On the homework's
-1° grid this gives, at theta = 100°, 10.5999 rad/s and -28.1266 rad/s^2
+1° grid this gives, at theta = 100°, 10.6000 rad/s and -28.1266 rad/s^2
 for beta (the exact values are 10.6329 and -28.3750).
 """
 

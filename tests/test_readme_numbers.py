@@ -157,3 +157,36 @@ def test_linear_convergence_example():
     result = numkin.newton(lambda x: np.array([x[0] ** 2]), [1.0])
     assert result.converged and result.iterations == 40
     assert result.x[0] == pytest.approx(2.0**-40, rel=1e-9) and f"{2.0**-40:.2g}" == "9.1e-13"
+
+
+def _table_cell(row_start: str, column: int) -> list[float]:
+    """The numbers of one cell of README's table of numkin against the source documents."""
+    row = next(line for line in README.splitlines() if line.startswith(row_start))
+    cell = row.split("|")[column + 1].split(";")[0]
+    return [float(v.replace("−", "-")) for v in re.findall(NUMBER, cell)]
+
+
+def _printed(value: float, like: float) -> float:
+    """``value`` rounded to as many decimals as the printed number ``like`` shows."""
+    decimals = len(repr(like).split(".")[1]) if "." in repr(like) else 0
+    return round(value, decimals)
+
+
+def test_the_homework_rows_of_the_source_table_are_rounded_from_the_closed_form():
+    """ω_β and α_β at θ = 100° (ω = 450 rad/min = 7.5 rad/s, 1° grid): exact, and by the differences the
+    homework used, each quotient formed from β of two circle intersections (mpmath), then rounded as printed."""
+    from test_report import hw_beta
+
+    h, w = math.radians(1.0), 7.5
+    beta = {k: hw_beta(k) for k in (99, 100, 101, 102)}
+    rows = {
+        "| | ω_β, α_β exact": (w * hw_beta(100, 1), w * w * hw_beta(100, 2)),
+        "| | centred / second difference": (
+            w * (beta[101] - beta[99]) / (2 * h), w * w * (beta[101] - 2 * beta[100] + beta[99]) / h**2),
+        "| | forward / forward-of-forward": (
+            w * (beta[101] - beta[100]) / h, w * w * (beta[102] - 2 * beta[101] + beta[100]) / h**2),
+    }
+    for row, reference in rows.items():
+        printed = _table_cell(row, 2)
+        assert len(printed) == 2, (row, printed)
+        assert [_printed(r, p) for r, p in zip(reference, printed)] == printed, (row, reference)
