@@ -94,7 +94,10 @@ class AssemblyError(NumkinError, ValueError):
     four-bars the message names the Grashof class and the reachable input
     range. ``cause`` is ``"bad guess"`` when Newton from the guess wandered
     off, ``"dependent equations"`` when the loop equations do not fix the
-    unknowns, ``"not assemblable"`` otherwise.
+    unknowns, ``"cannot close"`` when a loop's longest vector is longer than
+    all the others together, ``"not assemblable"`` otherwise (a ready-made
+    linkage's assembly check refusing an input: ``input_value`` is the first
+    input refused).
 
     Attributes
     ----------

@@ -534,7 +534,24 @@ class Mechanism(CachedModel):
             return
         reason = self.assembly_check(t)
         if reason:
-            raise AssemblyError(f"{self.name}: {reason}")
+            raise AssemblyError(f"{self.name}: {reason}", **self._assembly_failure(t))
+
+    def _assembly_failure(self, t) -> dict:
+        """The attributes of an assembly check's refusal of the inputs ``t``: the first input it refuses
+        (by bisection of the prefixes it refuses), the loop, and the cause (``"cannot close"`` where a
+        loop's longest side outreaches the others, else ``"not assemblable"``)."""
+        from .first_point import never_closes
+
+        lo, hi = 0, t.size  # t[:lo] is accepted, t[:hi] refused
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            if self.assembly_check(t[:mid]):
+                hi = mid
+            else:
+                lo = mid
+        closes = never_closes(self)
+        loop = closes[0] if closes else self.loops[0].name if len(self.loops) == 1 else None
+        return {"input_value": float(t[lo]), "loop": loop, "cause": "cannot close" if closes else "not assemblable"}
 
     def _positions(self, x, inputs, where, complex_ok=False):
         """``x`` (n, M) and ``inputs`` (M,) as arrays of numbers of those shapes, or an InputError naming

@@ -479,6 +479,29 @@ def test_a_loop_that_can_never_close_is_said_so_not_blamed_on_the_guess():
     assert caught.value.cause == "bad guess"
 
 
+@pytest.mark.parametrize("build, inputs_deg, first_refused, cause, words", [
+    # 7/4/3/5 reaches |A - O4| = 8 up to cos t = (49 + 16 - 64) / 56: |theta2| <= 88.98°
+    (lambda: linkages.four_bar(7, 4, 3, 5), np.arange(0.0, 361.0), 89.0, "not assemblable",
+     "a non-Grashof triple rocker: it can be assembled only for |theta2| <= 88.98°"),
+    (lambda: linkages.four_bar(10, 6, 1, 1), np.arange(30.0, 361.0), 30.0, "cannot close",
+     "a non-assemblable four-bar (l > s + p + q): it cannot be assembled at any input angle"),
+    (lambda: linkages.four_bar(10, 1, 1, 1), np.arange(-5.0, 5.0), -5.0, "cannot close", "at any input angle"),
+    # rod 0.05 reaches the piston line while 0.08 |sin t| <= 0.05: up to asin(5/8) = 38.68°
+    (lambda: linkages.slider_crank(0.08, 0.05), np.arange(0.0, 361.0), 39.0, "not assemblable",
+     "the rod cannot reach the piston line"),
+])
+def test_a_ready_made_linkage_that_cannot_assemble_names_the_input_loop_and_cause(build, inputs_deg, first_refused,
+                                                                                  cause, words):
+    mech = build()
+    with pytest.raises(AssemblyError) as caught:
+        mech.sweep(np.radians(inputs_deg))
+    err = caught.value
+    assert words in str(err) and "triple rocker" not in str(err).replace("non-Grashof triple rocker: it can be "
+                                                                         "assembled only", "")
+    assert err.input_value == pytest.approx(math.radians(first_refused), abs=1e-12)
+    assert err.loop == mech.loops[0].name and err.cause == cause
+
+
 def test_a_sweep_in_degrees_is_warned_of_and_one_in_rad_is_not():
     mech = linkages.four_bar(4, 1, 3, 3)
     with pytest.warns(DegreesWarning, match=r"run from 0 to 360 in steps of 1; if the input is an angle, that is "

@@ -17,12 +17,14 @@ def grashof(ground: float, crank: float, coupler: float, rocker: float) -> str:
 
     ``s + l < p + q`` is Grashof (the shortest link turns fully), ``s + l =
     p + q`` a change-point linkage, ``s + l > p + q`` a non-Grashof triple
-    rocker.
+    rocker, unless ``l > s + p + q``: then the four links never close.
 
     Examples
     --------
     >>> grashof(7, 4, 3, 5)
     'non-Grashof triple rocker'
+    >>> grashof(10, 6, 1, 1)
+    'non-assemblable four-bar (l > s + p + q)'
     >>> grashof(4, 1, 3, 3)
     'Grashof crank-rocker'
     """
@@ -31,6 +33,8 @@ def grashof(ground: float, crank: float, coupler: float, rocker: float) -> str:
     ordered = sorted(links.values())
     s, p, q, l = ordered
     total = s + l - (p + q)
+    if l > (s + p + q) * (1.0 + 1e-12):
+        return "non-assemblable four-bar (l > s + p + q)"
     if abs(total) <= 1e-12 * l:
         return "change-point (s + l = p + q)"
     if total > 0:
@@ -111,19 +115,15 @@ def crank_range_check(r1, r2, r3, r4, klass, input_name="theta2"):
         if not bad.any():
             return None
         first = float(inputs[np.flatnonzero(bad)[0]])
+        asked = f"the sweep asks for {input_name} = {math.degrees(first):.2f}°"
         if c_min > 1 or c_max < -1 or c_min > c_max:
-            where = "at no input angle (it cannot be assembled at all)"
-        else:
-            parts = []
-            if c_min > -1:
-                parts.append(f"|{input_name}| <= {math.degrees(math.acos(c_min)):.2f}°")
-            if c_max < 1:
-                parts.append(f"|{input_name}| >= {math.degrees(math.acos(c_max)):.2f}°")
-            where = "only for " + " and ".join(parts) + " (angles mod 360°)"
-        return (
-            f"a {klass}: it can be assembled {where}; "
-            f"the sweep asks for {input_name} = {math.degrees(first):.2f}°"
-        )
+            return f"a {klass}: it cannot be assembled at any input angle; {asked}"
+        parts = []
+        if c_min > -1:
+            parts.append(f"|{input_name}| <= {math.degrees(math.acos(c_min)):.2f}°")
+        if c_max < 1:
+            parts.append(f"|{input_name}| >= {math.degrees(math.acos(c_max)):.2f}°")
+        return f"a {klass}: it can be assembled only for {' and '.join(parts)} (angles mod 360°); {asked}"
 
     return check
 
