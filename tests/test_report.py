@@ -677,6 +677,16 @@ def test_numkin_report_homework_writes_the_branch_values(tmp_path, capsys):
     assert "theta = 100 deg" in text
 
 
+def test_roundoff_scan_has_each_step_once(hw_roundoff):
+    """8 steps per decade from 1e-1 to 1e-12 (89; each made representable at theta = 100°, a relative change
+    below 1e-4), none twice (1e-5 and 10**-5 from the scan's exponents differ in their last bit), and the
+    caption's count the scan's."""
+    h = np.array(hw_roundoff.attrs["scan"]["h [rad]"])
+    assert h.size == 11 * 8 + 1
+    np.testing.assert_allclose(np.diff(np.log10(h)), -0.125, atol=1e-4)
+    assert "fitted to 89 steps" in hw_roundoff.attrs["caption"]
+
+
 def test_roundoff_is_the_same_in_two_runs(homework, hw_roundoff):
     again = report.roundoff_table(homework, quantity="beta", check_angle=CHECK)
     pd.testing.assert_frame_equal(again, hw_roundoff)

@@ -315,7 +315,10 @@ def roundoff_table(
     q1, q2 = (float(d[0]) for d in studied.exact(base))
     lo, hi = math.log10(min(steps)), math.log10(max(steps))
     m = int(round((hi - lo) * scan_per_decade))
-    scan = sorted(set(steps) | set(10.0 ** np.linspace(hi, lo, m + 1)), reverse=True)
+    # the scan's steps, the given ones among them in place of those they equal but for rounding (10**-5 from the
+    # linspace of exponents is not 1e-5)
+    grid = [g for g in (10.0 ** np.linspace(hi, lo, m + 1)).tolist() if not any(abs(g - h) <= 1e-9 * h for h in steps)]
+    scan = sorted(set(steps) | set(grid), reverse=True)
     # representable steps: theta + h is a float and h = (theta + h) - theta exactly
     eff = np.array([(theta + h) - theta for h in scan])
     S = len(scan)
