@@ -26,7 +26,8 @@ def column_format(column: str) -> str:
     measured widths (``sharpest turn``) and times: 3 significant figures; orders: 2 decimals; counts (iterations, points, evaluations):
     integers, a mean of them 1 decimal; estimated optimal steps 2
     significant figures; exact values and other quantities 7 significant
-    figures, exact values 6 decimals (7 significant figures outside
+    figures (shown with their trailing zeros, so that a column's values
+    read alike: 10.63300 beside 10.63198), exact values 6 decimals (7 significant figures outside
     1e-3 ... 1e4); inputs (steps, angles, tolerances) as given (up to 6
     significant figures).
 
@@ -64,6 +65,8 @@ def format_cell(value, column: str = "") -> str:
     ('2.9', '0.000942')
     >>> format_cell(float("nan"), "max abs error"), format_cell(True, "Pareto front"), format_cell(-0.0, "x [mm]")
     ('', 'yes', '0')
+    >>> format_cell(10.632996, "omega_beta [rad/s]"), format_cell(10.631984, "omega_beta [rad/s]"), format_cell(3.0, "x")
+    ('10.63300', '10.63198', '3')
     """
     if value is None:
         return ""
@@ -80,6 +83,8 @@ def format_cell(value, column: str = "") -> str:
             text = str(int(round(v)))
         elif fmt == "exact":
             text = f"{v:.6f}" if 1e-3 <= abs(v) < 1e4 else format(v, ".7g")
+        elif fmt == ".7g" and v != round(v):  # a quantity: its 7 figures, trailing zeros kept (10.63300, not 10.633)
+            text = format(v, "#.7g")
         else:
             text = format(v, fmt)
         if text.lstrip("-").strip("0.e+") == "":  # a negative zero, or a value that rounds to zero
