@@ -56,8 +56,6 @@ def _check_lines(check, input_name: str, title: str) -> list[str]:
 
 def format_result(result) -> str:
     """The text summary printed by ``numkin run``: sweep, check points, largest errors, files."""
-    from .units import with_length_unit  # (numpy: after the run, never for --help)
-
     scene = result.scene
     lines = [f"{scene.name}: {scene.title or scene.description}"]
     if scene.kind == "stability":
@@ -73,7 +71,7 @@ def format_result(result) -> str:
             motion += f", speed {speed}"
             if result.alpha:
                 motion += f", acceleration {result.alpha:.6g} rad/s^2"
-        lines.append(f"  {with_length_unit(mech.name, mech.length_unit)}; {motion}")
+        lines.append(f"  {mech.title}; {motion}")
         lines.append(
             f"  Newton: max {int(sweep.iterations.max())} iterations, max residual "
             f"{float(sweep.residual.max()):.1e}, largest condition number of a loop's block {float(sweep.cond.max()):.3g}"

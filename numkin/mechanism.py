@@ -21,7 +21,7 @@ from .errors import AssemblyError, ConvergenceError, GuessWarning, InputError, w
 from .loops import (Loop, as_symbol, check_lengths, check_point_names, check_symbols, default_length_scale, describe,
                     read_parameters, read_points)
 from .newton import JACOBIANS, TOL_MIN, NewtonResult, check_tol, iterate, residual_floor, scaled_cond
-from .units import finite, number_array
+from .units import finite, number_array, with_length_unit
 
 __all__ = ["Mechanism", "LENGTH_SCALE_RANGE"]
 
@@ -312,6 +312,18 @@ class Mechanism(CachedModel):
     def default_guess(self):
         """The documented default guess (mapping, sequence, callable or None)."""
         return self._guess
+
+    @property
+    def title(self) -> str:
+        """The name with the length unit after each dimension, for titles, captions and summaries.
+
+        Examples
+        --------
+        >>> from numkin import linkages
+        >>> linkages.slider_crank(0.08, 0.2, length_unit="m").title
+        'slider-crank (crank 0.08 m, rod 0.2 m, offset 0 m)'
+        """
+        return with_length_unit(self.name, self.length_unit)
 
     # ---------------------------------------------------------------- solving
     def solve(self, input_value: float, guess=None, *, jacobian="symbolic", tol=1e-12, maxiter=50) -> NewtonResult:

@@ -312,6 +312,20 @@ def test_complex_step_has_no_floor(hw_roundoff):
     assert row["rel error at h = 1e-01 rad [-]"] == pytest.approx(trunc * 1e-2, rel=0.2)
 
 
+def test_captions_give_the_dimensions_with_their_unit(slider, hw_roundoff):
+    """Every table's caption names the linkage as its figures do: each dimension with the length unit."""
+    named = "slider-crank (crank 80 mm, rod 200 mm, offset 0 mm)"
+    assert slider.title == named
+    tables = [report.newton_table(slider, check_angle=math.radians(90)),
+              report.jacobian_table(slider, check_angle=math.radians(90), points_per_turn=36),
+              report.convergence_table(slider, omega=1.0, quantity="x", grids=(36, 72), schemes=("centred",)),
+              report.tolerance_table(slider, omega=1.0, quantity="x", points_per_turn=36,
+                                     check_angle=math.radians(90))]
+    for table in tables:
+        assert named in table.attrs["caption"], table.attrs["caption"]
+    assert "chained four-bars" in hw_roundoff.attrs["caption"]  # (dimensions not in the name: as it is)
+
+
 def test_roundoff_against_closed_form(slider):
     t = report.roundoff_table(slider, quantity="x", check_angle=math.radians(60),
                               schemes=("centred", "second_difference"))

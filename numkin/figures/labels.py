@@ -18,7 +18,6 @@ import numpy as np
 
 from ..errors import InputError
 from ..quantities import GREEK, tex
-from ..units import with_length_unit
 
 __all__ = [
     "GREEK", "check_points", "check_unknown", "deg_text", "derived_of", "degree_ticks", "frame_column", "frame_input",
@@ -49,7 +48,7 @@ def mechanism_title(mechanism) -> str:
     >>> mechanism_title(linkages.slider_crank(80, 200))
     'slider-crank (crank 80 mm, rod 200 mm, offset 0 mm)'
     """
-    return with_length_unit(mechanism.name, mechanism.length_unit)
+    return mechanism.title
 
 
 def input_label(sweep) -> str:

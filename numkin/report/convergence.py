@@ -193,7 +193,7 @@ def convergence_table(
     )
     return set_caption(
         df,
-        f"Convergence: {mechanism.name}, {studied.title}, input speed {w:g} rad/s; error of each scheme "
+        f"Convergence: {mechanism.title}, {studied.title}, input speed {w:g} rad/s; error of each scheme "
         "against the analytic solution over the sweep; observed order from successive grids. Absolute errors "
         f"in {lab['unit1']} ({lab['name1']}, first-derivative schemes) or {lab['unit2']} ({lab['name2']}, "
         "second-derivative schemes)." + closure_text + ends_text + floor_text + zero_text(zero),

@@ -137,7 +137,7 @@ def newton_table(
     df.attrs["check"] = (mechanism.input_name, math.degrees(check_angle))  # the input's name and angle (deg)
     return set_caption(
         df,
-        f"Newton iterations: {mechanism.name} at {mechanism.input_name} = {deg_text(check_angle)} deg, "
+        f"Newton iterations: {mechanism.title} at {mechanism.input_name} = {deg_text(check_angle)} deg, "
         f"{jacobian} Jacobian, started from the solution at {deg_text(check_angle - start_offset)} deg "
         f"({res.message}).",
         _solve_positions(mechanism, check_angle, start_offset, x_start, [(jacobian, res.x)]),
@@ -238,7 +238,7 @@ def jacobian_table(
     ], row_keys=["Jacobian"])
     return set_caption(
         df,
-        f"Jacobian choice: {mechanism.name}; one solve at {deg_text(check_angle)} deg and a sweep of "
+        f"Jacobian choice: {mechanism.title}; one solve at {deg_text(check_angle)} deg and a sweep of "
         f"{int(points_per_turn)} points per turn" + (" (times vary between runs)." if repeat else "."),
         _solve_positions(mechanism, check_angle, start_offset, x_start, solved),
     )

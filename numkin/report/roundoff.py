@@ -381,7 +381,7 @@ def roundoff_table(
     df = pd.DataFrame(rows)
     df.attrs["quantities"] = studied.quantities
     caption = (
-        f"Round-off floor: {mechanism.name}, {studied.title} at {lab['input']} = {deg_text(theta)} deg on the sweep's "
+        f"Round-off floor: {mechanism.title}, {studied.title} at {lab['input']} = {deg_text(theta)} deg on the sweep's "
         "branch; relative error against the step h, positions solved by Newton to the stopping rule's "
         "tol^(4/3). Measured optimum: where the truncation line C_t h^p and the rounding line C_r eps/h^n, "
         f"fitted to {S} steps, meet (the error there is on the fitted curve)."

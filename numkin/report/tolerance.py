@@ -382,7 +382,7 @@ def tolerance_table(
     ], row_keys=["rule"])
     return set_caption(
         df,
-        f"Solver tolerance: {mechanism.name}, {studied.title}, {int(points_per_turn)} points per turn"
+        f"Solver tolerance: {mechanism.title}, {studied.title}, {int(points_per_turn)} points per turn"
         + ("" if full_turn(span) else f" over {math.degrees(span):g} deg from {math.degrees(start):g} deg")
         + f", input speed {w:g} rad/s; "
         f"{lab['name1']} by {s1.name}, {lab['name2']} by {s2.name}, against the analytic values"

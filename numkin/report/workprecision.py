@@ -251,7 +251,7 @@ def work_precision_table(
               else "; not timed (pass repeat to time each row)")
     return set_caption(
         df,
-        f"Work and precision: {mechanism.name}, {studied.title}, input speed {w:g} rad/s; work = point evaluations of "
+        f"Work and precision: {mechanism.title}, {studied.title}, input speed {w:g} rad/s; work = point evaluations of "
         "the compiled loop equations (sweep, analytic and complex-step derivatives) plus stencil evaluations "
         f"(finite differences), exact and the same in every run{timing}; beside the max error over the sweep, "
         "against the analytic solution, the analytic rows' against the complex step (the two rows show their "
