@@ -340,9 +340,11 @@ def periodic_sum(samples: FloatArray, stencil: Stencil, offset: FloatArray) -> F
 
 
 def interior_sum(samples: FloatArray, stencil: Stencil) -> FloatArray:
-    """The weighted sum at every sample where the stencil fits inside the data (open grid)."""
-    first = -min(stencil.offsets)
-    count = samples.shape[-1] - first - max(stencil.offsets)
+    """The weighted sum at every sample where the stencil fits inside the data (open grid): samples
+    ``lo .. N-1-hi`` with ``lo = max(-min(offsets), 0)``, ``hi = max(max(offsets), 0)`` (the window need not
+    hold the sample itself: offsets ``(1, 2)`` differentiate at sample i from samples i+1 and i+2)."""
+    first = max(-min(stencil.offsets), 0)
+    count = samples.shape[-1] - first - max(max(stencil.offsets), 0)
     total = np.zeros(samples.shape[:-1] + (count,))
     for shift, w in zip(stencil.offsets, stencil.numerators):
         total += w * samples[..., first + shift : first + shift + count]

@@ -254,3 +254,24 @@ def test_a_built_in_stencil_scheme_is_one_declaration(monkeypatch):
         steps.append(h)
         errors.append(np.abs(scheme.function(np.sin(x), h)[3:-3] - np.cos(x)[3:-3]).max())
     assert observed_order(steps, errors) == pytest.approx(6.0, abs=0.2)
+
+
+@pytest.mark.parametrize("offsets, derivative, order", [((1, 2), 1, 1), ((-3, -2, -1), 1, 2), ((1, 2, 3), 2, 1)])
+def test_a_window_that_leaves_out_its_own_sample_works_on_open_grids(offsets, derivative, order):
+    """Offsets (1, 2) estimate y'(x_i) from y[i+1], y[i+2] (weights -3/2, 2, ... solved exactly): every sample
+    of an open grid is differentiated (ends by one-sided stencils) at the stated order, read from the log-log
+    slope of the error against h on sin x."""
+    name = "window_" + "_".join(str(k).replace("-", "m") for k in offsets) + f"_{derivative}"
+    scheme = schemes.register(name, offsets, derivative, partner="forward" if derivative == 2 else None)
+    try:
+        assert scheme.order == order
+        steps, errors = [], []
+        for n in (41, 81, 161, 321):
+            x = np.linspace(0.0, 1.0, n)
+            got = derivatives.differentiate(np.sin(x), x[1], name, periodic=False)
+            exact = np.cos(x) if derivative == 1 else -np.sin(x)
+            steps.append(x[1])
+            errors.append(np.abs(got - exact).max())
+        assert observed_order(steps, errors) == pytest.approx(order, abs=0.1)
+    finally:
+        schemes.unregister(name)
