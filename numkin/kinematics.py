@@ -349,8 +349,28 @@ def sweep_derivative(sweep, method="centred", periodic="auto", *, close: bool = 
     return rows.apply(scheme)
 
 
-def finite_difference(sweep, omega, alpha=0.0, method="centred", second_method="second_difference", periodic="auto",
-                      *, rtol=DIGITS_RTOL):
+#: The schemes :func:`finite_difference` uses unless told otherwise.
+DEFAULT_METHOD, DEFAULT_SECOND_METHOD = "centred", "second_difference"
+
+
+def _apply(rows, scheme, argument, quantity, default):
+    """``rows.apply(scheme)``; too short a sweep for it is said in the words of the call (the argument, and
+    whether its scheme is the default)."""
+    try:
+        return rows.apply(scheme)
+    except InputError as err:
+        if err.cause != "too few samples":
+            raise
+        points = rows.y.shape[-1] - (1 if rows.periodic else 0)
+        given = "the default " if default else ""
+        raise InputError(
+            f"{argument}={scheme.name!r} ({given}scheme for {quantity}) needs at least {err.minimum} points on "
+            f"{err.grid} grid; the sweep has {points}: sweep more points, or pass another {argument}",
+            cause="too few samples") from None
+
+
+def finite_difference(sweep, omega, alpha=0.0, method=DEFAULT_METHOD, second_method=DEFAULT_SECOND_METHOD,
+                      periodic="auto", *, rtol=DIGITS_RTOL):
     """Angular velocities and accelerations from finite differences of a sweep.
 
     Parameters
@@ -421,7 +441,8 @@ def finite_difference(sweep, omega, alpha=0.0, method="centred", second_method="
     s2 = scheme_for(second_method, 2, "second_method")
     mech, t, rows = _unknown_rows(sweep, periodic)
     w, a = input_rates(omega, alpha, t.size)
-    d1, d2 = rows.apply(s1), rows.apply(s2)
+    d1 = _apply(rows, s1, "method", "omega", method == DEFAULT_METHOD)
+    d2 = _apply(rows, s2, "second_method", "alpha", second_method == DEFAULT_SECOND_METHOD)
     for scheme, d in ((s1, d1), (s2, d2)):
         warn_rounding(sweep, mech, t, rows, scheme, d, rtol)
     attrs = {

@@ -286,10 +286,10 @@ def _check_samples(y: ArrayLike, scheme: str, minimum: int, periodic: bool) -> F
         raise InputError(f"y must be an array of samples, got the scalar {samples.item()!r}")
     if samples.shape[-1] < minimum:
         grid = "a periodic" if periodic else "an open"
-        raise InputError(
-            f"scheme {scheme!r} needs at least {minimum} samples along the last axis "
-            f"on {grid} grid, got {samples.shape[-1]}"
-        )
+        error = InputError(f"scheme {scheme!r} needs at least {minimum} samples along the last axis "
+                           f"on {grid} grid, got {samples.shape[-1]}", cause="too few samples")
+        error.minimum, error.grid = minimum, grid
+        raise error
     bad = ~np.isfinite(samples)
     if bad.any():
         first = tuple(int(i) for i in np.argwhere(bad)[0])

@@ -16,7 +16,7 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from numkin import analytic, derivatives, kinematics, linkages
+from numkin import InputError, analytic, derivatives, kinematics, linkages
 
 DEG = np.radians(np.arange(0.0, 361.0))
 W_HW = 450.0 / 60.0  # 450 rad/min in rad/s
@@ -318,3 +318,20 @@ def test_no_rounding_warning_on_a_degree_grid():
     with warnings.catch_warnings():
         warnings.simplefilter("error", LostDigitsWarning)
         kinematics.finite_difference(sweep, 1.0, method="five_point", second_method="five_point_second")
+
+
+@pytest.mark.parametrize("kwargs, words", [
+    ({"method": "centred"},
+     "second_method='second_difference' (the default scheme for alpha) needs at least 4 points on an open grid; "
+     "the sweep has 3"),
+    ({"method": "five_point", "second_method": "centred_of_centred"},
+     "method='five_point' (scheme for omega) needs at least 5 points on an open grid; the sweep has 3"),
+])
+def test_too_short_a_sweep_names_the_argument_and_its_scheme(kwargs, words):
+    """Three points: the forward/centred differences fit, the second difference's one-sided ends (4 samples) and
+    the five-point stencil do not; the error names the argument whose scheme needs more (a default one too)."""
+    sweep = linkages.four_bar(4, 1, 3, 3).sweep(np.radians([0.0, 1.0, 2.0]))
+    with pytest.raises(InputError) as caught:
+        kinematics.finite_difference(sweep, 1.0, **kwargs)
+    assert words in str(caught.value) and "last axis" not in str(caught.value)
+    assert caught.value.cause == "too few samples"
