@@ -111,6 +111,8 @@ autosummary_ignore_module_all = False  # a module's __all__ is its public interf
 autosummary_imported_members = False
 autosummary_context = {"api": numkin_docs.ApiIndex("numkin")}
 autosummary_filename_map = autosummary_context["api"].filename_map()
+# modules a function of the same name hides from autosummary (numkin.newton): pages of their own
+numkin_docs.write_shadowed_pages(DOCS / "api" / "generated", autosummary_context["api"])
 autodoc_default_options = {"member-order": "bysource"}
 autodoc_typehints = "none"  # numpydoc sections carry the types
 autodoc_preserve_defaults = True  # signatures show defaults as written: max_step=math.radians(30.0)

@@ -150,8 +150,10 @@ class ApiIndex:
     a class or function listed in the ``__all__`` of several modules is
     documented once, under the shallowest of them (ties: the module that
     defines it), unless that name is also a module's (``numkin.newton``). The
-    other modules list it with a link to that page. Passed to the autosummary
-    templates as ``api``.
+    other modules list it with a link to that page. A module hidden by a
+    function of its own name gets a page ``<module>-module``
+    (:func:`write_shadowed_pages`). Passed to the autosummary templates as
+    ``api``.
     """
 
     def __init__(self, package: str):
@@ -280,6 +282,13 @@ class ApiIndex:
             return None
         return None
 
+    def shadowed_below(self, fullname: str) -> list[str]:
+        """The modules directly below package `fullname` that a function of the same name hides
+        (``numkin.newton``): each has its own page, ``<module>-module`` (:func:`write_shadowed_pages`)."""
+        self._index()
+        depth = fullname.count(".") + 1
+        return sorted(m for m in self.shadowed if m.startswith(fullname + ".") and m.count(".") == depth)
+
     def filename_map(self) -> dict[str, str]:
         """Page names for objects whose name differs from a module's only in case (``numkin.Sweep``)."""
         modules = {m.lower() for m in self._index()}
@@ -289,6 +298,57 @@ class ApiIndex:
             if full.lower() in modules:
                 out[full] = f"{full}-object"
         return out
+
+
+def write_shadowed_pages(target: Path, api: ApiIndex) -> list[str]:
+    """A page ``<module>-module.rst`` in `target` for every module a function of the same name hides.
+
+    ``numkin.newton`` is both a function and a module; autosummary reaches the
+    function by that name, so the module's docstring and its other public
+    names are written here: the docstring, an autosummary of the classes and
+    functions documented on no other page, links to those that are, and the
+    data. Returns the modules.
+    """
+    import ast
+
+    api._index()
+    target = Path(target)
+    for name in api.shadowed:
+        module = sys.modules[name]
+        assigned = {t.id for node in ast.parse(inspect.getsource(module)).body
+                    if isinstance(node, (ast.Assign, ast.AnnAssign))
+                    for t in (node.targets if isinstance(node, ast.Assign) else [node.target])
+                    if isinstance(t, ast.Name)}
+        own, other, data = [], [], []
+        for member in getattr(module, "__all__", ()):
+            obj = getattr(module, member, None)
+            if not (inspect.isclass(obj) or inspect.isfunction(obj)):
+                if member in assigned:  # (data imported from another module is documented there)
+                    data.append(member)
+                continue
+            canonical = api.canonical(obj)
+            if canonical is None:
+                own.append(member)
+            elif canonical not in api.shadowed:  # (the function of the module's own name has its page)
+                other.append(canonical)
+        title = f"{name} (module)"
+        lines = [title, "=" * len(title), "", f".. automodule:: {name}", "   :no-members:", "   :no-index:", "",
+                 f".. currentmodule:: {name}", ""]
+        if name.rpartition(".")[0] and api.canonical(getattr(sys.modules[name.rpartition(".")[0]],
+                                                            name.rpartition(".")[2], None)):
+            lines += [f"The function of the same name is :func:`{name}`.", ""]
+        if own:
+            lines += [".. rubric:: Classes and functions", "", ".. autosummary::", "   :nosignatures:",
+                      "   :toctree:", "", *[f"   {m}" for m in own], ""]
+        if other:
+            lines += [".. rubric:: Also exported here", "", ".. autosummary::", "   :nosignatures:", "",
+                      *[f"   ~{m}" for m in other], ""]
+        if data:
+            lines += [".. rubric:: Data", ""]
+            for member in data:
+                lines += [f".. autodata:: {member}", "   :no-value:", ""]
+        _write_if_changed(target / f"{name}-module.rst", "\n".join(lines).encode())
+    return list(api.shadowed)
 
 
 # ------------------------------------------------------------------------ CLI
