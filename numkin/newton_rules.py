@@ -20,7 +20,9 @@ A system has converged when, after a step,
 Linear convergence, the signature of a singular Jacobian at the root (steps
 that halve at a double root), meets none of these until the error itself is
 below ``tol`` or at the round-off floor, where the condition number reported
-with the result tells how many digits are left.
+with the result tells how many digits are left (of two or more equations:
+one equation's condition number is always 1, and near a multiple root its
+steps tell more).
 
 ``fscale`` is the mechanism's characteristic length (residuals of vector
 loops are lengths); ``xscale`` is 1 rad for angles and the characteristic
