@@ -68,7 +68,7 @@ def test_triple_rocker_over_a_full_turn_names_class_and_range():
 
 
 def test_linkage_that_assembles_nowhere():
-    with pytest.raises(AssemblyError, match="no input angle"):
+    with pytest.raises(AssemblyError, match="cannot be assembled at any input angle"):
         linkages.four_bar(10, 6, 1, 1).sweep(FULL_TURN)
 
 
