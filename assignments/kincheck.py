@@ -97,10 +97,21 @@ def _not_set(x) -> bool:
 
 
 def floats(x, name: str, what: str = "an array of numbers") -> np.ndarray:
-    """``x`` as a float array, or the student's message: not set yet, or not ``what``."""
-    if _not_set(x):
+    """``x`` as a float array, or the student's message: not set yet, not defined, or not ``what``.
+
+    A name still set to the stub's ``...`` is not set yet.  A name the notebook
+    does not define reaches the checks as None (otter passes None for a missing
+    variable): the cell that should define it raised an error before it got
+    there, or it holds what a function without ``return`` gives.
+    """
+    if x is Ellipsis:
         raise AssertionError(
             f"`{name}` is not set yet: replace its `...` with your answer and run the cell that computes it"
+        )
+    if x is None:
+        raise AssertionError(
+            f"`{name}` is not defined: did the cell that computes it raise an error? run it and read the "
+            "error (or it is None, which a function without `return` gives)"
         )
     try:
         return np.asarray(x, dtype=float)

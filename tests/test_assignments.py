@@ -174,6 +174,10 @@ def test_value_at_100_degrees_is_picked_from_a_full_turn_array():
     assert "361 values" in _fails(kc.at, np.zeros(200), "w", 100)
     assert kc.at(turn[1:360], "w", 100) == 10.0  # interior points only (359 values)
     assert "not set yet" in _fails(kc.at, ..., "w", 100)
+    # otter passes None for a name the notebook does not define (its cell raised an error)
+    undefined = _fails(kc.at, None, "w", 100)
+    assert undefined.startswith("`w` is not defined: did the cell that computes it raise an error?")
+    assert "not set yet" not in undefined
     assert "should be a number" in _fails(kc.at, "ten", "w", 100)
 
 
