@@ -219,6 +219,17 @@ find = "rate_c = OMEGA * centred_difference(q, h)"
 replace = "rate_c = OMEGA * forward_difference(q, h)"
 
 [[mistake]]
+name = "plus-F-theta"
+about = "the exact rate solved from J dx/dθ = +∂F/∂θ, the minus sign dropped"
+score = 7  # fails the two checks of `rate_exact` (q2) and both of q4, whose errors are taken against it
+feedback = ["{rate_unit}: the sign is flipped: check the minus sign in J dx/dθ = −∂F/∂θ"]
+not_feedback = ["sense of rotation"]
+
+[[mistake.edit]]
+find = "rate_exact = OMEGA * np.linalg.solve(J(xk, tk), -F_theta(xk, tk))[OUT]"
+replace = "rate_exact = OMEGA * np.linalg.solve(J(xk, tk), F_theta(xk, tk))[OUT]"
+
+[[mistake]]
 name = "step-in-degrees"
 about = "the second difference divided by h² with h = 1 (degree) where radians are asked"
 score = 9  # fails the two checks of `accel_c` (q3); nothing else uses it

@@ -25,6 +25,8 @@ import numpy as np
 
 __all__ = [
     "ALTERNATIVE_CLOSER",
+    "FLIPPED",
+    "ROTATION",
     "SUSPECTS",
     "angles",
     "array",
@@ -77,6 +79,18 @@ SUSPECTS = {
 }
 
 _FACTOR_TOLERANCE = 0.02  # relative, for recognising a unit factor
+
+FLIPPED = "the sign is flipped"
+"""What a check says of an answer that is the reference times −1, unless it is told more (``flipped=``).
+
+A check knows what can flip the sign of its quantity and says so with ``flipped``:
+:data:`ROTATION` for a rate linear in ω, a pointer to the minus sign of a formula, or
+to the mirror solution for a negative length.
+"""
+
+ROTATION = FLIPPED + ": check the sense of rotation (clockwise is negative)"
+"""The flipped sign of a quantity odd in ω (a velocity, ω dq/dθ): the sign of ω explains it.
+An acceleration ω² d²q/dθ² or a position does not change sign with the sense of rotation."""
 
 NEWTON_HINT = (
     "Differences this small have several causes: a difference formula other than the one "
@@ -319,7 +333,9 @@ def _missing_step(ratio: float, step_rad: float | None) -> str | None:
     return None
 
 
-def explain_factor(ratio: float, suspects=("deg", "rad/min"), *, step_rad: float | None = None) -> str | None:
+def explain_factor(
+    ratio: float, suspects=("deg", "rad/min"), *, step_rad: float | None = None, flipped: str = FLIPPED
+) -> str | None:
     """Name a unit mix-up that turns the right answer into ``ratio`` times it.
 
     Tries the listed ``SUSPECTS`` alone and in pairs, to the powers ±1 and ±2
@@ -331,13 +347,16 @@ def explain_factor(ratio: float, suspects=("deg", "rad/min"), *, step_rad: float
     quotient: a ratio of h or h² is then named first as a missing division by
     the step (for a 1° grid that ratio is also π/180, which a degree slip gives).
 
+    ``flipped`` is the message of a ratio of −1: what can flip the sign of this
+    quantity (see :data:`FLIPPED` and :data:`ROTATION`).
+
     >>> explain_factor(math.pi / 180, ("deg",), step_rad=math.pi / 180)[:55]
     'off by a factor 1/57.3 (= h, with h = 0.01745 rad): a d'
     """
     if not math.isfinite(ratio) or ratio == 0:
         return None
     if abs(ratio + 1.0) < _FACTOR_TOLERANCE:
-        return "the sign is flipped: check the sense of rotation (clockwise is negative)"
+        return flipped
     size, sign = abs(ratio), math.copysign(1.0, ratio)
     if abs(size - 1.0) < _FACTOR_TOLERANCE:
         return None
@@ -391,6 +410,7 @@ def series(
     small_hint: str | None = NEWTON_HINT,
     step_rad: float | None = None,
     forward: bool = False,
+    flipped: str = FLIPPED,
 ) -> None:
     """Compare an array over the grid with reference values at some angles.
 
@@ -402,6 +422,7 @@ def series(
     factor (see :func:`explain_factor`; ``step_rad`` is the step h of a
     difference quotient), then the largest difference is reported.
     ``forward``: read ``x`` as the values of a forward formula (see :func:`array`).
+    ``flipped``: the message of values that are the reference times −1 (see :data:`FLIPPED`).
     """
     values = array(x, name, grid, forward=forward)
     _current[0] = name
@@ -415,7 +436,7 @@ def series(
             raise AssertionError(f"`{name}`: {message}")
     ratio = _ratio(got, want)
     if ratio is not None:
-        hint = explain_factor(ratio, suspects, step_rad=step_rad)
+        hint = explain_factor(ratio, suspects, step_rad=step_rad, flipped=flipped)
         if hint:
             raise AssertionError(f"`{name}`: {hint}")
     worst = int(np.argmax(np.abs(got - want)))
@@ -447,6 +468,7 @@ def value(
     alternatives: tuple = (),
     suspects=("deg", "rad/min"),
     step_rad: float | None = None,
+    flipped: str = FLIPPED,
 ) -> float:
     """Compare one number (or the value at θ = ``deg`` of an array) with ``want``.
 
@@ -455,8 +477,9 @@ def value(
     alternative's message is given only when the number matches that
     alternative (see :func:`matches_alternative`).  Then a unit factor is
     tried (see :func:`explain_factor`; ``step_rad`` is the step h of a
-    difference quotient), then the miss is reported.  Returns the student's
-    number.
+    difference quotient; ``flipped`` is the message of the reference times
+    −1, see :data:`FLIPPED`), then the miss is reported.  Returns the
+    student's number.
     """
     got = at(x, name, deg, grid) if deg is not None else at(x, name, 0, grid)
     if abs(got - want) <= rtol * abs(want):
@@ -466,7 +489,7 @@ def value(
     for alt, message in alternatives:
         if matches_alternative(got, alt, want, rtol):
             raise AssertionError(f"`{name}`{where} = {got:.6g}{unit_text}, expected {want:.6g}{unit_text}: {message}")
-    hint = explain_factor(got / want, suspects, step_rad=step_rad) if want else None
+    hint = explain_factor(got / want, suspects, step_rad=step_rad, flipped=flipped) if want else None
     if hint:
         raise AssertionError(f"`{name}`{where} = {_fmt(got)}{unit_text}: {hint}")
     shown_want, shown_got = _pair(want, got)
@@ -510,13 +533,15 @@ def band(
     unit: str = "",
     suspects=("deg", "rad/min"),
     step_rad: float | None = None,
+    flipped: str = FLIPPED,
 ) -> float:
     """A loose check: the number (or the value at θ = ``deg``) lies in [low, high].
 
     ``about`` is the rough value the assignment quotes; a miss by a unit
     factor from it is named, or, when ``step_rad`` (the step h of a difference
-    quotient) is given, a missing division by h or h².  Returns the student's
-    number.
+    quotient) is given, a missing division by h or h²; ``flipped`` is the
+    message of a number whose sign is flipped (see :data:`FLIPPED`).  Returns
+    the student's number.
     """
     got = at(x, name, deg, grid) if deg is not None else at(x, name, 0, grid)
     if low <= got <= high:
@@ -529,7 +554,7 @@ def band(
             if low <= got / step_rad**power <= high:
                 hint = _missing_step(step_rad**power, step_rad)
                 break
-    hint = hint or _loose_factor(got, low, high, suspects)
+    hint = hint or _loose_factor(got, low, high, suspects, flipped)
     if hint:
         raise AssertionError(f"`{name}`{where} = {_fmt(got)}{unit_text}: {hint}")
     raise AssertionError(
@@ -538,13 +563,13 @@ def band(
     )
 
 
-def _loose_factor(got: float, low: float, high: float, suspects) -> str | None:
+def _loose_factor(got: float, low: float, high: float, suspects, flipped: str = FLIPPED) -> str | None:
     """Unit mix-ups that would bring ``got`` back into [low, high] (at most two named).
 
     A flipped sign is tried first, then single unit factors, then pairs.
     """
     if low <= -got <= high:
-        return "the sign is flipped: check the sense of rotation (clockwise is negative)"
+        return flipped
     middle = 0.5 * (low + high)
     found = []
     for factor, terms in _combinations(suspects):

@@ -159,6 +159,18 @@ def test_unit_factors_are_named(ratio, words):
     assert words in kc.explain_factor(ratio, ("deg", "rad/min", "rpm", "mm"))
 
 
+def test_a_flipped_sign_names_the_sense_of_rotation_only_where_the_check_says_so():
+    # the check knows whether the sign of ω can explain it (a rate odd in ω) or what else can
+    plain = kc.explain_factor(-1.0, ("deg",))
+    assert plain == "the sign is flipped" and "rotation" not in plain
+    assert kc.explain_factor(-1.0, ("deg",), flipped=kc.ROTATION).endswith("check the sense of rotation (clockwise is negative)")
+    mirror = "a negative length: the mirror solution"
+    assert _fails(kc.value, "r3", -87.178, 87.178, unit="mm", flipped=mirror) == f"`r3` = -87.178 mm: {mirror}"
+    assert "rotation" not in _fails(kc.series, "a", -np.ones(361), {10: 1.0, 40: 1.0})
+    assert "rotation" not in _fails(kc.band, "a", 25.0, -30.0, -20.0, about=-25.0)
+    assert _fails(kc.band, "w", -10.0, 8.0, 12.0, about=10.0, flipped=kc.ROTATION).endswith(kc.ROTATION)
+
+
 @pytest.mark.parametrize("ratio", [1.0, 1.01, 1.3, 2.0, 0.5, 7.0])
 def test_other_ratios_are_not_blamed_on_units(ratio):
     assert kc.explain_factor(ratio, ("deg", "rad/min", "rpm", "mm")) is None

@@ -242,6 +242,7 @@ def test_dphi_centred(dphi_c):
             (BACKWARD, "this matches the backward difference; the question asks for centred"),
         ],
         suspects=("deg",), step_rad=0.017453292519943295,  # h = 1° in radians
+        flipped="the sign is flipped: check the order of the difference, (φᵢ₊₁ − φᵢ₋₁)/(2h)",
     )
 
 # %%
@@ -261,6 +262,7 @@ def test_dphi_forward(dphi_fw):
             (BACKWARD, "this matches the backward difference (φᵢ − φᵢ₋₁)/h; the question asks for forward (φᵢ₊₁ − φᵢ)/h"),
         ],
         suspects=("deg",), step_rad=0.017453292519943295,  # h = 1° in radians
+        flipped="the sign is flipped: check the order of the difference, (φᵢ₊₁ − φᵢ)/h",
     )
 
 # %% [raw]
@@ -441,7 +443,7 @@ alpha_100 = d2beta_dt2_c[i100]  # SOLUTION
 def test_omega_in_rad_per_s(omega):
     import kincheck as kc
 
-    kc.value("omega", omega, 7.5, rtol=1e-9, unit="rad/s", suspects=("rad/min",))
+    kc.value("omega", omega, 7.5, rtol=1e-9, unit="rad/s", suspects=("rad/min",), flipped=kc.ROTATION)
 
 # %%
 def test_near_the_assignment_check(omega_100, alpha_100, omega, beta):
@@ -455,8 +457,10 @@ def test_near_the_assignment_check(omega_100, alpha_100, omega, beta):
     if suspects == ["deg"] and np.nanmax(np.abs(b)) <= 2 * np.pi + 0.5:
         suspects = []  # beta is in radians and omega is right: neither unit explains a miss
     h = np.radians(1.0)  # a missing division by h (or h²) is named first
-    kc.band("omega_100", omega_100, 8.0, 12.0, about=10.0, deg=100, unit="rad/s", suspects=suspects, step_rad=h)
-    kc.band("alpha_100", alpha_100, -32.5, -17.5, about=-25.0, deg=100, unit="rad/s²", suspects=suspects, step_rad=h)
+    kc.band("omega_100", omega_100, 8.0, 12.0, about=10.0, deg=100, unit="rad/s", suspects=suspects, step_rad=h,
+            flipped=kc.ROTATION)
+    kc.band("alpha_100", alpha_100, -32.5, -17.5, about=-25.0, deg=100, unit="rad/s²", suspects=suspects, step_rad=h,
+            flipped="the sign is flipped: ω² d²β/dθ² keeps its sign whichever way the gear turns; check the second difference (βᵢ₊₁ − 2βᵢ + βᵢ₋₁)/h²")
 
 # %%
 """ # BEGIN TEST CONFIG
@@ -466,7 +470,8 @@ def test_omega_100(omega_100):
     import kincheck as kc
 
     OMEGA_100 = 10.6328964886  # reference: omega_beta_100
-    kc.value("omega_100", omega_100, OMEGA_100, deg=100, rtol=5e-3, unit="rad/s", step_rad=0.017453292519943295)
+    kc.value("omega_100", omega_100, OMEGA_100, deg=100, rtol=5e-3, unit="rad/s", step_rad=0.017453292519943295,
+             flipped=kc.ROTATION)
 
 # %%
 """ # BEGIN TEST CONFIG
@@ -480,6 +485,7 @@ def test_alpha_100(alpha_100):
     kc.value(
         "alpha_100", alpha_100, ALPHA_100, deg=100, rtol=5e-3, unit="rad/s²", step_rad=0.017453292519943295,
         alternatives=[(ALPHA_100_FW, "this matches the forward difference applied twice; the question asks for the centred second difference")],
+        flipped="the sign is flipped: ω² d²β/dθ² keeps its sign whichever way the gear turns; check the second difference (βᵢ₊₁ − 2βᵢ + βᵢ₋₁)/h²",
     )
 
 # %%
@@ -498,6 +504,7 @@ def test_dbeta_dt_centred(dbeta_dt_c):
             (FORWARD, "this matches the forward difference; the question asks for centred"),
             (BACKWARD, "this matches the backward difference; the question asks for centred"),
         ],
+        flipped=kc.ROTATION,
     )
 
 # %%
@@ -512,6 +519,7 @@ def test_dbeta_dt_forward(dbeta_dt_fw):
     kc.series(
         "dbeta_dt_fw", dbeta_dt_fw, FORWARD, rtol=1e-5, unit="rad/s", step_rad=0.017453292519943295,
         alternatives=[(CENTRED, "this matches the centred difference; the question asks for forward")],
+        flipped=kc.ROTATION,
     )
 
 # %%
@@ -530,6 +538,7 @@ def test_d2beta_dt2_centred(d2beta_dt2_c):
             (FORWARD_TWICE, "this matches the forward difference applied twice; the question asks for the centred second difference"),
             (GRADIENT_TWICE, "this matches np.gradient applied twice, a centred difference of step 2h; the question asks for the centred second difference (βᵢ₊₁ − 2βᵢ + βᵢ₋₁)/h²"),
         ],
+        flipped="the sign is flipped: ω² d²β/dθ² keeps its sign whichever way the gear turns; check the second difference (βᵢ₊₁ − 2βᵢ + βᵢ₋₁)/h²",
     )
 
 # %%
@@ -544,6 +553,7 @@ def test_d2beta_dt2_forward(d2beta_dt2_fw):
     kc.series(
         "d2beta_dt2_fw", d2beta_dt2_fw, FORWARD_TWICE, rtol=1e-4, unit="rad/s²", step_rad=0.017453292519943295,
         forward=True, alternatives=[(SECOND, "this matches the centred second difference; the question asks for the forward difference applied twice")],
+        flipped="the sign is flipped: ω² d²β/dθ² keeps its sign whichever way the gear turns; check the forward difference applied twice (βᵢ₊₂ − 2βᵢ₊₁ + βᵢ)/h²",
     )
 
 # %%
@@ -561,6 +571,8 @@ def test_dbeta_dt_is_your_omega_times_the_centred_difference(dbeta_dt_c, omega, 
         alternatives=[(kc.own_difference(b, degs, h, "forward", w),
                        "this matches the forward difference of your `beta`; the question asks for centred")],
         suspects=("deg",), small_hint=None, step_rad=h,
+        flipped="the sign is flipped against your own `omega` times the centred difference of your own `beta`: "
+                "check the order of the difference, (βᵢ₊₁ − βᵢ₋₁)/(2h)",
     )
 
 # %%
@@ -582,6 +594,8 @@ def test_d2beta_dt2_is_your_omega_squared_times_the_second_difference(d2beta_dt2
              "this matches np.gradient applied twice to your `beta`, a centred difference of step 2h; the question asks for (βᵢ₊₁ − 2βᵢ + βᵢ₋₁)/h²"),
         ],
         suspects=("deg",), small_hint=None, step_rad=h,
+        flipped="the sign is flipped against your own `omega` squared times the second difference of your own `beta`: "
+                "check the second difference (βᵢ₊₁ − 2βᵢ + βᵢ₋₁)/h²",
     )
 
 # %% [raw]

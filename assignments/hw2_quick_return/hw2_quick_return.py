@@ -230,6 +230,10 @@ def test_solution_satisfies_the_equations(r3, theta3, r4, r5):
         f"equation {labels[worst]} is off by {f[worst]:.3g} mm at θ2 = 30° "
         f"(theta3 read as {'radians' if unit == 'rad' else 'degrees'})"
     )
+    assert values[0] > 0, (
+        f"`r3` = {values[0]:.6g} mm, a negative length: Newton found the mirror solution (r3 < 0, r4 < 0, "
+        "θ3 turned by 180°), which satisfies (I)-(IV) as well; start it from a guess read off the sketch, with r3 > 0"
+    )
 
 # %%
 """ # BEGIN TEST CONFIG
@@ -244,12 +248,15 @@ def test_values_at_30_degrees(r3, theta3, r4, r5):
     R4 = 130.766968306  # reference: r4_30
     R5 = 51.9615242271  # reference: r5_30
     kc.quick_return_input_unit([kc.at(v, n, 30) for v, n in ((r3, "r3"), (theta3, "theta3"), (r4, "r4"), (r5, "r5"))], 30.0)
-    kc.value("r3", r3, R3, rtol=1e-6, unit="mm", suspects=("mm",))
+    MIRROR = ("a negative length: Newton found the mirror solution (r3 < 0, r4 < 0, θ3 turned by 180°), which "
+              "satisfies (I)-(IV) as well; start it from a guess read off the sketch, with r3 > 0")
+    kc.value("r3", r3, R3, rtol=1e-6, unit="mm", suspects=("mm",), flipped=MIRROR)
     kc.value(
-        "r4", r4, R4, rtol=1e-6, unit="mm", suspects=("mm",),
+        "r4", r4, R4, rtol=1e-6, unit="mm", suspects=("mm",), flipped=MIRROR,
         alternatives=[(130.75, "130.75 mm is the hand value of the source report, an arithmetic slip: r4 = (r1 + r6) / sin θ3")],
     )
-    kc.value("r5", r5, R5, rtol=1e-6, unit="mm", suspects=("mm",))
+    kc.value("r5", r5, R5, rtol=1e-6, unit="mm", suspects=("mm",),
+             flipped="the sign is flipped: check the signs of equation (IV), r5 = r4 cos θ3")
     t3 = kc.at(theta3, "theta3", 30)
     unit = kc.unit_of("theta3", [t3], {0: THETA3}, grid=(0, 0, 1), tol=1e-6)
     turn = 2 * math.pi if unit == "rad" else 360.0
@@ -340,7 +347,8 @@ def test_r5_sweep(r5_sweep):
     import kincheck as kc
 
     R5 = {0: 80.0, 30: 51.9615242271, 60: 25.3589838486, 90: 2.93915231796e-15, 120: -25.3589838486, 150: -51.9615242271, 180: -80.0, 210: -103.923048454, 240: -94.6410161514, 270: -4.40872856024e-14, 300: 94.6410161514, 330: 103.923048454}  # reference: r5
-    kc.series("r5_sweep", r5_sweep, R5, rtol=1e-6, unit="mm", suspects=("mm",))
+    kc.series("r5_sweep", r5_sweep, R5, rtol=1e-6, unit="mm", suspects=("mm",),
+              flipped="the sign is flipped: check the signs of equation (IV), r5 = r4 cos θ3")
 
 # %% [raw]
 # # END TESTS

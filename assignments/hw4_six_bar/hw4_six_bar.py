@@ -232,15 +232,14 @@ def test_rates_follow_from_position(x_D, v_D, a_D):
     kc.series("v_D", v_D, own_v, rtol=1e-6, unit="cm/s", suspects=("deg",), small_hint=None, alternatives=[
         (kc.own_difference(x, inside, h, "forward", -10.0),
          "this matches the forward difference of your `x_D`; the question asks for centred"),
-        (kc.own_difference(x, inside, h, "centred", 10.0),
-         "the sign is flipped: check the sense of rotation (clockwise is negative)"),
+        (kc.own_difference(x, inside, h, "centred", 10.0), kc.ROTATION),
     ])
     kc.series("a_D", a_D, own_a, rtol=1e-6, unit="cm/s²", suspects=("deg",), small_hint=None, alternatives=[
         (kc.own_difference(x, inside, h, "forward_twice", 100.0),
          "this matches the forward difference of your `x_D` applied twice; the question asks for the centred second difference"),
         (kc.own_difference(x, inside, h, "gradient_twice", 100.0),
          "this matches np.gradient applied twice to your `x_D`; the question asks for the centred second difference"),
-    ])
+    ], flipped="the sign is flipped: a = ω2² d²x/dθ2², whose sign does not depend on the sense of rotation")
 
 # %%
 """ # BEGIN TEST CONFIG
@@ -250,7 +249,7 @@ def test_slider_velocity(v_D):
     import kincheck as kc
 
     V = {0: -4.32064448025, 30: 9.57619107951, 60: 17.9177555236, 90: 20.2931974979, 120: 17.2834210237, 150: 10.9560918928, 180: 3.89930053432, 210: -2.944953495, 240: -10.3583120403, 270: -18.7580541703, 300: -24.3988785229, 330: -19.1450862035}  # reference: v
-    kc.series("v_D", v_D, V, rtol=5e-3, unit="cm/s", suspects=("deg",))
+    kc.series("v_D", v_D, V, rtol=5e-3, unit="cm/s", suspects=("deg",), flipped=kc.ROTATION)
 
 # %%
 """ # BEGIN TEST CONFIG
@@ -260,7 +259,8 @@ def test_slider_acceleration(a_D):
     import kincheck as kc
 
     A = {0: -302.174202587, 30: -216.268322148, 60: -102.019821361, 90: 9.93661951135, 120: 98.0960436806, 150: 134.423977006, 180: 132.163347752, 210: 132.431990323, 240: 153.307831871, 270: 156.89460999, 300: 26.2653090339, 330: -223.06027955}  # reference: a
-    kc.series("a_D", a_D, A, rtol=5e-3, unit="cm/s²", suspects=("deg",))
+    kc.series("a_D", a_D, A, rtol=5e-3, unit="cm/s²", suspects=("deg",),
+              flipped="the sign is flipped: a = ω2² d²x/dθ2², whose sign does not depend on the sense of rotation")
 
 # %%
 """ # BEGIN TEST CONFIG
