@@ -133,6 +133,7 @@ def expected_hw1() -> dict:
         "d2beta_dt2_gradient_twice": _at(omega**2 * np.gradient(np.gradient(beta, h), h), theta_deg, check),
         "omega_beta_100": float(_column(kin, "omega_beta")[i100]),
         "alpha_beta_100": float(_column(kin, "alpha_beta")[i100]),
+        "omega_beta_fw_100": float(omega * derivatives.forward(beta, h)[i100]),
         "alpha_beta_fw_100": float(omega**2 * derivatives.forward_of_forward(beta, h)[i100]),
     }
 

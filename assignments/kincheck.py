@@ -472,23 +472,26 @@ def value(
 ) -> float:
     """Compare one number (or the value at θ = ``deg`` of an array) with ``want``.
 
-    Passes within the relative tolerance ``rtol`` (0.5 % by default).
-    ``alternatives`` are ``(value, message)`` pairs tried when it fails; an
-    alternative's message is given only when the number matches that
-    alternative (see :func:`matches_alternative`).  Then a unit factor is
+    Passes within the relative tolerance ``rtol`` (0.5 % by default), unless
+    it matches one of the ``alternatives``, ``(value, message)`` pairs such as
+    the forward difference where the centred one is asked: an alternative's
+    message is given when the number matches it (see
+    :func:`matches_alternative`), even within ``rtol`` of ``want`` (a forward
+    ω at 100° lies 0.3 % from the exact one, but 300 times closer to the
+    forward value than the centred answer is).  Then a unit factor is
     tried (see :func:`explain_factor`; ``step_rad`` is the step h of a
     difference quotient; ``flipped`` is the message of the reference times
     −1, see :data:`FLIPPED`), then the miss is reported.  Returns the
     student's number.
     """
     got = at(x, name, deg, grid) if deg is not None else at(x, name, 0, grid)
-    if abs(got - want) <= rtol * abs(want):
-        return got
     where = f" at θ = {deg:g}°" if deg is not None else ""
     unit_text = f" {unit}" if unit else ""
     for alt, message in alternatives:
         if matches_alternative(got, alt, want, rtol):
-            raise AssertionError(f"`{name}`{where} = {got:.6g}{unit_text}, expected {want:.6g}{unit_text}: {message}")
+            raise AssertionError(f"`{name}`{where} = {got:.7g}{unit_text}, expected {want:.6g}{unit_text}: {message}")
+    if abs(got - want) <= rtol * abs(want):
+        return got
     hint = explain_factor(got / want, suspects, step_rad=step_rad, flipped=flipped) if want else None
     if hint:
         raise AssertionError(f"`{name}`{where} = {_fmt(got)}{unit_text}: {hint}")

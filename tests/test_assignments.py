@@ -387,10 +387,23 @@ def test_alpha_between_the_centred_and_the_forward_twice_value_names_no_formula(
     assert message == "`alpha_100` at θ = 100° = -28 rad/s², expected -28.375 rad/s² (within 0.50%): off by -1.32 %"
     # the forward difference applied twice itself is named, with the number and its unit
     message = _fails(check, forward_twice)
-    assert message.startswith("`alpha_100` at θ = 100° = -28.1266 rad/s², expected -28.375 rad/s²: ")
+    assert message.startswith("`alpha_100` at θ = 100° = -28.12656 rad/s², expected -28.375 rad/s²: ")
     assert "this matches the forward difference applied twice" in message
     assert kc.matches_alternative(-28.13, forward_twice, centred, 5e-3)
     assert not kc.matches_alternative(-28.0, forward_twice, centred, 5e-3)
+
+
+def test_omega_100_by_the_forward_difference_is_named_though_within_the_tolerance():
+    ref = build.load_expected(HW1)
+    exact, forward = ref["omega_beta_100"], ref["omega_beta_fw_100"]
+    assert abs(forward / exact - 1) < 5e-3  # inside the 0.5 % the check allows
+    check = _master_test(HW1, "test_omega_100")
+    message = _fails(check, forward)
+    assert message.startswith("`omega_100` at θ = 100° = 10.59998 rad/s, expected 10.6329 rad/s: ")
+    assert "this matches the forward difference; the question asks for the centred difference" in message
+    check(ref["dbeta_dt_centred"][100])  # the centred value passes, and so does the exact one
+    check(exact)
+    check(10.62)  # between the two: it names no formula, and it lies within 0.5 %
 
 
 def test_an_array_between_the_asked_and_another_difference_names_no_formula():
