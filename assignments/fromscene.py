@@ -201,7 +201,7 @@ def generate(scene_path: Path, root: Path) -> Path:
         raise SystemExit(f"{scene_path}: the check angle must be a whole number of degrees")
     template = (Path(__file__).with_name("fromscene_master.py.txt")).read_text()
     (folder / f"{name}.py").write_text(template.format(**values))
-    (folder / "mistakes.toml").write_text(MISTAKES.format(**values))
+    (folder / "mistakes.toml").write_text(MISTAKES.format(**values) + (ANGLE_MISTAKES if angle else ""))
     return folder
 
 
@@ -238,4 +238,17 @@ feedback = ["`accel_c`: off by a factor 1/3283 (= (π/180)²)"]
 [[mistake.edit]]
 find = "accel_c = OMEGA**2 * second_difference(q, h)"
 replace = "accel_c = OMEGA**2 * second_difference(q, np.degrees(h))"
+'''
+
+ANGLE_MISTAKES = '''
+[[mistake]]
+name = "q-check-degrees"
+about = "the output at the check angle handed in in degrees where radians are asked"
+score = 10  # fails only the hidden check of `q_check`; `X` and `q` stay in rad
+feedback = ["degrees where radians are asked? (expected"]
+not_feedback = ["off by +", "off by -"]
+
+[[mistake.edit]]
+find = "q_check = q[k_check]"
+replace = "q_check = np.degrees(q[k_check])"
 '''

@@ -29,6 +29,7 @@ __all__ = [
     "ROTATION",
     "SUSPECTS",
     "angles",
+    "angle_value",
     "array",
     "floats",
     "at",
@@ -501,6 +502,37 @@ def value(
         f"(within {_tolerance(rtol)}): "
         f"off by {100 * (got - want) / want:+.3g} %"
     )
+
+
+def angle_value(
+    name: str, x, want: float, *, deg: float | None = None, grid=FULL_TURN, tol: float = 1e-7
+) -> float:
+    """Compare one angle (or the value at θ = ``deg`` of an array) with ``want`` (rad), modulo whole turns.
+
+    Passes when the angle, in radians, is ``want`` plus whole turns (within
+    ``tol`` relative to max(|want|, 1)).  An angle that is ``want`` in degrees
+    (plus whole turns) is named as degrees where radians are asked; it is read
+    before any reduction to one turn, which would hide the factor 180/π.  Any
+    other miss is reported after reduction to one turn.  Returns the student's
+    number.
+    """
+    got = at(x, name, deg, grid) if deg is not None else at(x, name, 0, grid)
+    size = tol * max(abs(want), 1.0)
+
+    def miss(angle_rad: float) -> float:
+        return abs(float(_wrapped(np.float64(angle_rad - want))))
+
+    if miss(got) <= size:
+        return got
+    where = f" at θ = {deg:g}°" if deg is not None else ""
+    if miss(math.radians(got)) <= size:
+        turns = round((got - math.degrees(want)) / 360.0)
+        extra = f" plus {turns} whole turns" if turns else ""
+        raise AssertionError(
+            f"`{name}`{where} = {_fmt(got)} rad: that is the expected {math.degrees(want):.6g}°{extra} in degrees: "
+            f"degrees where radians are asked? (expected {want:.6g} rad; use np.radians)"
+        )
+    return value(name, got % (2 * math.pi), want, rtol=tol, unit="rad", suspects=())
 
 
 ALTERNATIVE_CLOSER = 10.0

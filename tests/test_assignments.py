@@ -193,6 +193,17 @@ def test_value_at_100_degrees_is_picked_from_a_full_turn_array():
     assert "should be a number" in _fails(kc.at, "ten", "w", 100)
 
 
+def test_one_angle_is_read_modulo_whole_turns_and_degrees_are_named():
+    want = 2.1352859378
+    assert kc.angle_value("q", want + 2 * math.pi, want) == pytest.approx(want + 2 * math.pi)
+    kc.angle_value("q", want - 4 * math.pi, want)
+    message = _fails(kc.angle_value, "q", math.degrees(want), want, deg=100)
+    assert message.startswith("`q` at θ = 100° = 122.34 rad: that is the expected 122.343° in degrees: "
+                              "degrees where radians are asked?")
+    assert "whole turns" in _fails(kc.angle_value, "q", math.degrees(want) + 360, want)
+    assert "off by +38.7 %" in _fails(kc.angle_value, "q", 2.9624, want)
+
+
 def test_arrays_are_read_with_their_shape_checked():
     assert kc.array(np.zeros((361, 1)), "y").shape == (361,)
     assert kc.array(list(range(181)), "y", grid=(0, 180, 1)).shape == (181,)

@@ -11,8 +11,9 @@ nothing of the development environment), and grade there with ``otter run``:
 * every deliberate mistake of ``assignments/<hw>/mistakes.toml`` scores exactly the
   ``score`` it states (its ``rubric`` says which checks fail) and gets the feedback
   it names;
-* a homework generated from a scene none of the ready homework uses (an offset
-  slider-crank) builds and grades the same way.
+* homework generated from scenes none of the ready homework uses (an offset
+  slider-crank, whose output is a length, and a crank-rocker, whose output is an
+  angle) build and grade the same way, with the mistakes ``build.py new`` writes.
 
 Everything is built once per pytest run; the submissions are graded two at a
 time.  The environment needs PyPI (or a local index) to be reachable.
@@ -69,17 +70,45 @@ step_deg = 1
 at_deg = 60
 """
 
+CRANK_ROCKER = """\
+[scene]
+description = "A crank-rocker at 100 rpm"
+
+[mechanism]
+linkage = "four_bar"
+unit = "mm"
+
+[mechanism.dimensions]
+ground = 40
+crank = 10
+coupler = 30
+rocker = 30
+
+[input]
+speed = "100 rpm"
+start_deg = 0
+stop_deg = 360
+step_deg = 1
+
+[[check]]
+at_deg = 100
+"""
+
+GENERATED = {"hw_offset_slider_crank": OFFSET_SLIDER_CRANK, "hw_crank_rocker": CRANK_ROCKER}
+
 
 @pytest.fixture(scope="session")
 def built(tmp_path_factory):
-    """otter assign of every homework and of one generated from a scene: {name: result folder}."""
+    """otter assign of every homework and of those generated from scenes: {name: result folder}."""
     pytest.importorskip("otter")
     pytest.importorskip("jupytext")
     out = tmp_path_factory.mktemp("assignments")
-    scene = out / "offset-slider-crank.toml"
-    scene.write_text(OFFSET_SLIDER_CRANK)
-    generated = build.new_from_scene(scene, out / "masters")
-    names = [*HOMEWORK, generated]
+    generated = []
+    for name, text in GENERATED.items():
+        scene = out / f"{name.removeprefix('hw_').replace('_', '-')}.toml"
+        scene.write_text(text)
+        generated.append(build.new_from_scene(scene, out / "masters"))
+    names = [*HOMEWORK, *generated]
     with ThreadPoolExecutor(WORKERS) as pool:
         folders = list(pool.map(lambda hw: build.assign(hw, out / "dist", run_tests=False), names))
     return {Path(str(hw)).name: (hw, folder) for hw, folder in zip(names, folders)}
@@ -190,7 +219,7 @@ def _public_points(text: str) -> list[str]:
     return re.findall(r"@test_case\(points=([\d.]+), hidden=False", text)
 
 
-@pytest.mark.parametrize("hw", [*HOMEWORK, "hw_offset_slider_crank"])
+@pytest.mark.parametrize("hw", [*HOMEWORK, *GENERATED])
 def test_zip_asks_for_what_the_notebook_imports_and_logs_match(built, hw):
     """The image gets numpy and matplotlib; public checks carry the same points for
     students as for grading, so otter run finds no "differs from logged score"."""
@@ -222,7 +251,7 @@ def test_grading_environment_is_isolated(built, environments, tmp_path):
 # --------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("hw", [*HOMEWORK, "hw_offset_slider_crank"])
+@pytest.mark.parametrize("hw", [*HOMEWORK, *GENERATED])
 def test_solution_scores_full_marks(graded, hw):
     results = _results(graded, hw, "solution")
     got, possible = build.score(results)
@@ -245,11 +274,17 @@ def test_mistake_scores_what_mistakes_toml_states_and_is_named(graded, hw, name)
     assert "Traceback" not in text and "ValueError" not in text, text
 
 
-def test_generated_homework_mistakes(built, graded):
-    hw, _ = built["hw_offset_slider_crank"]
+@pytest.mark.parametrize("name", GENERATED)
+def test_generated_homework_mistakes(built, graded, name):
+    hw, _ = built[name]
+    names = [m["name"] for m in build.mistakes(hw)]
+    assert ("q-check-degrees" in names) == (name == "hw_crank_rocker")  # only where the output is an angle
     for mistake in build.mistakes(hw):
-        results = _results(graded, "hw_offset_slider_crank", mistake["name"])
+        results = _results(graded, name, mistake["name"])
         got, _ = build.score(results)
-        assert got == mistake["score"], build.feedback(results)
+        text = build.feedback(results)
+        assert got == mistake["score"], f"{mistake['name']}: {got}\n{text}"
         for words in mistake["feedback"]:
-            assert words in build.feedback(results)
+            assert words in text, f"{mistake['name']}: feedback lacks {words!r}:\n{text}"
+        for words in mistake.get("not_feedback", []):
+            assert words not in text, f"{mistake['name']}: feedback names {words!r}:\n{text}"
