@@ -184,6 +184,11 @@ def generate(scene_path: Path, root: Path) -> Path:
     guess = [round(v, 1) if u in mech.angles else round(v, 0) for u, v in zip(mech.unknowns, start)]
     angle = output in mech.angles
     unit = "rad" if angle else mech.length_unit
+    kinds = ["rad" if u in mech.angles else mech.length_unit for u in mech.unknowns]
+    if len(set(kinds)) == 1:  # all angles, or all lengths
+        guess_units = f"in {kinds[0]}"
+    else:
+        guess_units = ", ".join(f"{u} in {k}" for u, k in zip(mech.unknowns, kinds))
     out_i = mech.unknowns.index(output)
     n = len(inputs_deg)
     grid = (float(inputs_deg[0]), float(inputs_deg[-1]), float(scene.step_deg))
@@ -192,7 +197,7 @@ def generate(scene_path: Path, root: Path) -> Path:
         rate_unit=f"{unit}/s", accel_unit=f"{unit}/s²", n=n, out_i=out_i,
         start=_fmt(grid[0]), stop=_fmt(grid[1]), step=_fmt(grid[2]), check=_fmt(check),
         omega=repr(float(scene.speed)), speed=scene.speed_text or f"{scene.speed:g} rad/s",
-        guess=repr(guess), unknowns=", ".join(mech.unknowns), grid=repr(grid),
+        guess=repr(guess), guess_units=guess_units, unknowns=", ".join(mech.unknowns), grid=repr(grid),
         angle=repr(angle), steps=repr(list(STEPS_DEG)), m=len(mech.unknowns),
         angle_columns=repr([i for i, u in enumerate(mech.unknowns) if u in mech.angles]),
         unit_text=mech.length_unit,

@@ -510,6 +510,20 @@ def test_student_notebook_runs_all_cells(hw, monkeypatch, tmp_path):
         assert "`phi` is not set yet: replace its `...`" in _fails(kc.array, namespace["phi"], "phi")
 
 
+def test_generated_master_says_the_units_of_its_guess_and_of_q_check(tmp_path):
+    """The comment of GUESS names the unknowns' own units; the question says q_check is in rad."""
+    pytest.importorskip("sympy")
+    scene = tmp_path / "crank-rocker.toml"
+    scene.write_text(
+        '[scene]\ndescription = "A crank-rocker at 100 rpm"\n[mechanism]\nlinkage = "four_bar"\nunit = "mm"\n'
+        "[mechanism.dimensions]\nground = 40\ncrank = 10\ncoupler = 30\nrocker = 30\n"
+        '[input]\nspeed = "100 rpm"\nstart_deg = 0\nstop_deg = 360\nstep_deg = 1\n[[check]]\nat_deg = 100\n'
+    )
+    master = build.master_path(build.new_from_scene(scene, tmp_path)).read_text()
+    assert "# (theta3, theta4) at START_DEG, in rad\n" in master
+    assert "its value at the check angle in `q_check`,\n# both in rad." in master
+
+
 def test_the_scene_format_is_linked_to_its_page():
     readme = (ASSIGNMENTS / "README.md").read_text()
     assert "numkin/scene.py" not in readme
