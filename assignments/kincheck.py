@@ -7,7 +7,7 @@ values, which ``python assignments/build.py expected`` computes with numkin.
 
 Each check either returns quietly or raises ``AssertionError`` with a message
 that says what looks off: a unit (degrees where radians are asked, rad/min
-where rad/s is asked, rpm, mm), a sign, the forward difference where the
+where rad/s is asked, rpm, rev/s, mm), a sign, the forward difference where the
 centred one is asked, a Newton iteration stopped too early, a branch jump.
 
 Arrays are sampled on a grid of input angles in degrees, for example
@@ -76,6 +76,11 @@ SUSPECTS = {
         1000.0,
         "millimetres where metres are asked?",
         "metres where millimetres are asked?",
+    ),
+    "rev": (
+        2.0 * math.pi,
+        "multiplied by 2π once too often? (1 rev/s = 2π rad/s)",
+        "rev/s (turns per second) where rad/s is asked? (1 rev/s = 2π rad/s)",
     ),
 }
 
@@ -277,6 +282,7 @@ _SYMBOLS = {
     "deg": ("180/π", "π/180"),
     "rpm": ("60/2π", "2π/60"),
     "mm": ("1000", "1/1000"),
+    "rev": ("2π", "1/2π"),
 }
 
 

@@ -171,6 +171,17 @@ def test_a_flipped_sign_names_the_sense_of_rotation_only_where_the_check_says_so
     assert _fails(kc.band, "w", -10.0, 8.0, 12.0, about=10.0, flipped=kc.ROTATION).endswith(kc.ROTATION)
 
 
+def test_rev_per_s_is_named_where_the_check_suspects_it():
+    rev = ("deg", "rad/min", "rev")
+    assert "off by a factor 1/6.283 (= 1/2π): rev/s (turns per second) where rad/s is asked?" in kc.explain_factor(
+        1 / (2 * math.pi), rev)
+    assert "1/39.48 (= (1/2π)²): rev/s" in kc.explain_factor(1 / (2 * math.pi) ** 2, rev)
+    assert "rpm where rad/s is asked" in kc.explain_factor(60 / (2 * math.pi), ("rpm", "rev", "rad/min"))
+    assert kc.explain_factor(1 / (2 * math.pi), ("deg", "rad/min")) is None
+    for ratio in (1.3, 2.0, 0.5, 7.0):
+        assert kc.explain_factor(ratio, rev) is None
+
+
 @pytest.mark.parametrize("ratio", [1.0, 1.01, 1.3, 2.0, 0.5, 7.0])
 def test_other_ratios_are_not_blamed_on_units(ratio):
     assert kc.explain_factor(ratio, ("deg", "rad/min", "rpm", "mm")) is None

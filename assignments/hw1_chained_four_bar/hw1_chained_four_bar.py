@@ -443,7 +443,7 @@ alpha_100 = d2beta_dt2_c[i100]  # SOLUTION
 def test_omega_in_rad_per_s(omega):
     import kincheck as kc
 
-    kc.value("omega", omega, 7.5, rtol=1e-9, unit="rad/s", suspects=("rad/min",), flipped=kc.ROTATION)
+    kc.value("omega", omega, 7.5, rtol=1e-9, unit="rad/s", suspects=("rad/min", "rev"), flipped=kc.ROTATION)
 
 # %%
 def test_near_the_assignment_check(omega_100, alpha_100, omega, beta):
@@ -452,7 +452,8 @@ def test_near_the_assignment_check(omega_100, alpha_100, omega, beta):
 
     # which unit slips fit is decided by what else was handed in, not by the size alone
     w = kc.at(omega, "omega", 0)
-    suspects = ["deg"] if abs(w - 7.5) < 1e-6 * 7.5 else ["rad/min"] if abs(w - 450.0) < 1e-3 else ["deg", "rad/min"]
+    slips = {7.5: ["deg"], 450.0: ["rad/min"], 7.5 / (2 * np.pi): ["rev"]}  # ω right, in rad/min, in rev/s
+    suspects = next((s for w_is, s in slips.items() if abs(w - w_is) < 1e-6 * w_is), ["deg", "rad/min", "rev"])
     b = kc.array(beta, "beta")
     if suspects == ["deg"] and np.nanmax(np.abs(b)) <= 2 * np.pi + 0.5:
         suspects = []  # beta is in radians and omega is right: neither unit explains a miss
@@ -473,7 +474,7 @@ def test_omega_100(omega_100):
     OMEGA_100_FW = 10.5999795275  # reference: omega_beta_fw_100
     kc.value(
         "omega_100", omega_100, OMEGA_100, deg=100, rtol=5e-3, unit="rad/s", step_rad=0.017453292519943295,
-        alternatives=[(OMEGA_100_FW, "this matches the forward difference; the question asks for the centred difference")],
+        suspects=("deg", "rad/min", "rev"), alternatives=[(OMEGA_100_FW, "this matches the forward difference; the question asks for the centred difference")],
         flipped=kc.ROTATION,
     )
 
@@ -488,6 +489,7 @@ def test_alpha_100(alpha_100):
     ALPHA_100_FW = -28.1265557975  # reference: alpha_beta_fw_100
     kc.value(
         "alpha_100", alpha_100, ALPHA_100, deg=100, rtol=5e-3, unit="rad/s²", step_rad=0.017453292519943295,
+        suspects=("deg", "rad/min", "rev"),
         alternatives=[(ALPHA_100_FW, "this matches the forward difference applied twice; the question asks for the centred second difference")],
         flipped="the sign is flipped: ω² d²β/dθ² keeps its sign whichever way the gear turns; check the second difference (βᵢ₊₁ − 2βᵢ + βᵢ₋₁)/h²",
     )
@@ -504,6 +506,7 @@ def test_dbeta_dt_centred(dbeta_dt_c):
     BACKWARD = {10: 5.82535941365, 40: 13.6615378892, 70: 12.9937886847, 100: 10.6660146395, 130: 8.66889990148, 160: 3.65529973138, 190: -8.93605573479, 220: -13.1151918752, 250: -12.9133736458, 280: -11.289247993, 310: -7.16381887055, 340: -2.02826076113}  # reference: dbeta_dt_backward
     kc.series(
         "dbeta_dt_c", dbeta_dt_c, CENTRED, rtol=1e-5, unit="rad/s", step_rad=0.017453292519943295,
+        suspects=("deg", "rad/min", "rev"),
         alternatives=[
             (FORWARD, "this matches the forward difference; the question asks for centred"),
             (BACKWARD, "this matches the backward difference; the question asks for centred"),
@@ -522,6 +525,7 @@ def test_dbeta_dt_forward(dbeta_dt_fw):
     FORWARD = {10: 6.1539575112, 40: 13.7627006538, 70: 12.9095510357, 100: 10.5999795275, 130: 8.5867169372, 160: 3.32443065016, 190: -9.24976225005, 220: -13.1364439499, 250: -12.8885650637, 280: -11.1909207485, 310: -7.00095892645, 340: -1.83373672838}  # reference: dbeta_dt_forward
     kc.series(
         "dbeta_dt_fw", dbeta_dt_fw, FORWARD, rtol=1e-5, unit="rad/s", step_rad=0.017453292519943295,
+        suspects=("deg", "rad/min", "rev"),
         alternatives=[(CENTRED, "this matches the centred difference; the question asks for forward")],
         flipped=kc.ROTATION,
     )
@@ -538,6 +542,7 @@ def test_d2beta_dt2_centred(d2beta_dt2_c):
     GRADIENT_TWICE = {10: 141.15020446, 40: 43.4968361987, 70: -36.1776377673, 100: -28.3810960095, 130: -35.3383400878, 160: -142.191413548, 190: -134.807188983, 220: -9.16255435504, 250: 10.667562033, 280: 42.252398488, 310: 69.9758272445, 340: 83.6149448045}  # reference: d2beta_dt2_gradient_twice
     kc.series(
         "d2beta_dt2_c", d2beta_dt2_c, SECOND, rtol=1e-4, unit="rad/s²", step_rad=0.017453292519943295,
+        suspects=("deg", "rad/min", "rev"),
         alternatives=[
             (FORWARD_TWICE, "this matches the forward difference applied twice; the question asks for the centred second difference"),
             (GRADIENT_TWICE, "this matches np.gradient applied twice, a centred difference of step 2h; the question asks for the centred second difference (βᵢ₊₁ − 2βᵢ + βᵢ₋₁)/h²"),
@@ -556,6 +561,7 @@ def test_d2beta_dt2_forward(d2beta_dt2_fw):
     FORWARD_TWICE = {10: 141.834312181, 40: 38.0004175175, 70: -36.3696217271, 100: -28.1265557975, 130: -36.417933694, 160: -148.743488111, 190: -128.172584077, 220: -7.63602782686, 250: 11.1778128316, 280: 43.7021492814, 310: 70.1928583397, 340: 85.0328710984}  # reference: d2beta_dt2_forward_twice
     kc.series(
         "d2beta_dt2_fw", d2beta_dt2_fw, FORWARD_TWICE, rtol=1e-4, unit="rad/s²", step_rad=0.017453292519943295,
+        suspects=("deg", "rad/min", "rev"),
         forward=True, alternatives=[(SECOND, "this matches the centred second difference; the question asks for the forward difference applied twice")],
         flipped="the sign is flipped: ω² d²β/dθ² keeps its sign whichever way the gear turns; check the forward difference applied twice (βᵢ₊₂ − 2βᵢ₊₁ + βᵢ)/h²",
     )
