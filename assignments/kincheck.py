@@ -37,6 +37,8 @@ __all__ = [
     "closure",
     "continuity",
     "chained_four_bar_angles",
+    "chained_four_bar_assembly",
+    "four_bar_side",
     "four_bar_gap",
     "own_difference",
     "quick_return_input_unit",
@@ -740,6 +742,63 @@ def chained_four_bar_angles(phi, beta):
 
     unit, beta_rad, residual = read_angles("beta", beta, gap2)
     return phi_rad, beta_rad, unit, residual
+
+
+def four_bar_side(out_rad, in_rad, r_fixed, r_in, r_out) -> np.ndarray:
+    """Which of the two assemblies of the homework's four-bar the angles are on, one value per sample.
+
+    With the output pivot at the origin, the end of the input link is
+    ``P = r_fixed + r_in e^{i in}`` and the output joint ``Q = r_out e^{i out}``;
+    the coupler joins them.  For a given input the loop closes at the two
+    intersections of the circles about the origin (radius ``r_out``) and about
+    ``P`` (radius of the coupler), mirror images across the line from the origin
+    to ``P``.  The sine of the angle from ``P`` to ``Q`` is returned: positive on
+    one assembly, negative on the other, zero only at a toggle position.
+    """
+    p = r_fixed + r_in * np.exp(1j * np.asarray(in_rad, dtype=float))
+    q = np.exp(1j * np.asarray(out_rad, dtype=float))
+    return np.imag(np.conj(p) * q) / np.abs(p)
+
+
+_CHAINED = {
+    # name: (dimensions fixed, input, output, the side of the assembly asked, the question's guess at θ = 0)
+    "phi": ((7.0, 1.94, 2.36), 1.0, "linkage 1", "(φ, ψ) = (45°, 60°)"),
+    "beta": ((1.25, 2.39, 1.26), -1.0, "linkage 2", "(β, γ) = (30°, 270°)"),
+}
+
+
+def chained_four_bar_assembly(name: str, phi, beta=None) -> None:
+    """Raise if φ (``name`` "phi") or β ("beta") closes its loop on the other assembly than the one asked.
+
+    The question's guesses at θ = 0 lead, by continuation, to one assembly of each
+    linkage; a guess near the other circle intersection leads to its mirror image,
+    which closes the loop and turns without a jump, so that only its side
+    (:func:`four_bar_side`) tells it apart.  Raises only on that evidence: angles
+    that cannot be read or do not close the loop are left to the other checks.
+    """
+    try:
+        if name == "phi":
+            _, out, residual = read_angles(
+                "phi", phi, lambda a: four_bar_gap(a, np.radians(np.arange(a.size)), 7.0, 1.94, 6.86, 2.36)
+            )
+            inputs = np.radians(np.arange(out.size))
+        else:
+            phi_rad, out, _, residual = chained_four_bar_angles(phi, beta)
+            inputs = phi_rad[: out.size] + np.radians(149.0)
+    except AssertionError:
+        return
+    (r_fixed, r_in, r_out), side, linkage, guess = _CHAINED[name]
+    sides = four_bar_side(out, inputs, r_fixed, r_in, r_out)
+    closes = np.isfinite(sides) & (np.nan_to_num(np.abs(residual), nan=1.0) < 1e-6)
+    if not closes.any() or np.any(sides[closes] * side > 0):
+        return
+    first = int(np.flatnonzero(closes)[0])
+    raise AssertionError(
+        f"`{name}` is on the other assembly (the other circle intersection) of {linkage}: the loop closes "
+        f"and turns without a jump, but from θ = {first}° on, the output link lies on the other side of the line "
+        "from its pivot to the end of the input link, the mirror image of the asked assembly. Start at θ = 0 "
+        f"from the question's guess {guess} and then from each previous solution."
+    )
 
 
 def six_bar_gap(crank_rad, t3, t4, t5, x, *, crank=1.0, coupler=4.0, o4=(3.7, -2.0), o4b=3.0, bc=3.2,

@@ -368,6 +368,29 @@ def test_chained_angles_are_read_in_the_unit_that_closes_each_loop():
     assert np.allclose(beta_rad, beta) and np.allclose(phi_rad, phi)
 
 
+def test_the_other_assembly_of_each_chained_linkage_is_named():
+    from numkin import linkages
+
+    theta = np.radians(np.arange(361.0))
+    sweep = linkages.chained_four_bars().sweep(theta)
+    phi, beta = np.asarray(sweep["phi"]), np.asarray(sweep["beta"])
+    kc.chained_four_bar_assembly("phi", phi)
+    kc.chained_four_bar_assembly("beta", phi, beta)
+    kc.chained_four_bar_assembly("beta", phi, np.degrees(beta))
+    # the mirror image across the line from the output pivot to the end of the input link closes the loop too
+    alpha = phi + np.radians(149.0)
+    mirror = 2 * np.angle(1.25 + 2.39 * np.exp(1j * alpha)) - beta
+    assert kc.four_bar_gap(mirror, alpha, 1.25, 2.39, 1.87, 1.26).max() < 1e-9
+    message = _fails(kc.chained_four_bar_assembly, "beta", phi, mirror)
+    assert message.startswith("`beta` is on the other assembly (the other circle intersection) of linkage 2")
+    mirror_phi = 2 * np.angle(7.0 + 1.94 * np.exp(1j * theta)) - phi
+    assert "of linkage 1" in _fails(kc.chained_four_bar_assembly, "phi", mirror_phi)
+    # angles that do not close the loop, or are missing, are left to the other checks
+    kc.chained_four_bar_assembly("beta", phi, beta + 0.1)
+    kc.chained_four_bar_assembly("beta", phi, None)
+    kc.chained_four_bar_assembly("phi", ...)
+
+
 # --------------------------------------------------------------------------
 # the hidden tests of homework 1 on answers near, but not at, the reference
 # --------------------------------------------------------------------------

@@ -142,6 +142,7 @@ def test_phi_closes_loop_on_one_branch(phi):
     print(f"`phi` read as {'radians' if unit == 'rad' else 'degrees'}")
     kc.closure("phi", residual, tol=1e-9)
     kc.continuity("phi", angles)
+    kc.chained_four_bar_assembly("phi", phi)
 
 # %%
 """ # BEGIN TEST CONFIG
@@ -150,6 +151,7 @@ hidden: true
 def test_phi_values(phi):
     import kincheck as kc
 
+    kc.chained_four_bar_assembly("phi", phi)  # names the other assembly, where that is why the values differ
     PHI = {10: 0.48101131173, 40: 0.801992851788, 70: 1.21832147982, 100: 1.64824558046, 130: 2.04593688727, 160: 2.31500391439, 190: 2.20276535076, 220: 1.71369175609, 250: 1.22685763437, 280: 0.852830800482, 310: 0.579419252725, 340: 0.417601762442}  # reference: phi
     kc.angles("phi", phi, PHI, tol=1e-6)
 
@@ -366,14 +368,16 @@ def test_beta_closes_loop_on_one_branch(phi, beta):
     print(f"`beta` read as {'radians' if unit == 'rad' else 'degrees'}")
     kc.closure("beta", residual, tol=1e-9)
     kc.continuity("beta", angles)
+    kc.chained_four_bar_assembly("beta", phi, beta)
 
 # %%
 """ # BEGIN TEST CONFIG
 hidden: true
 """ # END TEST CONFIG
-def test_beta_values(beta):
+def test_beta_values(phi, beta):
     import kincheck as kc
 
+    kc.chained_four_bar_assembly("beta", phi, beta)  # names the other assembly, where that is why the values differ
     BETA = {10: 1.23603736328, 40: 1.96570412988, 70: 2.92817258874, 100: 3.747693474, 130: 4.42245807272, 160: 4.88799096175, 190: 4.68846659713, 220: 3.86171648104, 250: 2.94604737807, 280: 2.0903207924, 310: 1.43923519488, 340: 1.11996147629}  # reference: beta
     kc.angles("beta", beta, BETA, tol=1e-6)
 
