@@ -365,7 +365,8 @@ def _apply(rows, scheme, argument, quantity, default):
         given = "the default " if default else ""
         raise InputError(
             f"{argument}={scheme.name!r} ({given}scheme for {quantity}) needs at least {err.minimum} points on "
-            f"{err.grid} grid; the sweep has {points}: sweep more points, or pass another {argument}",
+            f"{err.grid} grid; the sweep has {points}{' per turn' if rows.periodic else ''}: sweep more points, "
+            f"or pass another {argument}",
             cause="too few samples") from None
 
 

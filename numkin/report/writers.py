@@ -67,6 +67,8 @@ def format_cell(value, column: str = "") -> str:
     ('', 'yes', '0')
     >>> format_cell(10.632996, "omega_beta [rad/s]"), format_cell(10.631984, "omega_beta [rad/s]"), format_cell(3.0, "x")
     ('10.63300', '10.63198', '3')
+    >>> format_cell(1234567.5, "x [mm]"), format_cell(-0.5, "x [mm]")
+    ('1234568', '-0.5000000')
     """
     if value is None:
         return ""
@@ -84,7 +86,7 @@ def format_cell(value, column: str = "") -> str:
         elif fmt == "exact":
             text = f"{v:.6f}" if 1e-3 <= abs(v) < 1e4 else format(v, ".7g")
         elif fmt == ".7g" and v != round(v):  # a quantity: its 7 figures, trailing zeros kept (10.63300, not 10.633)
-            text = format(v, "#.7g")
+            text = format(v, "#.7g").rstrip(".")  # (1234568, not 1234568.)
         else:
             text = format(v, fmt)
         if text.lstrip("-").strip("0.e+") == "":  # a negative zero, or a value that rounds to zero
