@@ -134,6 +134,7 @@ def expected_hw1() -> dict:
         "omega_beta_100": float(_column(kin, "omega_beta")[i100]),
         "alpha_beta_100": float(_column(kin, "alpha_beta")[i100]),
         "omega_beta_fw_100": float(omega * derivatives.forward(beta, h)[i100]),
+        "omega_beta_bw_100": float(omega * derivatives.backward(beta, h)[i100]),
         "alpha_beta_fw_100": float(omega**2 * derivatives.forward_of_forward(beta, h)[i100]),
     }
 

@@ -32,6 +32,8 @@ __all__ = [
     "angle_value",
     "array",
     "floats",
+    "text",
+    "agrees_as_written",
     "at",
     "band",
     "closure",
@@ -118,14 +120,8 @@ def _not_set(x) -> bool:
     return x is None or x is Ellipsis
 
 
-def floats(x, name: str, what: str = "an array of numbers") -> np.ndarray:
-    """``x`` as a float array, or the student's message: not set yet, not defined, or not ``what``.
-
-    A name still set to the stub's ``...`` is not set yet.  A name the notebook
-    does not define reaches the checks as None (otter passes None for a missing
-    variable): the cell that should define it raised an error before it got
-    there, or it holds what a function without ``return`` gives.
-    """
+def _present(x, name: str) -> None:
+    """The student's message for a name still set to the stub's ``...`` (not set yet) or not defined (None)."""
     if x is Ellipsis:
         raise AssertionError(
             f"`{name}` is not set yet: replace its `...` with your answer and run the cell that computes it"
@@ -135,6 +131,29 @@ def floats(x, name: str, what: str = "an array of numbers") -> np.ndarray:
             f"`{name}` is not defined: did the cell that computes it raise an error? run it and read the "
             "error (or it is None, which a function without `return` gives)"
         )
+
+
+def text(x, name: str) -> str:
+    """``x`` as text (an answer in words), or the student's message: not set yet, not defined, or not text.
+
+    >>> text("  Centred ", "more_accurate")
+    'centred'
+    """
+    _present(x, name)
+    if not isinstance(x, str):
+        raise AssertionError(f"`{name}` should be text (a word, in quotes), got {type(x).__name__}")
+    return x.strip().lower()
+
+
+def floats(x, name: str, what: str = "an array of numbers") -> np.ndarray:
+    """``x`` as a float array, or the student's message: not set yet, not defined, or not ``what``.
+
+    A name still set to the stub's ``...`` is not set yet.  A name the notebook
+    does not define reaches the checks as None (otter passes None for a missing
+    variable): the cell that should define it raised an error before it got
+    there, or it holds what a function without ``return`` gives.
+    """
+    _present(x, name)
     try:
         return np.asarray(x, dtype=float)
     except (TypeError, ValueError):
@@ -497,7 +516,7 @@ def value(
     where = f" at θ = {deg:g}°" if deg is not None else ""
     unit_text = f" {unit}" if unit else ""
     for alt, message in alternatives:
-        if matches_alternative(got, alt, want, rtol):
+        if matches_alternative(got, alt, want, rtol) and not agrees_as_written(got, want):
             raise AssertionError(f"`{name}`{where} = {got:.7g}{unit_text}, expected {want:.6g}{unit_text}: {message}")
     if abs(got - want) <= rtol * abs(want):
         return got
@@ -540,11 +559,28 @@ def angle_value(
             f"`{name}`{where} = {_fmt(got)} rad: that is the expected {math.degrees(want):.6g}°{extra} in degrees: "
             f"degrees where radians are asked? (expected {want:.6g} rad; use np.radians)"
         )
-    return value(name, got % (2 * math.pi), want, rtol=tol, unit="rad", suspects=())
+    nearest = want + float(_wrapped(np.float64(got - want)))  # the answer on the reference's turn
+    return value(name, nearest, want, rtol=tol, unit="rad", suspects=())
 
 
 ALTERNATIVE_CLOSER = 10.0
 """How many times closer to an alternative than to the reference a number must be for the alternative to be named."""
+
+
+def agrees_as_written(got: float, want: float) -> bool:
+    """Whether ``want``, rounded to the significant figures ``got`` is written with, is ``got``.
+
+    A rounded answer (10.6 for 10.6329) may also round another formula's value
+    (10.59998): no formula can be named from it.  Figures are those of the
+    shortest repr of the float; a computed number (15 figures or more) is not
+    rounded.
+
+    >>> agrees_as_written(10.6, 10.6328965), agrees_as_written(10.59997952751215, 10.6328965)
+    (True, False)
+    """
+    mantissa = repr(float(got)).split("e")[0]
+    figures = len(mantissa.replace("-", "").replace(".", "").lstrip("0"))
+    return 0 < figures < 15 and float(f"{want:.{figures}g}") == float(f"{got:.{figures}g}")
 
 
 def matches_alternative(got: float, alt: float, want: float, rtol: float) -> bool:
@@ -555,9 +591,9 @@ def matches_alternative(got: float, alt: float, want: float, rtol: float) -> boo
     ``ALTERNATIVE_CLOSER`` (10) times closer to the alternative than to the
     reference.  A number between the two, or near neither, names no formula.
 
-    >>> matches_alternative(-28.1266, -28.1266, -28.375, 5e-3)
+    >>> matches_alternative(2.00, 2.00, 2.05, 5e-2)
     True
-    >>> matches_alternative(-28.0, -28.1266, -28.375, 5e-3)  # 0.45 % from it, 1.3 % from the reference
+    >>> matches_alternative(2.03, 2.00, 2.05, 5e-2)  # 1.5 % from it, 1 % from the reference
     False
     """
     to_alt, to_want = abs(got - alt), abs(got - want)

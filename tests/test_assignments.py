@@ -171,6 +171,37 @@ def test_a_flipped_sign_names_the_sense_of_rotation_only_where_the_check_says_so
     assert _fails(kc.band, "w", -10.0, 8.0, 12.0, about=10.0, flipped=kc.ROTATION).endswith(kc.ROTATION)
 
 
+def test_an_alternative_formula_is_named_only_where_the_digits_given_tell_it():
+    """ω at 100°: exact 10.6329 (mpmath: 10.6328965), forward 10.59998, backward 10.66601, all within 0.5 %. A
+    computed forward or backward value is named; 10.6 or 10.63, rounded answers the forward value may round to
+    as well, pass (no formula can be told from them)."""
+    want, forward, backward = 10.6328965, 10.59997952751215, 10.66601463948
+    alternatives = [(forward, "the forward difference"), (backward, "the backward difference")]
+
+    def check(got):
+        return kc.value("omega_100", got, want, rtol=5e-3, unit="rad/s", alternatives=alternatives)
+
+    assert _fails(check, forward).endswith("the forward difference")
+    assert _fails(check, backward).endswith("the backward difference")
+    assert check(10.6) == 10.6 and check(10.63) == 10.63 and check(10.63289649) == 10.63289649
+    assert kc.agrees_as_written(10.6, want) and not kc.agrees_as_written(forward, want)
+
+
+def test_an_angle_is_compared_on_the_reference_turn():
+    assert kc.angle_value("q", -2.6 + 2 * math.pi, -2.6) == pytest.approx(-2.6 + 2 * math.pi)
+    assert "degrees where radians are asked" in _fails(kc.angle_value, "q", math.degrees(-2.6) + 360.0, -2.6)
+    # a miss is measured on the reference's turn: -2.59 against -2.6 is 0.385 % off, 0.01 against 6.28 +0.21 %
+    assert _fails(kc.angle_value, "q", -2.59, -2.6).endswith("off by -0.385 %")
+    assert _fails(kc.angle_value, "q", 0.01, 6.28).endswith("off by +0.21 %")
+
+
+def test_a_stub_and_an_undefined_name_are_told_apart():
+    assert "is not set yet" in _fails(kc.text, ..., "more_accurate")
+    assert "is not defined" in _fails(kc.text, None, "more_accurate")
+    assert "should be text" in _fails(kc.text, 2, "more_accurate")
+    assert kc.text(" Centred", "more_accurate") == "centred"
+
+
 def test_rev_per_s_is_named_where_the_check_suspects_it():
     rev = ("deg", "rad/min", "rev")
     assert "off by a factor 1/6.283 (= 1/2π): rev/s (turns per second) where rad/s is asked?" in kc.explain_factor(

@@ -138,7 +138,7 @@ def test_omega(omega):
     import math
     import kincheck as kc
 
-    kc.value("omega", omega, 6000 * 2 * math.pi / 60, rtol=1e-9, unit="rad/s", suspects=("rpm", "rev", "deg"),
+    kc.value("omega", omega, 6000 * 2 * math.pi / 60, rtol=1e-9, unit="rad/s", suspects=("rpm", "rad/min", "rev", "deg"),
              flipped=kc.ROTATION)
 
 # %% [raw]
@@ -196,7 +196,7 @@ def test_top_dead_centre(a_0):
     w = 6000 * 2 * math.pi / 60
     exact = -0.080 * w**2 * (1 + 80 / 200)
     kc.band("a_0", a_0, 1.01 * exact, 0.99 * exact, about=exact, deg=0, grid=(0, 180, 1),
-            unit="m/s²", suspects=("deg", "rpm", "rev", "mm"),
+            unit="m/s²", suspects=("deg", "rpm", "rad/min", "rev", "mm"),
             flipped="the sign is flipped: ẍ = ω² d²x/dθ², with no minus sign; reversing the crank does not change it (ω² > 0)")
 
 # %%
@@ -207,7 +207,7 @@ def test_a_0(a_0):
     import kincheck as kc
 
     A_0 = -44215.8277169  # reference: a_0
-    kc.value("a_0", a_0, A_0, deg=0, grid=(0, 180, 1), rtol=5e-3, unit="m/s²", suspects=("deg", "rpm", "rev", "mm"),
+    kc.value("a_0", a_0, A_0, deg=0, grid=(0, 180, 1), rtol=5e-3, unit="m/s²", suspects=("deg", "rpm", "rad/min", "rev", "mm"),
              flipped="the sign is flipped: ẍ = ω² d²x/dθ², with no minus sign; reversing the crank does not change it (ω² > 0)")
 
 # %%
@@ -218,7 +218,7 @@ def test_a_90(a_90):
     import kincheck as kc
 
     A_90 = 13783.8351992  # reference: a_90
-    kc.value("a_90", a_90, A_90, deg=90, grid=(0, 180, 1), rtol=5e-3, unit="m/s²", suspects=("deg", "rpm", "rev", "mm"),
+    kc.value("a_90", a_90, A_90, deg=90, grid=(0, 180, 1), rtol=5e-3, unit="m/s²", suspects=("deg", "rpm", "rad/min", "rev", "mm"),
              flipped="the sign is flipped: ẍ = ω² d²x/dθ², with no minus sign; reversing the crank does not change it (ω² > 0)")
 
 # %%
@@ -229,7 +229,7 @@ def test_acceleration_curve(a_piston):
     import kincheck as kc
 
     A = {0: -44215.8277169, 20: -39662.2185167, 40: -27006.8431306, 60: -9517.00516052, 80: 7355.12225638, 100: 18323.6906951, 120: 22065.728923, 140: 21380.7127557, 160: 19693.9058083, 180: 18949.6404501}  # reference: a
-    kc.series("a_piston", a_piston, A, grid=(0, 180, 1), rtol=5e-3, unit="m/s²", suspects=("deg", "rpm", "rev", "mm"),
+    kc.series("a_piston", a_piston, A, grid=(0, 180, 1), rtol=5e-3, unit="m/s²", suspects=("deg", "rpm", "rad/min", "rev", "mm"),
               flipped="the sign is flipped: ẍ = ω² d²x/dθ², with no minus sign; reversing the crank does not change it (ω² > 0)")
 
 # %%
