@@ -524,10 +524,12 @@ def value(
     if hint:
         raise AssertionError(f"`{name}`{where} = {_fmt(got)}{unit_text}: {hint}")
     shown_want, shown_got = _pair(want, got)
+    rounded = (f"; that is the expected value rounded to the {_figures(got)} figures written: give it unrounded"
+               if agrees_as_written(got, want) else "")
     raise AssertionError(
         f"`{name}`{where} = {shown_got}{unit_text}, expected {shown_want}{unit_text} "
         f"(within {_tolerance(rtol)}): "
-        f"off by {100 * (got - want) / want:+.3g} %"
+        f"off by {100 * (got - want) / want:+.3g} %{rounded}"
     )
 
 
@@ -578,9 +580,14 @@ def agrees_as_written(got: float, want: float) -> bool:
     >>> agrees_as_written(10.6, 10.6328965), agrees_as_written(10.59997952751215, 10.6328965)
     (True, False)
     """
-    mantissa = repr(float(got)).split("e")[0]
-    figures = len(mantissa.replace("-", "").replace(".", "").lstrip("0"))
+    figures = _figures(got)
     return 0 < figures < 15 and float(f"{want:.{figures}g}") == float(f"{got:.{figures}g}")
+
+
+def _figures(got: float) -> int:
+    """The significant figures of the shortest repr of ``got`` (10.6: 3)."""
+    mantissa = repr(float(got)).split("e")[0]
+    return len(mantissa.replace("-", "").replace(".", "").lstrip("0"))
 
 
 def matches_alternative(got: float, alt: float, want: float, rtol: float) -> bool:

@@ -185,6 +185,11 @@ def test_an_alternative_formula_is_named_only_where_the_digits_given_tell_it():
     assert _fails(check, backward).endswith("the backward difference")
     assert check(10.6) == 10.6 and check(10.63) == 10.63 and check(10.63289649) == 10.63289649
     assert kc.agrees_as_written(10.6, want) and not kc.agrees_as_written(forward, want)
+    # a check tighter than the figures given says so: 2.13529 is theta4 = 2.1352859 rad to six figures
+    tight = _fails(kc.value, "q_check", 2.13529, 2.1352859, rtol=1e-7, unit="rad")
+    assert tight.endswith("off by +0.000192 %; that is the expected value rounded to the 6 figures written: "
+                          "give it unrounded")
+    assert "rounded" not in _fails(kc.value, "q_check", 2.13539, 2.1352859, rtol=1e-7, unit="rad")
 
 
 def test_an_angle_is_compared_on_the_reference_turn():

@@ -29,7 +29,7 @@
 # %% [markdown]
 # # Homework 3 — Piston acceleration by numerical differentiation
 #
-# The crank AB of a slider-crank, R = 80 mm long, turns at a constant 6000 rpm about A.
+# The crank AB of a slider-crank, R = 80 mm long, turns counter-clockwise (ω > 0) at a constant 6000 rpm about A.
 # The connecting rod BC is L = 200 mm long and the piston C moves along the horizontal
 # axis through A. With θ the crank angle and θ₃ the rod angle, the loop is
 #
