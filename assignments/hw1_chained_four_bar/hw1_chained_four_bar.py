@@ -97,7 +97,8 @@ def newton(F, J, x0, tol=1e-10, maxiter=50):
 def four_bar_sweep(inputs, r_fixed, r_in, r_coupler, r_out, guess):
     """Output and coupler angles (rad) for each input angle (rad), by continuation."""
     # BEGIN SOLUTION
-    x = np.array(guess, dtype=float)
+    start = np.array(guess, dtype=float)
+    x = start
     result = np.empty((len(inputs), 2))
     for k, t in enumerate(inputs):
 
@@ -114,6 +115,8 @@ def four_bar_sweep(inputs, r_fixed, r_in, r_coupler, r_out, guess):
             ])
 
         x = newton(F, J, x)  # the next solve starts here; not wrapped, so differences stay small
+        if k == 0:  # Newton from a far guess may land whole turns away: back to the guess's turn
+            x = start + (x - start + np.pi) % (2 * np.pi) - np.pi
         result[k] = x
     return result[:, 0], result[:, 1]
     # END SOLUTION
