@@ -131,6 +131,7 @@ hidden: true
 def test_residual_vanishes_at_the_solution(F):
     import numpy as np
 
+    assert callable(F), "define the function `F(x, theta2)` (not defined: did its cell raise an error?)"
     X30 = [87.1779788708, 1.1621584717, 130.766968306, 51.9615242271]  # reference: x_30
     x = np.array(X30)
     f = np.asarray(F(x, np.radians(30.0)), dtype=float)
