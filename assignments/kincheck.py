@@ -116,10 +116,6 @@ NEWTON_HINT = (
 # --------------------------------------------------------------------------
 
 
-def _not_set(x) -> bool:
-    return x is None or x is Ellipsis
-
-
 def _present(x, name: str) -> None:
     """The student's message for a name still set to the stub's ``...`` (not set yet) or not defined (None)."""
     if x is Ellipsis:

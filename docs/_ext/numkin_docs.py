@@ -143,6 +143,12 @@ def build_gallery(target: Path, stamp: str) -> None:
 
 
 # ------------------------------------------------------------------------ API
+def _children(fullname: str, names) -> list[str]:
+    """Those of the module names `names` directly below package `fullname`, sorted."""
+    depth = fullname.count(".") + 1
+    return sorted(m for m in names if m.startswith(fullname + ".") and m.count(".") == depth)
+
+
 class ApiIndex:
     """Where each public object of a package is documented.
 
@@ -222,9 +228,7 @@ class ApiIndex:
     # -- for the templates
     def submodules(self, fullname: str) -> list[str]:
         """The public modules directly below package `fullname`."""
-        modules = self._index()
-        depth = fullname.count(".") + 1
-        return sorted(m for m in modules if m.startswith(fullname + ".") and m.count(".") == depth)
+        return _children(fullname, self._index())
 
     def relative(self, fullname: str, names) -> list[str]:
         """`names` (full names) as autosummary wants them on the page of module `fullname`."""
@@ -286,8 +290,7 @@ class ApiIndex:
         """The modules directly below package `fullname` that a function of the same name hides
         (``numkin.newton``): each has its own page, ``<module>-module`` (:func:`write_shadowed_pages`)."""
         self._index()
-        depth = fullname.count(".") + 1
-        return sorted(m for m in self.shadowed if m.startswith(fullname + ".") and m.count(".") == depth)
+        return _children(fullname, self.shadowed)
 
     def filename_map(self) -> dict[str, str]:
         """Page names for objects whose name differs from a module's only in case (``numkin.Sweep``)."""
@@ -334,8 +337,8 @@ def write_shadowed_pages(target: Path, api: ApiIndex) -> list[str]:
         title = f"{name} (module)"
         lines = [title, "=" * len(title), "", f".. automodule:: {name}", "   :no-members:", "   :no-index:", "",
                  f".. currentmodule:: {name}", ""]
-        if name.rpartition(".")[0] and api.canonical(getattr(sys.modules[name.rpartition(".")[0]],
-                                                            name.rpartition(".")[2], None)):
+        parent, _, last = name.rpartition(".")
+        if api.canonical(getattr(sys.modules[parent], last, None)):
             lines += [f"The function of the same name is :func:`{name}`.", ""]
         if own:
             lines += [".. rubric:: Classes and functions", "", ".. autosummary::", "   :nosignatures:",
