@@ -34,6 +34,7 @@ __all__ = [
     "floats",
     "text",
     "agrees_as_written",
+    "as_written",
     "at",
     "band",
     "closure",
@@ -466,6 +467,10 @@ def series(
     worst = int(np.argmax(np.abs(got - want)))
     error = abs(got[worst] - want[worst])
     unit_text = f" {unit}" if unit else ""
+    written = as_written(got, want, atol + rtol * np.max(np.abs(want)))
+    if written:
+        raise AssertionError(f"`{name}` is off by up to {error:.3g}{unit_text}, more than the check allows "
+                             f"({_tolerance(rtol)}): {_written_hint(written, 'its values')}")
     shown_want, shown_got = _pair(want[worst], got[worst])
     message = (
         f"`{name}` is off by up to {error:.3g}{unit_text}: "
@@ -520,8 +525,12 @@ def value(
     if hint:
         raise AssertionError(f"`{name}`{where} = {_fmt(got)}{unit_text}: {hint}")
     shown_want, shown_got = _pair(want, got)
-    rounded = (f"; that is the expected value rounded to the {_figures(got)} figures written: give it unrounded"
-               if agrees_as_written(got, want) else "")
+    if agrees_as_written(got, want):
+        rounded = f"; that is the expected value rounded to the {_figures(got)} figures written: give it unrounded"
+    elif as_written(got, want) == SINGLE:
+        rounded = f"; {_written_hint(SINGLE, 'it')}"
+    else:
+        rounded = ""
     raise AssertionError(
         f"`{name}`{where} = {shown_got}{unit_text}, expected {shown_want}{unit_text} "
         f"(within {_tolerance(rtol)}): "
@@ -578,6 +587,63 @@ def agrees_as_written(got: float, want: float) -> bool:
     """
     figures = _figures(got)
     return 0 < figures < 15 and float(f"{want:.{figures}g}") == float(f"{got:.{figures}g}")
+
+
+SINGLE = "single precision (float32)"
+"""What :func:`as_written` calls numbers that float32 holds exactly, near the reference."""
+
+
+def as_written(got, want, allowed: float = 0.0) -> str | None:
+    """How the numbers ``got`` are written, where that explains every miss from ``want``: ``"rounded to d
+    decimals"`` (or to whole numbers), ``"rounded to s significant figures"``, :data:`SINGLE`; None where
+    no rounding does.
+
+    A number is read as rounded to d decimals (or s figures) when it is one, and its miss from the reference
+    is at most half a unit of its last place, plus ``allowed`` (the check's own tolerance: the answer
+    rounded may be of a value that was not quite the reference); the largest keeps at least two figures
+    (zeros, or 0 and 1 for values below one, are no rounded answer).  Numbers that float32 holds exactly and
+    that miss by at most a thousandth of the largest reference are read as computed in single precision (a
+    second difference of float32 angles at a step of 1° keeps about 3 of their 7 figures).  Non-finite
+    entries are left out.
+
+    >>> import numpy as np
+    >>> want = np.array([10.63289649, -3.0512741, 0.00471233])
+    >>> as_written(np.round(want, 4), want), as_written([10.633, -3.0513, 0.0047123], want)
+    ('rounded to 4 decimals', 'rounded to 5 significant figures')
+    >>> as_written(want.astype(np.float32), want), as_written(want + 1e-3, want)
+    ('single precision (float32)', None)
+    """
+    got = np.atleast_1d(np.asarray(got, dtype=float)).ravel()
+    want = np.atleast_1d(np.asarray(want, dtype=float)).ravel()
+    keep = np.isfinite(got) & np.isfinite(want)
+    got, want = got[keep], want[keep]
+    if not got.size:
+        return None
+    miss = np.abs(got - want) - allowed
+    ulp = 4.0 * np.finfo(float).eps * np.abs(got)
+    largest = float(np.max(np.abs(got)))
+    for d in range(13):  # the fewest decimals the numbers are written with
+        if np.all(np.abs(np.round(got, d) - got) <= ulp):
+            if largest >= 10.0 ** (1 - d) and np.all(miss <= 0.5 * 10.0**-d + ulp):
+                return "rounded to whole numbers" if d == 0 else f"rounded to {d} decimal{'s' if d > 1 else ''}"
+            break
+    for s in range(1, 15):  # the fewest significant figures
+        if all(float(f"{g:.{s}g}") == g for g in got.tolist()):
+            size = np.maximum(np.abs(got), np.abs(want))
+            last = 10.0 ** (np.floor(np.log10(np.where(size > 0, size, 1.0))) - s + 1)
+            if s >= 2 and np.all(miss <= 0.5 * last + ulp):
+                return f"rounded to {s} significant figures"
+            break
+    if np.array_equal(got.astype(np.float32).astype(float), got) and np.all(miss <= 1e-3 * np.max(np.abs(want))):
+        return SINGLE
+    return None
+
+
+def _written_hint(written: str, what: str) -> str:
+    """What to do about numbers :func:`as_written` explains; ``what`` names them ("its values", "it")."""
+    if written == SINGLE:
+        return f"{what} {'is' if what == 'it' else 'are'} {SINGLE}, about 7 figures: compute in float64, numpy's default"
+    return f"{what} {'is' if what == 'it' else 'are'} the expected {'value' if what == 'it' else 'ones'} {written}: give {'it' if what == 'it' else 'them'} unrounded"
 
 
 def _figures(got: float) -> int:

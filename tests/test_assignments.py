@@ -192,6 +192,33 @@ def test_an_alternative_formula_is_named_only_where_the_digits_given_tell_it():
     assert "rounded" not in _fails(kc.value, "q_check", 2.13539, 2.1352859, rtol=1e-7, unit="rad")
 
 
+def test_an_array_missing_by_its_rounding_is_told_to_give_it_unrounded():
+    """An array rounded to 4 decimals or to 6 figures misses a check of 1e-6 by its rounding alone: the
+    message says so (the reference's values, 13.7121192715 rad/s and others, are the homework's centred
+    dβ/dt); float32 values are named as such where a check is tighter than float32 holds; a wrong array,
+    zeros, or values rounded to one figure get the miss alone."""
+    deg = np.arange(361.0)
+    full = 13.7121192715 * np.sin(np.radians(deg) * 1.3) + 0.0312
+    ref = {d: full[d] for d in range(10, 360, 30)}
+
+    def check(got, rtol=1e-6):
+        return _fails(kc.series, "dbeta_dt_c", got, ref, rtol=rtol, unit="rad/s")
+
+    assert check(np.round(full, 4)).endswith(
+        "more than the check allows (1e-06 relative): its values are the expected ones rounded to 4 decimals: "
+        "give them unrounded")
+    six = np.array([float(f"{v:.6g}") for v in full])
+    assert check(six).endswith("the expected ones rounded to 6 significant figures: give them unrounded")
+    assert check(full.astype(np.float32), rtol=1e-9).endswith(
+        "its values are single precision (float32), about 7 figures: compute in float64, numpy's default")
+    for wrong in (full * 1.001, np.zeros(361), np.round(full / 100, 1)):
+        assert "rounded" not in check(wrong) and "float32" not in check(wrong)
+    kc.series("dbeta_dt_c", np.round(full, 4), ref, rtol=1e-5)  # a check the rounding meets passes
+    # one number: float32 where a check is tighter than float32 holds
+    assert _fails(kc.value, "omega", float(np.float32(200 * math.pi)), 200 * math.pi, rtol=1e-9).endswith(
+        "it is single precision (float32), about 7 figures: compute in float64, numpy's default")
+
+
 def test_an_angle_is_compared_on_the_reference_turn():
     assert kc.angle_value("q", -2.6 + 2 * math.pi, -2.6) == pytest.approx(-2.6 + 2 * math.pi)
     assert "degrees where radians are asked" in _fails(kc.angle_value, "q", math.degrees(-2.6) + 360.0, -2.6)
