@@ -41,7 +41,8 @@ are optional. ::
     [input]
     speed = "450 rad/min"    # needed for velocity/acceleration: rad/s, rad/min, rpm,
                              # rev/s, deg/s (a bare number is rad/s); sign = direction
-    acceleration = "0 rad/s^2"   # optional input angular acceleration
+    acceleration = "0 rad/s^2"   # optional input angular acceleration (numkin run; the
+                                 # report's tables study the schemes at constant speed)
     start_deg = 0            # sweep of the input, inclusive, uniform step
     stop_deg = 360
     step_deg = 1

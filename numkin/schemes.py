@@ -240,15 +240,17 @@ def _build(name, *, derivative, offsets=(), kind="stencil", ends="one-sided", pa
             from .derivatives import scheme_function
 
             function = scheme_function(name, rule)
-    elif kind == "richardson":
-        weights = Stencil.from_offsets(offsets, derivative).weights
+    elif kind == "richardson":  # the offsets and weights of the stencil it amounts to (a zero weight left out)
+        combined = Stencil.from_offsets(offsets, derivative)
+        offsets, weights = combined.offsets, combined.weights
     if family is None:
         family = name if derivative == 1 else (partner or name)
     return Scheme(
         name=name, derivative=int(derivative), order=int(order), stencil=stencil, function=function,
         periodic_only=kind == "spectral", description=description or f"{len(offsets)}-point stencil {stencil}",
         kind=kind, offsets=tuple(offsets), weights=tuple(weights), partner=partner, family=family,
-        ends="periodic only" if kind == "spectral" else ends, rule=rule,
+        ends={"spectral": "periodic only", "complex_step": "none (it evaluates a function, not samples)"}.get(kind, ends),
+        rule=rule,
     )
 
 

@@ -137,8 +137,22 @@ def test_special_schemes_are_described_in_the_registry():
     with pytest.raises(ValueError, match="not samples"):
         schemes.get_scheme("complex_step")
     assert schemes.point_stencil("richardson").weights == schemes.SCHEMES["five_point"].weights
+    assert schemes.REGISTRY["complex_step"].ends.startswith("none")
     with pytest.raises(ValueError, match="no finite stencil"):
         schemes.point_stencil("spectral")
+
+
+def test_every_scheme_offsets_and_weights_are_one_stencil():
+    """Zipped, a scheme's offsets and weights are its interior stencil: exact on x^d / d! (Richardson's too, the
+    five-point stencil it amounts to, its zero weight left out like every other scheme's)."""
+    for scheme in schemes.REGISTRY.values():
+        if not scheme.offsets:
+            continue
+        assert len(scheme.offsets) == len(scheme.weights), scheme.name
+        d = scheme.derivative
+        assert sum(w * F(k) ** d for k, w in zip(scheme.offsets, scheme.weights)) / math.factorial(d) == 1, scheme.name
+        assert all(w != 0 for w in scheme.weights), scheme.name
+    assert schemes.REGISTRY["richardson"].offsets == schemes.REGISTRY["five_point"].offsets
 
 
 # -------------------------------------------------------------------- registering at run time

@@ -116,6 +116,26 @@ def test_a_scene_without_input_speed_is_reported_per_rad_per_s():
     assert all(("per rad/s of input speed" in t.attrs["caption"]) == (k in rates) for k, t in tables.items())
 
 
+def test_a_scene_whose_input_accelerates_says_its_tables_leave_the_acceleration_out():
+    """The report studies the schemes at constant input speed: where the scene's input accelerates, every table
+    with accelerations says that they are omega^2 d2q/dtheta2 alone (the tolerance table's exact value at the
+    check angle is that: 6000 rpm, crank r = 80 mm, rod l = 200 mm at 90°, x'' = r^2 / sqrt(l^2 - r^2) times
+    omega^2, 13783.8 m/s^2; the scene's own adds alpha_in dx/dtheta = 5 (-r))."""
+    import dataclasses
+    import math
+
+    scene = dataclasses.replace(load_scene("slider-crank"), acceleration=5.0)
+    tables = report.scene_report(scene)
+    said = {k for k, t in tables.items() if "alpha_in = 5 rad/s^2" in t.attrs["caption"]}
+    assert said == {k for k, t in tables.items()
+                    if any(q.order == 2 and q.wrt == "time" for q in (t.attrs.get("quantities") or {}).values())}
+    assert {"convergence", "tolerance"} <= said and "newton" not in said
+    tol = tables["tolerance"]
+    w = 6000 * 2 * math.pi / 60
+    assert tol["a_x at theta = 90 deg [m/s^2]"].iloc[0] == pytest.approx(0.08**2 / math.sqrt(0.2**2 - 0.08**2) * w**2,
+                                                                        rel=1e-12)
+
+
 def test_untimed_report_files_are_the_same_in_two_runs(tmp_path):
     """Without timing (the default) every table is exact: two runs write byte-identical files."""
     from numkin import linkages

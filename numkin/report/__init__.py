@@ -261,6 +261,11 @@ def scene_report(scene, *, repeat: int | None = None) -> dict:
       an input speed (positions only) is reported per rad/s of input speed
       (derivatives with respect to time equal those with respect to the
       input angle, in /s), and every caption says so;
+    * a scene whose input accelerates (``[input] acceleration``): the tables
+      study the difference schemes at the constant input speed, and every
+      caption of a table with accelerations says that they are
+      ``omega**2 d2q/dtheta2`` alone, without the scene's ``alpha_in dq/dtheta``
+      (which ``numkin run`` adds);
     * the stability scene: its suite (:func:`numkin.stability.report_tables`,
       the scene's ``cases``).
 
@@ -308,15 +313,23 @@ def scene_report(scene, *, repeat: int | None = None) -> dict:
                               *error.args[1:])
             raise
     if per_unit:
-        for table in tables.values():
-            rates = (table.attrs.get("quantities") or {}).values()
-            if not any(q.order and q.wrt == "time" for q in rates):
-                continue  # no velocity or acceleration in this table (Newton, Jacobian, round-off)
-            table.attrs["caption"] = (
-                f"{table.attrs.get('caption', '')} The scene gives no input speed: velocities and accelerations "
-                "are per rad/s of input speed (d/dtheta and d2/dtheta2)."
-            ).strip()
+        _add_to_captions(tables, 1, "The scene gives no input speed: velocities and accelerations are per rad/s "
+                                    "of input speed (d/dtheta and d2/dtheta2).")
+    elif scene.acceleration:
+        _add_to_captions(tables, 2, (
+            f"The scene's input accelerates (alpha_in = {scene.acceleration:.6g} rad/s^2); these tables study the "
+            f"difference schemes at the constant input speed omega = {options['omega']:.6g} rad/s, so an "
+            "acceleration here is omega^2 d2q/dtheta2 alone: `numkin run` gives the scene's, which adds "
+            "alpha_in dq/dtheta."))
     return tables
+
+
+def _add_to_captions(tables: dict, order: int, note: str) -> None:
+    """Append `note` to the caption of every table holding a rate of `order` or higher with respect to time."""
+    for table in tables.values():
+        rates = (table.attrs.get("quantities") or {}).values()
+        if any(q.order and q.order >= order and q.wrt == "time" for q in rates):
+            table.attrs["caption"] = f"{table.attrs.get('caption', '')} {note}".strip()
 
 
 def __getattr__(name: str):
