@@ -27,10 +27,13 @@ Grids
 * Any other sweep is an open grid: one-sided end stencils of the same
   order (see :mod:`numkin.derivatives`).
 
-Angles are differenced unwrapped: the sweep's angles are continuous, and a
-jump larger than pi between neighbouring samples (data that were wrapped,
-e.g. reduced modulo 2*pi) is removed with :func:`numpy.unwrap`, with a
-warning, before any difference quotient is formed.
+Angles are differenced unwrapped: a sweep's angles are continuous (its
+continuation tracks them step by step, so a step of more than pi between
+neighbouring samples is a real turn: a grid too coarse for difference
+quotients, said in a warning); in other samples (a derived quantity, data
+reduced modulo 2*pi), a jump larger than pi between neighbours is removed
+with :func:`numpy.unwrap`, with a warning, before any difference quotient is
+formed.
 
 Conventions of the student schemes
 ----------------------------------
@@ -141,10 +144,29 @@ def sweep_grid(sweep, periodic="auto") -> SweepGrid:
     return SweepGrid(h=abs(h), periodic=is_periodic, reverse=h < 0, full_turn=full_turn)
 
 
-def _unwrapped(y: np.ndarray, angle: np.ndarray, names, inputs) -> np.ndarray:
-    """Angle rows with any jump larger than pi between neighbours removed (warns)."""
+def _unwrapped(y: np.ndarray, angle: np.ndarray, names, inputs, continuous: bool = False) -> np.ndarray:
+    """Angle rows with any jump larger than pi between neighbours removed (warns).
+
+    ``continuous``: the rows are a sweep's solved angles, continuous by construction: a step larger than pi
+    is a real turn between samples, kept, and the warning says the grid is too coarse to difference them.
+    """
     y = np.array(y, dtype=float, copy=True)
     if not angle.any():
+        return y
+    if continuous:
+        steps = np.abs(np.diff(y[angle], axis=-1))
+        big = np.any(steps > math.pi, axis=-1)
+        if big.any():
+            rows = np.flatnonzero(angle)[big]
+            r = rows[0]
+            k = int(np.flatnonzero(np.abs(np.diff(y[r])) > math.pi)[0])
+            warn(
+                f"angle(s) {[names[i] for i in rows]} turn by more than 180° between neighbouring samples (first "
+                f"{names[r]}, by {math.degrees(abs(y[r, k + 1] - y[r, k])):.1f}° between inputs "
+                f"{math.degrees(inputs[k]):.3f}° and {math.degrees(inputs[k + 1]):.3f}°): the grid is too coarse "
+                "for difference quotients; sample the sweep more finely",
+                UserWarning,
+            )
         return y
     un = np.unwrap(y[angle], axis=-1)
     changed = np.any(un != y[angle], axis=-1)
@@ -206,7 +228,7 @@ class Rows:
 
 
 def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, periodic="auto", *,
-                 close: bool = False) -> Rows:
+                 close: bool = False, continuous: bool = False) -> Rows:
     """Unwrap the angle rows of ``y`` (k, N), orient them ascending and settle periodicity.
 
     On a full-turn grid every row must return to its starting value (up to
@@ -235,6 +257,10 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
         misses its first by solver error (a loosely solved sweep): the period
         offset is then the whole number of turns nearest to the rows' (0 for
         lengths), and the last sample is not used.
+    continuous : bool
+        The rows are a sweep's solved unknowns, whose angles are continuous:
+        not unwrapped (a step of more than pi is a real turn; warned of as a
+        grid too coarse to difference).
 
     Returns
     -------
@@ -258,7 +284,7 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
         k = int(np.flatnonzero(bad)[0])
         row = names[int(np.flatnonzero(~np.isfinite(y[:, k]))[0])]
         raise InputError(f"{row} is not finite at input {math.degrees(inputs[k]):.3f}°: cannot difference it")
-    y = _unwrapped(y, angle, names, inputs)
+    y = _unwrapped(y, angle, names, inputs, continuous)
     if grid.reverse:
         y = y[:, ::-1]
     is_periodic, offset = grid.periodic, None
@@ -286,7 +312,8 @@ def _unknown_rows(sweep, periodic, close=False):
     grid = sweep_grid(sweep, periodic)
     mech, t, q = check_sweep(sweep)
     angle = np.array([u in mech.angles for u in mech.unknowns], dtype=bool)
-    return mech, t, prepare_rows(q, angle, mech.unknowns, t, grid, mech.length_scale, periodic, close=close)
+    return mech, t, prepare_rows(q, angle, mech.unknowns, t, grid, mech.length_scale, periodic, close=close,
+                                 continuous=True)
 
 
 def scheme_for(name, derivative: int, parameter: str):

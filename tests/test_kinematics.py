@@ -161,12 +161,29 @@ def test_links_that_turn_fully():
 
 
 def test_wrapped_angles_are_unwrapped_with_a_warning(homework):
-    wrapped = dataclasses.replace(homework, values=(homework.values + np.pi) % (2 * np.pi) - np.pi)
-    assert np.any(np.abs(np.diff(wrapped["beta"])) > np.pi)  # as atan2 would return it
-    with pytest.warns(UserWarning, match=r"\['beta'\] jump by more than 180°"):
-        fd = kinematics.finite_difference(wrapped, W_HW)
-    ref = kinematics.finite_difference(homework, W_HW)
-    np.testing.assert_allclose(fd.drop(columns="theta"), ref.drop(columns="theta"), rtol=1e-9, atol=1e-9)
+    """Samples that are not a sweep's own unknowns (as atan2 returns them) are unwrapped before differencing."""
+    from numkin.derivatives import get_scheme
+
+    beta = homework["beta"]
+    wrapped = (beta + np.pi) % (2 * np.pi) - np.pi
+    assert np.any(np.abs(np.diff(wrapped)) > np.pi)
+    grid = kinematics.sweep_grid(homework)
+    with pytest.warns(UserWarning, match=r"\['beta'\] jump by more than 180°.*wrapped data; unwrapped"):
+        rows = kinematics.prepare_rows(wrapped[None], True, ["beta"], homework.inputs, grid, 7.0)
+    ref = kinematics.prepare_rows(beta[None], True, ["beta"], homework.inputs, grid, 7.0)
+    np.testing.assert_allclose(rows.apply(get_scheme("centred")), ref.apply(get_scheme("centred")), atol=1e-9)
+
+
+def test_a_sweep_whose_angle_turns_more_than_half_a_turn_between_samples_is_not_unwrapped():
+    """A sweep's angles are continuous: on a grid of 90° steps the double crank's follower turns 199.7° in the
+    first step, a real turn, kept (unwrapping it would lose the turn the follower makes per turn of the crank); the
+    warning says the grid is too coarse. The spectral derivative's mean over the turn is then the follower's
+    turns per turn of the crank, 1 (0 if the turn were unwrapped away)."""
+    sweep = linkages.four_bar(1, 2, 2.995, 2).sweep(np.radians(np.linspace(0, 360, 5)))
+    assert np.degrees(np.diff(sweep["theta4"]))[0] == pytest.approx(199.7, abs=0.05)
+    with pytest.warns(UserWarning, match=r"\['theta4'\] turn by more than 180° .* by 199.7° .* too coarse"):
+        fd = kinematics.finite_difference(sweep, 1.0, method="spectral", second_method="spectral_second")
+    assert fd["omega_theta4"][:-1].mean() == pytest.approx(1.0, abs=1e-12)
 
 
 def test_sweep_that_does_not_close(homework):
