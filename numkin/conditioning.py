@@ -207,22 +207,33 @@ def rounding_error(scheme, h: float, values, cond, xscale) -> np.ndarray:
     >>> print(f"{e[0, 2]:.1e}")   # eps / h
     2.2e-08
     """
-    from . import schemes as _s
-
-    try:
-        stencil = _s.point_stencil(scheme.name)
-    except ValueError:  # spectral: bounded like the five-point stencil of the same derivative
-        stencil = _s.point_stencil("five_point" if scheme.derivative == 1 else "five_point_second")
+    stencil = _bounding_stencil(scheme)
     eps = float(np.finfo(float).eps)
     values = np.atleast_2d(np.asarray(values, dtype=float))
     cond = np.maximum(np.nan_to_num(np.asarray(cond, dtype=float), nan=1.0), 1.0)
     spread = cond.copy()
-    for k in range(1, max(-min(stencil.offsets), max(stencil.offsets)) + 1):
+    for k in range(1, _reach(stencil) + 1):
         np.maximum(spread[:-k], cond[k:], out=spread[:-k])
         np.maximum(spread[k:], cond[:-k], out=spread[k:])
     magnitude = np.maximum(np.max(np.abs(values), axis=1), np.asarray(xscale, dtype=float))
     factor = eps * sum(abs(c) for c in stencil.coefficients) / h**scheme.derivative
     return factor * magnitude[:, None] * spread[None, :]
+
+
+def _bounding_stencil(scheme):
+    """The stencil whose weights bound a scheme's rounding error: its own; the five-point stencil of the same
+    derivative for the spectral schemes."""
+    from . import schemes as _s
+
+    try:
+        return _s.point_stencil(scheme.name)
+    except ValueError:
+        return _s.point_stencil("five_point" if scheme.derivative == 1 else "five_point_second")
+
+
+def _reach(stencil) -> int:
+    """Samples on either side of its own that a stencil (or its mirror at the far end) may read."""
+    return max(-min(stencil.offsets), max(stencil.offsets))
 
 
 def warn_rounding(sweep, mech, t, rows, scheme, d, rtol) -> None:
@@ -237,9 +248,13 @@ def warn_rounding(sweep, mech, t, rows, scheme, d, rtol) -> None:
     rel = err / scale[:, None]
     if np.any(rel > rtol):
         j, k = np.unravel_index(int(np.nanargmax(rel)), rel.shape)
+        reach = _reach(_bounding_stencil(scheme))
+        lo = max(0, k - reach)
+        m = lo + int(np.nanargmax(np.nan_to_num(cond[lo : k + reach + 1], nan=1.0)))  # the condition number used
+        at = "" if m == k else f" at {math.degrees(t[m]):.3f}°, within the stencil's reach"
         warn(
             f"{mech.name}: {scheme.name} loses digits to rounding: at input {math.degrees(t[k]):.3f}° "
-            f"(step h = {rows.h:.3g} rad, condition number {cond[k]:.3g}) the estimated rounding error of "
+            f"(step h = {rows.h:.3g} rad, condition number {cond[m]:.3g}{at}) the estimated rounding error of "
             f"d{'' if scheme.derivative == 1 else '2'}{mech.unknowns[j]} is {rel[j, k]:.1e} of its largest value (or of 1 unit per rad), "
             f"above the tolerance {rtol:.0e}",
             LostDigitsWarning,

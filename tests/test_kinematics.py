@@ -326,6 +326,25 @@ def test_rounding_error_estimate_bounds_tiny_steps_and_warns():
     assert np.all(actual <= estimate) and actual.max() > 1e-7  # rounding, not truncation (h/2 x'' ~ 2e-8)
 
 
+def test_a_rounding_warning_names_the_condition_number_it_used():
+    """Next to a change point the estimate takes the largest condition number within the stencil's reach: the
+    parallelogram-type 5/2/5/2 (crossed) meets its change point at 180° (the crank and coupler in line), and the
+    warning at 179° names the condition number of the 180° sample, not the 179° one."""
+    from numkin.analytic import LostDigitsWarning
+    from numkin.sweep import SingularityWarning
+
+    mech = linkages.four_bar(5, 2, 5, 2, branch="crossed")
+    with pytest.warns(SingularityWarning):
+        sweep = mech.sweep(np.radians(np.arange(10, 351)), on_singular="report")
+    k179, k180 = 169, 170
+    assert sweep.cond[k180] > 1e8 > 1e3 > sweep.cond[k179]
+    with pytest.warns(LostDigitsWarning) as caught:
+        kinematics.finite_difference(sweep, 10.0)
+    text = str(next(w.message for w in caught if issubclass(w.category, LostDigitsWarning)))
+    assert f"at input 179.000° (step h = 0.0175 rad, condition number {sweep.cond[k180]:.3g} at 180.000°, within " \
+           "the stencil's reach)" in text
+
+
 def test_no_rounding_warning_on_a_degree_grid():
     import warnings
 
