@@ -57,6 +57,8 @@ def read_mechanism(r: SceneReader, scene: Scene, mech: dict) -> None:
     _read_quantities(r, scene, mech)
     if "linkage" in mech:
         _read_linkage(r, scene, mech, dims)
+        spec_kinds = {d.name: d.kind for d in _linkage_spec(scene.linkage).dimensions}
+        _check_quantity_kinds(r, scene, {n for n, kind in spec_kinds.items() if kind != "angle"})
         return
     if "loops" not in mech:
         r.fail("[mechanism]", "needs either `linkage` (a ready-made one) or [[mechanism.loops]]")
@@ -120,12 +122,21 @@ def read_mechanism(r: SceneReader, scene: Scene, mech: dict) -> None:
                          set(params) - angles, scene.unit)
     # a name that is a whole term of a vector's angle is an angle: never a whole term of a point's coordinate
     turning = angles | {n for lp in loops for _, angle in (lp["vectors"] or ()) for n in _bare_names(angle)}
+    lengths = set(params) - angles
     for p, xy in points.items():
         for axis, text in zip("xy", xy):
             for name in sorted(_bare_names(text) & turning):
                 r.fail(f"[mechanism.points] {p} {axis}",
                        f"'{name}' is an angle but is a whole term of the point's coordinate, which is a length "
                        f"in {scene.unit} (a length times cos or sin of an angle, e.g. 'r*cos({name})')")
+            _check_trig_arguments(r, f"[mechanism.points] {p} {axis}", text, lengths, scene.unit)
+    for k, lp in enumerate(loops):
+        for j, (length, angle) in enumerate(lp["vectors"] or ()):
+            _check_trig_arguments(r, f"[[mechanism.loops]] {k + 1} vector {j + 1} length", length, lengths, scene.unit)
+            _check_trig_arguments(r, f"[[mechanism.loops]] {k + 1} vector {j + 1} angle", angle, lengths, scene.unit)
+        for j, equation in enumerate(lp["equations"] or ()):
+            _check_trig_arguments(r, f"[[mechanism.loops]] {k + 1} equation {j + 1}", equation, lengths, scene.unit)
+    _check_quantity_kinds(r, scene, lengths)
     scene.dimensions = params
     scene.custom = {
         "input": input_name, "loops": loops, "points": points, "links": links, "ground": ground,
@@ -136,24 +147,32 @@ def read_mechanism(r: SceneReader, scene: Scene, mech: dict) -> None:
 def _bare_names(text) -> set:
     """Names that are whole additive terms of an expression string (``r1`` and ``2*r1`` in
     ``"theta2 + 2*r1"``; not inside a product of names or a function); none if it does not parse."""
+    return _whole_terms(text)[0]
+
+
+def _whole_terms(text) -> tuple[set, list]:
+    """The names (see :func:`_bare_names`) and the numbers (``180`` in ``"theta2 + 180"``, ``-30`` in
+    ``"theta2 - 30"``) that are whole additive terms of an expression string; none if it does not parse."""
     try:
         node = ast.parse(str(text).replace("^", "**"), mode="eval").body
     except SyntaxError:
-        return set()  # the expression's own parse reports it
-    out, terms = set(), [node]
+        return set(), []  # the expression's own parse reports it
+    names, numbers, terms = set(), [], [(node, 1.0)]
     while terms:
-        t = terms.pop()
+        t, sign = terms.pop()
         if isinstance(t, ast.BinOp) and isinstance(t.op, (ast.Add, ast.Sub)):
-            terms += [t.left, t.right]
+            terms += [(t.left, sign), (t.right, -sign if isinstance(t.op, ast.Sub) else sign)]
         elif isinstance(t, ast.UnaryOp) and isinstance(t.op, (ast.USub, ast.UAdd)):
-            terms.append(t.operand)
+            terms.append((t.operand, -sign if isinstance(t.op, ast.USub) else sign))
         elif isinstance(t, ast.BinOp) and isinstance(t.op, (ast.Mult, ast.Div)) and isinstance(t.right, ast.Constant):
-            terms.append(t.left)
+            terms.append((t.left, sign))
         elif isinstance(t, ast.BinOp) and isinstance(t.op, ast.Mult) and isinstance(t.left, ast.Constant):
-            terms.append(t.right)
+            terms.append((t.right, sign))
         elif isinstance(t, ast.Name):
-            out.add(t.id)
-    return out
+            names.add(t.id)
+        elif isinstance(t, ast.Constant) and isinstance(t.value, (int, float)) and not isinstance(t.value, bool):
+            numbers.append(sign * float(t.value))
+    return names, numbers
 
 
 def _check_kinds(r: SceneReader, where: str, length, angle, angles: set, lengths: set, unit: str) -> None:
@@ -162,9 +181,57 @@ def _check_kinds(r: SceneReader, where: str, length, angle, angles: set, lengths
     for name in sorted(_bare_names(length) & angles):
         r.fail(f"{where} length", f"'{name}' is an angle (given as {name}_deg in [mechanism.dimensions]) but is "
                                   f"used as a length; give it as {name} in {unit}")
-    for name in sorted(_bare_names(angle) & lengths):
-        r.fail(f"{where} angle", f"'{name}' is a length (in {unit}, [mechanism.dimensions]) but is added to "
-                                 f"an angle; an angle dimension is given as {name}_deg")
+    _check_angle_terms(r, f"{where} angle", angle, lengths, unit, "is added to an angle", "in an angle")
+
+
+#: Functions whose argument is an angle (rad).
+_TRIG = ("sin", "cos", "tan")
+
+
+def _check_angle_terms(r: SceneReader, where: str, text, lengths: set, unit: str, doing: str, inside: str) -> None:
+    """An angle expression (``text``, or a part of it) holds no length dimension as a whole term, and no number of
+    more than a turn (a number in an angle is rad: 180 there is 28.6 turns, most likely meant as degrees).
+    ``doing``: what a length there does, for the message; ``inside``: where the number is."""
+    names, numbers = _whole_terms(text)
+    for name in sorted(names & lengths):
+        r.fail(where, f"'{name}' is a length (in {unit}, [mechanism.dimensions]) but {doing}; an angle dimension is "
+                      f"given as {name}_deg")
+    for number in numbers:
+        if abs(number) > 2.0 * math.pi * (1.0 + 1e-12):
+            r.fail(where, f"the number {number:g} {inside} is more than a turn: a number in an angle is rad "
+                          f"({number:g} rad = {math.degrees(number):.4g}°); write pi for 180°, or give an angle "
+                          "dimension as <name>_deg")
+
+
+def _check_trig_arguments(r: SceneReader, where: str, text, lengths: set, unit: str) -> None:
+    """The argument of every sin, cos and tan in ``text`` passes :func:`_check_angle_terms`."""
+    try:
+        tree = ast.parse(str(text).replace("^", "**"), mode="eval")
+    except SyntaxError:
+        return  # the expression's own parse reports it
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in _TRIG and node.args:
+            _check_angle_terms(r, where, ast.unparse(node.args[0]), lengths, unit,
+                               f"is added to an angle (the argument of {node.func.id})",
+                               f"in an angle (the argument of {node.func.id})")
+
+
+def _check_quantity_kinds(r: SceneReader, scene: Scene, lengths: set) -> None:
+    """A derived quantity's angle arguments hold no length dimension (nor a number of more than a turn); one of
+    dimension "angle" holds none as a whole term either."""
+    for name, (expression, dimension) in scene.derived.items():
+        where = f"[mechanism.quantities] {name} expression"
+        _check_trig_arguments(r, where, expression, lengths, scene.unit)
+        if dimension == "angle":
+            _check_angle_terms(r, where, expression, lengths, scene.unit,
+                               "is a whole term of an angle (dimension = \"angle\")",
+                               "in an angle (dimension = \"angle\")")
+
+
+def _linkage_spec(name: str):
+    from . import linkages
+
+    return linkages.spec(name)
 
 
 def _read_linkage(r: SceneReader, scene: Scene, mech: dict, dims: dict) -> None:

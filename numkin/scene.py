@@ -140,8 +140,11 @@ atan2 sqrt exp abs``. A loop of vectors sums (length, angle) pairs to zero
 is in rad: a dimension given as ``<name>_deg`` is converted, and a bare number
 in an angle (``"theta2 + 0.5"``) is rad. A dimension is a length or an angle,
 never both: an angle dimension as a whole term of a vector's length, or a
-length dimension added to an angle, is refused (a product or a function of
-them, ``"r*cos(tilt)"``, ``"atan2(h, d)"``, is fine). An angle (an angle
+length dimension added to an angle (a vector's angle, the argument of sin,
+cos or tan anywhere, a derived quantity of dimension "angle"), is refused (a
+product or a function of them, ``"r*cos(tilt)"``, ``"atan2(h, d)"``, is
+fine); so is a number of more than a turn in an angle (``"theta3 + 30"`` is
+30 rad: write ``pi/6``, or a dimension ``gamma_deg = 30``). An angle (an angle
 dimension, or a name that is a whole term of a vector's angle) as a whole term
 of a point's coordinate, which is a length, is refused too. The lengths of vectors
 that turn must be positive; a loop written as ``equations`` has no vector

@@ -389,6 +389,22 @@ def test_zero_length_is_refused_by_the_mechanism(zero):
      "[mechanism.points] MU x: 'theta3' is an angle but is a whole term of the point's coordinate"),
     ([("[input]", '[mechanism.points]\nA = ["r2*cos(theta2)", "2*theta2"]\n[input]')],
      "[mechanism.points] A y: 'theta2' is an angle"),
+    # a coupler point's angle offset given as a length (gamma = 30 for gamma_deg = 30): inside cos, a length
+    ([("r1 = 4", "r1 = 4\ngamma = 30"),
+      ("[input]", '[mechanism.points]\nC = ["r2*cos(theta2) + 2*cos(theta3 + gamma)", "0"]\n[input]')],
+     "[mechanism.points] C x: 'gamma' is a length (in mm, [mechanism.dimensions]) but is added to an angle (the "
+     "argument of cos)"),
+    # degrees written as a number in an angle: 30 rad, 180 rad
+    ([("[input]", '[mechanism.points]\nC = ["r2*cos(theta2) + 2*cos(theta3 + 30)", "0"]\n[input]')],
+     "[mechanism.points] C x: the number 30 in an angle (the argument of cos) is more than a turn: a number in an "
+     "angle is rad (30 rad = 1719°)"),
+    ([('["-r1", "0"]', '["r1", "180"]')], "1 vector 4 angle: the number 180 in an angle is more than a turn"),
+    ([('["-r1", "0"]', '["r1", "theta2 - 180"]')], "1 vector 4 angle: the number -180 in an angle is more than"),
+    # a derived angle with a length as a whole term
+    ([("[input]", '[mechanism.quantities]\nmu = { expression = "theta4 - theta3 + r1", dimension = "angle" }\n'
+                  '[input]')],
+     "[mechanism.quantities] mu expression: 'r1' is a length (in mm, [mechanism.dimensions]) but is a whole term "
+     "of an angle"),
 ])
 def test_a_dimension_used_as_the_other_kind_is_refused(capsys, tmp_path, edits, words):
     code, out, err = run(capsys, "run", loops_scene(tmp_path, step=10, edits=edits))
@@ -400,7 +416,7 @@ def test_an_angle_from_lengths_and_a_projected_length_are_fine(tmp_path):
     # atan2 of two lengths is an angle, and a length times the cosine of an angle a length: both legitimate;
     # the loop O2-A-B-O4 with O4 given by its distance and direction, checked against the closed form
     path = loops_scene(tmp_path, step=10, edits=[("r1 = 4", "r1 = 4\nh = 0\ntilt_deg = 0"),
-                                                 ('["-r1", "0"]', '["-r1*cos(tilt)", "atan2(h, r1)"]')])
+                                                 ('["-r1", "0"]', '["-r1*cos(tilt + 2*pi)", "atan2(h, r1)"]')])
     result = run_scene(load_scene(path), at=90)
     t3, t4 = four_bar_closed_form(math.radians(90))
     assert result.at.values["theta4_deg"] == pytest.approx(math.degrees(t4), abs=1e-9)
