@@ -468,6 +468,9 @@ def _validate(data: dict, *, name: str, source: str) -> Scene:
         guess = r.table(data["guess"], "[guess]")
         if scene.custom is None and not guess:
             r.fail("[guess]", "is empty")
+        if scene.branch is not None:  # both pick the assembly: one could silently overrule the other
+            r.fail("[mechanism] branch", f"\"{scene.branch}\" and a [guess] both pick the assembly branch: give one "
+                                         "(branch for the ready-made one, or a [guess] of the unknowns)")
         scene.guess = dict(guess)
     elif scene.custom is not None:
         r.fail("", "missing [guess] section: a mechanism written as loops needs values for its unknowns at start_deg")

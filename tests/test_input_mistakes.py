@@ -307,6 +307,15 @@ def test_a_scene_through_a_change_point_is_told_its_own_key(capsys, tmp_path):
     assert "pass on_singular" not in line
 
 
+def test_a_branch_and_a_guess_together_are_refused(capsys, tmp_path):
+    """Both pick the assembly: a [guess] on the other branch silently overruled `branch` before."""
+    path = tmp_path / "both.toml"
+    path.write_text(textwrap.dedent(PARALLELOGRAM.format(extra="[guess]\ntheta3_deg = 10\ntheta4_deg = 100")))
+    code, out, err = run(capsys, "run", str(path))
+    assert code == 2
+    assert '[mechanism] branch: "crossed" and a [guess] both pick the assembly branch: give one' in one_line_error(err)
+
+
 def test_a_scene_with_on_singular_report_keeps_the_branch_through_the_change_point(tmp_path):
     path = tmp_path / "par.toml"
     path.write_text(textwrap.dedent(PARALLELOGRAM.format(extra='on_singular = "report"')))
