@@ -57,6 +57,7 @@ from .errors import InputError
 from .kinematics import PARTNER, prepare_rows, scheme_for, sweep_grid
 from .quantities import Quantity, catalogue, input_quantity
 from .schemes import own_stencil_points
+from .units import input_degrees
 
 __all__ = ["Comparison", "compare", "quantities", "DEFAULT_SCHEMES"]
 
@@ -261,7 +262,7 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
 
     in_col = f"{input_quantity(mech).name} [deg]"
     analytic_q = target.with_source("analytic")
-    table = {in_col: np.degrees(t), analytic_q.source_label(): exact}
+    table = {in_col: input_degrees(t), analytic_q.source_label(): exact}
     columns = {analytic_q.source_label(): analytic_q}
     scale = float(np.nanmax(np.abs(exact))) if np.any(np.isfinite(exact)) else float("nan")
     summary = []

@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError
+from .units import input_degrees
 
 __all__ = ["tables", "write_tables", "error_summary", "jsonable", "output_folder", "made_folder"]
 
@@ -199,12 +200,12 @@ def tables(result) -> dict:
         out["positions"] = frame
     if "kinematics" in wanted and result.kinematics is not None:
         rates = [q for q in quantities if not q.is_point and q.order > 0]
-        out["kinematics"] = pd.DataFrame({input_col: np.degrees(sweep.inputs), **_columns(result, rates, unknown_rate)})
+        out["kinematics"] = pd.DataFrame({input_col: input_degrees(sweep.inputs), **_columns(result, rates, unknown_rate)})
     if "points" in wanted and scene.points:
         points = [q for q in quantities if q.is_point]
         # per point: x, y, then its velocity and acceleration components
         points.sort(key=lambda q: scene.points.index(q.of))
-        out["points"] = pd.DataFrame({input_col: np.degrees(sweep.inputs), **_columns(result, points, point_value)})
+        out["points"] = pd.DataFrame({input_col: input_degrees(sweep.inputs), **_columns(result, points, point_value)})
     if "comparison" in wanted:
         for name, comparison in result.comparisons.items():
             out[f"comparison-{name}"] = comparison.table

@@ -23,6 +23,7 @@ import numpy as np
 
 from .errors import InputError
 from .newton import COND_MAX, COND_WARN
+from .units import input_degrees
 
 __all__ = ["Sweep", "SweepEvent", "SingularityWarning", "run_sweep", "COND_MAX", "COND_WARN", "EvaluationCounter",
            "count_evaluations", "record_evaluations", "check_sweep"]
@@ -204,7 +205,7 @@ class Sweep:
 
         angle_unit = "deg" if degrees else "rad"
         conv = np.degrees if degrees else (lambda a: a)
-        cols = {f"{self.mechanism.input_name} [{angle_unit}]": conv(self.inputs)}
+        cols = {f"{self.mechanism.input_name} [{angle_unit}]": input_degrees(self.inputs) if degrees else self.inputs}
         for name, vals in zip(self.unknowns, self.values):
             if name in self.mechanism.angles:
                 cols[f"{name} [{angle_unit}]"] = conv(vals)

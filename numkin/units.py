@@ -34,6 +34,7 @@ __all__ = [
     "is_number",
     "number_array",
     "with_length_unit",
+    "input_degrees",
     "UnitError",
     "angular_speed",
     "angular_acceleration",
@@ -487,6 +488,20 @@ def input_rates(omega, alpha=0.0, count: int | None = None):
     (array([7.5, 7.5, 7.5]), array([0., 0., 0.]))
     """
     return input_rate(omega, "speed", count), input_rate(alpha, "acceleration", count)
+
+
+def input_degrees(t) -> np.ndarray:
+    """Input angles (rad) in degrees for a table's input column, rounded to 1e-9 degree.
+
+    A grid written in degrees reads as written: 30° taken to rad and back is
+    29.999999999999996, a value no filter or join on 30 finds.
+
+    Examples
+    --------
+    >>> float(np.degrees(np.radians(30.0))), float(input_degrees(np.radians(30.0)))
+    (29.999999999999996, 30.0)
+    """
+    return np.round(np.degrees(t), 9) + 0.0  # (+ 0.0: no -0.0)
 
 
 def with_length_unit(name: str, unit: str) -> str:

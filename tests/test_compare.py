@@ -184,3 +184,15 @@ def test_a_quantity_made_elsewhere_is_refused_not_labelled_with_its_unit():
                     dataclasses.replace(own, of="theta9"), resolve(mech, "theta4")):
         with pytest.raises(ValueError, match="is not a velocity or acceleration of four-bar"):
             compare(sweep, 10.0, foreign)
+
+
+def test_input_columns_read_as_the_grid_was_written():
+    """A grid in degrees taken to rad: 30° comes back as 29.999999999999996 from np.degrees; the input columns of the
+    sweep's frame and of a comparison hold the grid as written (a filter on 30 finds its row)."""
+    degrees = np.arange(20.0, 60.0, 0.5)
+    t = np.radians(degrees)
+    assert not np.array_equal(np.degrees(t), degrees)  # the round trip's noise, which the columns must not show
+    sweep = linkages.four_bar(5, 1.5, 4.5, 3.5).sweep(t)
+    assert np.array_equal(sweep.to_frame()["theta2 [deg]"].to_numpy(), degrees)
+    table = compare(sweep, 10.0, "omega_theta4", schemes=("centred",)).table
+    assert np.array_equal(table["theta2 [deg]"].to_numpy(), degrees)
