@@ -54,7 +54,7 @@ from . import derivatives as _d
 from .analytic import check_sweep, derivatives, input_rates
 from .expressions import derived_derivatives, point_derivatives
 from .errors import InputError
-from .kinematics import PARTNER, prepare_rows, scheme_for, sweep_grid
+from .kinematics import PARTNER, apply_scheme, prepare_rows, scheme_for, sweep_grid
 from .quantities import Quantity, catalogue, input_quantity
 from .schemes import own_stencil_points
 from .units import input_degrees
@@ -269,9 +269,12 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
     ends_of = {}  # scheme -> rows at the start and at the end taken by one-sided end stencils
     for s in chosen:
         if order == 1:
-            value = w * rows.apply(s)[0]
+            value = w * apply_scheme(rows, s, "schemes", target.name)[0]
         else:
-            value = w**2 * rows.apply(s)[0] + a * rows.apply(_d.get_scheme(PARTNER[s.name]))[0]
+            partner = _d.get_scheme(PARTNER[s.name])
+            value = w**2 * apply_scheme(rows, s, "schemes", target.name)[0]
+            if np.any(a != 0):  # the input's acceleration times dq/dtheta, by the scheme's partner
+                value = value + a * apply_scheme(rows, partner, f"schemes ({s.name}'s partner)", target.name)[0]
         # the rows where the scheme's own stencil applies: on an open grid its ends take one-sided stencils
         used = [s, _d.get_scheme(PARTNER[s.name])] if order == 2 and np.any(a != 0) else [s]  # alpha: dq too
         own = own_stencil_points(used, t.size, rows.periodic)

@@ -58,7 +58,7 @@ from .analytic import check_sweep, input_rates, kinematics_frame
 from .conditioning import DIGITS_RTOL, rounding_error, warn_rounding
 from .errors import InputError, warn
 
-__all__ = ["finite_difference", "rounding_error", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "PARTNER",
+__all__ = ["finite_difference", "rounding_error", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "apply_scheme", "PARTNER",
            "CLOSURE_TOL"]
 
 #: First-derivative scheme used with each second-derivative scheme (for the
@@ -380,9 +380,9 @@ def sweep_derivative(sweep, method="centred", periodic="auto", *, close: bool = 
 DEFAULT_METHOD, DEFAULT_SECOND_METHOD = "centred", "second_difference"
 
 
-def _apply(rows, scheme, argument, quantity, default):
-    """``rows.apply(scheme)``; too short a sweep for it is said in the words of the call (the argument, and
-    whether its scheme is the default)."""
+def apply_scheme(rows, scheme, argument, quantity, default=False):
+    """``rows.apply(scheme)`` (:meth:`Rows.apply`); too short a sweep for it is an InputError in the words of the
+    call: the argument that chose the scheme, whether its scheme is the default, the quantity it is for."""
     try:
         return rows.apply(scheme)
     except InputError as err:
@@ -390,11 +390,13 @@ def _apply(rows, scheme, argument, quantity, default):
             raise
         points = rows.y.shape[-1] - (1 if rows.periodic else 0)
         given = "the default " if default else ""
-        raise InputError(
+        error = InputError(
             f"{argument}={scheme.name!r} ({given}scheme for {quantity}) needs at least {err.minimum} points on "
             f"{err.grid} grid; the sweep has {points}{' per turn' if rows.periodic else ''}: sweep more points, "
             f"or pass another {argument}",
-            cause="too few samples") from None
+            cause="too few samples")
+        error.minimum, error.grid, error.scheme, error.points = err.minimum, err.grid, scheme.name, points
+        raise error from None
 
 
 def finite_difference(sweep, omega, alpha=0.0, method=DEFAULT_METHOD, second_method=DEFAULT_SECOND_METHOD,
@@ -469,8 +471,8 @@ def finite_difference(sweep, omega, alpha=0.0, method=DEFAULT_METHOD, second_met
     s2 = scheme_for(second_method, 2, "second_method")
     mech, t, rows = _unknown_rows(sweep, periodic)
     w, a = input_rates(omega, alpha, t.size)
-    d1 = _apply(rows, s1, "method", "omega", method == DEFAULT_METHOD)
-    d2 = _apply(rows, s2, "second_method", "alpha", second_method == DEFAULT_SECOND_METHOD)
+    d1 = apply_scheme(rows, s1, "method", "omega", method == DEFAULT_METHOD)
+    d2 = apply_scheme(rows, s2, "second_method", "alpha", second_method == DEFAULT_SECOND_METHOD)
     for scheme, d in ((s1, d1), (s2, d2)):
         warn_rounding(sweep, mech, t, rows, scheme, d, rtol)
     attrs = {

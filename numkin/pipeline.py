@@ -461,9 +461,19 @@ def _differentiate(result: SceneResult) -> None:
         rates = scene_quantities(scene, result.mechanism, orders=(1, 2)).values()
         for q in rates:
             if not q.is_point and schemes[q.order]:
-                result.comparisons[q.name] = compare(
-                    sweep, result.omega, q.name, schemes=schemes[q.order], alpha=result.alpha,
-                )
+                try:
+                    result.comparisons[q.name] = compare(
+                        sweep, result.omega, q.name, schemes=schemes[q.order], alpha=result.alpha,
+                    )
+                except InputError as error:
+                    if error.cause != "too few samples":
+                        raise
+                    key = "schemes" if q.order == 1 else "second_schemes"
+                    raise InputError(
+                        f"[compare] {key}: '{error.scheme}' needs at least {error.minimum} points on {error.grid} "
+                        f"grid; the sweep ({scene.start_deg:g}° to {scene.stop_deg:g}° in steps of {scene.step_deg:g}°) "
+                        f"has {error.points}: widen the sweep, make its step "
+                        "smaller, or choose a scheme of fewer points", cause="too few samples") from None
 
 
 def _evaluate(result: SceneResult, at_deg: float, check: dict | None = None, *, every: bool = False) -> CheckResult:

@@ -689,3 +689,50 @@ def test_rates_of_an_input_at_rest_are_not_compared():
         compare.compare(mech.sweep(np.linspace(0, 2 * np.pi, 37)), 0.0, "omega_theta4")
     with pytest.raises(ValueError, match="omega = 0: the input is at rest"):
         report.convergence_table(mech, omega=0, quantity="theta4", grids=(36,))
+
+
+# ------------------------------------------------------------ a sweep too short for a scheme
+SHORT = """
+[scene]
+description = "a sweep of three points"
+[mechanism]
+linkage = "slider_crank"
+[mechanism.dimensions]
+crank = 50
+rod = 60
+offset = 20
+[input]
+speed = "10 rad/s"
+start_deg = 45
+stop_deg = 46
+step_deg = 0.5
+[output]
+quantities = ["position", "velocity", "acceleration"]
+[compare]
+{compare}
+"""
+
+
+@pytest.mark.parametrize("compare, words", [
+    ('schemes = ["five_point"]',
+     "[compare] schemes: 'five_point' needs at least 5 points on an open grid; the sweep (45° to 46° in steps of "
+     "0.5°) has 3: widen the sweep"),
+    ('second_schemes = ["five_point_second"]', "[compare] second_schemes: 'five_point_second' needs at least 6 points"),
+])
+def test_a_sweep_too_short_for_a_compared_scheme_names_the_key(capsys, tmp_path, compare, words):
+    path = tmp_path / "short.toml"
+    path.write_text(textwrap.dedent(SHORT.format(compare=compare)))
+    code, out, err = run(capsys, "run", str(path))
+    assert code == 2
+    line = one_line_error(err)
+    assert words in line and "last axis" not in line
+
+
+def test_compare_names_its_argument_when_the_sweep_is_too_short():
+    from numkin import compare
+    from numkin.errors import InputError
+
+    sweep = linkages.slider_crank(50, 60, 20).sweep(np.radians([45.0, 45.5, 46.0]))
+    with pytest.raises(InputError, match=r"schemes='five_point' \(scheme for omega_theta3\) needs at least 5 points "
+                                         r"on an open grid; the sweep has 3"):
+        compare.compare(sweep, 10.0, "omega_theta3", schemes=("five_point",))
