@@ -406,7 +406,9 @@ def load_scene(name_or_path, overrides: Mapping | None = None) -> Scene:
     source = path.name
     try:
         with open(path, "rb") as fh:
-            data = tomllib.load(fh)
+            raw = fh.read()
+        # a byte-order mark, which some editors write at the start of UTF-8 text, is no TOML: read past it
+        data = tomllib.loads(raw.decode("utf-8-sig"))
     except tomllib.TOMLDecodeError as error:
         raise SceneError(one_line(f"{source}: malformed TOML: {error}")) from None
     except UnicodeDecodeError as error:

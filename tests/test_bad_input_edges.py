@@ -66,6 +66,15 @@ def test_load_scene_says_what_is_wrong_with_the_file(tmp_path, content, words):
         load_scene(path)
 
 
+def test_a_scene_file_that_starts_with_a_byte_order_mark_is_read(tmp_path):
+    """Some editors start UTF-8 text with a byte-order mark, which TOML does not allow: read past it."""
+    from numkin.schema import SCENES_DIR
+
+    path = tmp_path / "homework.toml"
+    path.write_bytes(b"\xef\xbb\xbf" + (SCENES_DIR / "homework.toml").read_bytes())
+    assert load_scene(path).description == load_scene("homework").description
+
+
 # ------------------------------------------------------------------- run_scene
 @pytest.mark.parametrize("kwargs, words", [
     ({"scene": None}, r"^scene must be a built-in scene's name .* got NoneType None"),
