@@ -219,7 +219,10 @@ def read_checks(r: SceneReader, scene: Scene, checks) -> None:
         where = f"[[check]] {k + 1}"
         r.table(check, where)
         if "at_deg" not in check:
-            r.fail(where, "missing key 'at_deg' (the input angle of the check point, degrees)")
+            # a mistyped at_deg (not a quantity's name such as theta4_deg, which is as near by difflib's default)
+            near = next((f" ('{k}' is written there: did you mean 'at_deg'?)" for k in check
+                         if difflib.SequenceMatcher(None, k, "at_deg").ratio() >= 0.75), "")
+            r.fail(where, f"missing key 'at_deg' (the input angle of the check point, degrees){near}")
         at = r.number(check["at_deg"], f"{where} at_deg")
         in_range(r, scene, at, f"{where} at_deg")
         tol = None

@@ -167,9 +167,11 @@ def test_failed_check_exits_1(capsys, tmp_path):
         (lambda p: write(p, open(four_bar(p)).read().replace("rocker = 3\n", "")), ["missing dimension 'rocker'"]),
         (lambda p: four_bar(p, ground=10, crank=6, coupler=1, rocker=1),
          ["cannot be assembled at any input angle", "non-assemblable four-bar (l > s + p + q)"]),
+        (lambda p: write(p, open(four_bar(p)).read() + "\n[[check]]\nat_dg = 90\ntheta4_deg = 119.371\n"),
+         ["[[check]] 1: missing key 'at_deg'", "('at_dg' is written there: did you mean 'at_deg'?)"]),
     ],
     ids=["unknown-scene", "missing-file", "bad-toml", "unknown-key", "bad-unit", "bad-length-unit",
-         "missing-dimension", "cannot-assemble"],
+         "missing-dimension", "cannot-assemble", "misspelt-at-deg"],
 )
 def test_scene_mistakes_exit_2_with_one_line(capsys, tmp_path, make, words):
     code, out, err = run(capsys, "run", make(tmp_path))
