@@ -3,8 +3,8 @@ written) and the stability suite, as text.
 
 Examples
 --------
->>> fmt_value(10.63318, 10.633), fmt_value(0.000123456789)
-('10.633', '0.000123457')
+>>> fmt_value(10.63318, 10.633), fmt_value(0.000123456789), fmt_value(6.3701234, 6.371, mismatch=True)
+('10.633', '0.000123457', '6.37012')
 """
 
 from __future__ import annotations
@@ -15,8 +15,10 @@ import textwrap
 __all__ = ["format_result", "fmt_value"]
 
 
-def fmt_value(value: float, expected: float | None = None) -> str:
-    """A value to the decimals of its expected value, else to 6 significant digits."""
+def fmt_value(value: float, expected: float | None = None, mismatch: bool = False) -> str:
+    """A value to the decimals of its expected value, else to 6 significant digits; a ``mismatch`` (a value that
+    misses its expected one) to 6 significant digits or two decimals more than the expected value, whichever
+    shows more, so that it never reads as the expected value rounded."""
     if value is None or (isinstance(value, float) and not math.isfinite(value)):
         return "-"
     if value == 0:
@@ -25,7 +27,11 @@ def fmt_value(value: float, expected: float | None = None) -> str:
         text = repr(float(expected))
         if "e" not in text.lower():
             decimals = 0 if text.endswith(".0") else len(text.split(".")[1])
-            return f"{value:.{decimals}f}"
+            if not mismatch:
+                return f"{value:.{decimals}f}"
+            six = f"{value:#.6g}".rstrip(".")
+            more = f"{value:.{decimals + 2}f}"
+            return six if "e" not in six and len(six.split(".")[-1]) > decimals + 2 else more
     return f"{value:#.6g}".rstrip(".")
 
 
@@ -42,7 +48,8 @@ def _check_lines(check, input_name: str, title: str) -> list[str]:
     width = max((len(_label(k, check.units[k])) for k in check.values), default=10) + 2
     for key, value in check.values.items():
         expected = check.expected.get(key)
-        line = f"  {_label(key, check.units[key]):<{width}}{fmt_value(value, expected):>12}"
+        missed = expected is not None and not check.ok[key]
+        line = f"  {_label(key, check.units[key]):<{width}}{fmt_value(value, expected, mismatch=missed):>12}"
         if expected is not None:
             mark = "ok" if check.ok[key] else f"MISMATCH (tolerance {check.tolerance[key]:.1g})"
             line += f"   expected {fmt_value(expected, expected)} {mark}"

@@ -150,6 +150,8 @@ def test_failed_check_exits_1(capsys, tmp_path):
     assert code == 1
     assert "MISMATCH" in out
     assert err.startswith("numkin: check failed: theta4_deg = 119.371 at 90° (expected 100)")
+    # the value that missed, to 6 figures (circle intersection: 119.3714°), not to the expected value's 0 decimals
+    assert "119.371   expected 100 MISMATCH" in out
     assert len(err.strip().splitlines()) == 1
 
 
