@@ -332,7 +332,10 @@ def in_scene_terms(scene: Scene, mech, *, tables: bool = False):
     every = far_guesses(mech, [guess[u] for u in mech.unknowns]) if guess else []
 
     def as_written(text: str, far=None) -> str:
-        """``text`` with the hint about ``far`` (default: every far guess) said as the scene writes it."""
+        """``text`` with the hint about ``far`` (default: every far guess) said as the scene writes it, and the
+        mechanism named with the unit of its dimensions, as ``numkin run`` heads its output."""
+        if mech.title != mech.name and mech.name not in mech.title:
+            text = text.replace(mech.name, mech.title)
         text = text.replace("guess nearer the position (angles in rad)", "[guess] nearer the position (angles as "
                             "<unknown>_deg, in degrees)").replace(
             "better guess (angles in rad)", "better [guess] (angles as <unknown>_deg, in degrees)").replace(
