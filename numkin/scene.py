@@ -28,7 +28,7 @@ are optional. ::
 
     [mechanism]
     linkage = "four_bar"     # a ready-made linkage (table below) ...
-    unit = "mm"              # working length unit: mm, cm, m, in, ft (default mm)
+    unit = "mm"              # working length unit: mm, cm, m, km, in, ft (default mm)
     # branch = "open"        # four_bar only: "open" or "crossed" (or a [guess], not both)
     [mechanism.dimensions]   # numbers in `unit`, or strings with their own unit
     ground = 4               # ("80 mm"); angles as <name>_deg
