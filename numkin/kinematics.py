@@ -121,8 +121,9 @@ def sweep_grid(sweep, periodic="auto") -> SweepGrid:
     (10.0, True)
     """
     _, t, _ = check_sweep(sweep)
-    if periodic not in ("auto", True, False):
+    if not (isinstance(periodic, (bool, np.bool_)) or (isinstance(periodic, str) and periodic == "auto")):
         raise InputError(f"periodic must be 'auto', True or False, got {periodic!r}")
+    periodic = periodic if isinstance(periodic, str) else bool(periodic)
     if t.size < 2:
         raise InputError(f"finite differences need at least 2 points in the sweep, got {t.size}")
     d = np.diff(t)

@@ -271,13 +271,18 @@ class Rule:
 
 # --------------------------------------------------------------------------- validation
 def check_step(h) -> float:
-    """`h` as a float, or a ValueError if it is not finite and positive."""
+    """`h` as a float, or a ValueError if it is not finite and positive (a 0-d array is its number)."""
+    if isinstance(h, np.ndarray) and h.ndim == 0 and h.dtype.kind in "iuf":
+        h = h.item()
     if isinstance(h, bool) or not isinstance(h, numbers.Real) or not (math.isfinite(h) and h > 0):
         raise InputError(f"h must be a finite positive number, got {h!r}")
     return float(h)
 
 
 def _check_samples(y: ArrayLike, scheme: str, minimum: int, periodic: bool) -> FloatArray:
+    if np.iscomplexobj(y):
+        raise InputError("y must be real samples, got complex values (the complex step differentiates a function: "
+                         "numkin.derivatives.complex_step)")
     try:
         samples = np.asarray(y, dtype=float)
     except (TypeError, ValueError):

@@ -515,3 +515,20 @@ def test_an_input_rate_of_none_is_named(kwargs, name):
     with pytest.raises(InputError, match=rf"^{name} must be a number, a string with units or an array of numbers, "
                                          "got None"):
         analytic.kinematics(sweep, **kwargs)
+
+
+# ------------------------------------------------------------------- difference schemes' arguments
+def test_difference_arguments_are_taken_as_written():
+    """A 0-d array is the step it holds; periodic is a bool (1 is refused, as differentiate refuses it); complex
+    samples are refused, not cast to their real part."""
+    from numkin import derivatives, kinematics, linkages
+
+    x = np.linspace(0.0, 1.0, 11)
+    np.testing.assert_allclose(derivatives.differentiate(np.sin(x), h=np.array(0.1), method="centred")[1:-1],
+                               (np.sin(x[2:]) - np.sin(x[:-2])) / 0.2, rtol=1e-12)
+    with pytest.raises(InputError, match=r"y must be real samples, got complex values"):
+        derivatives.differentiate(np.sin(x) + 1j, h=0.1, method="centred")
+    sweep = linkages.four_bar(4, 1, 3, 3).sweep(np.radians(np.arange(0, 361)))
+    with pytest.raises(InputError, match=r"periodic must be 'auto', True or False, got 1"):
+        kinematics.finite_difference(sweep, 1.0, periodic=1)
+    assert kinematics.finite_difference(sweep, 1.0, periodic=np.bool_(True)).attrs["periodic"] is True
