@@ -3,7 +3,10 @@
 :data:`CASES` names the cases; :func:`run_suite` runs them and summarises
 each in one row of a table: what happened, the largest condition number of
 the Jacobian, the Newton iterations, the error of every finite-difference
-scheme against the analytic solution, and the error or warning raised.
+scheme against the analytic solution, and the error or warning raised. A
+scheme's error is taken, as :func:`numkin.compare.compare` takes it, over
+the points where its own stencil applies; on an open sweep the one-sided
+end stencils at the first and last points have a column of their own.
 
 ========================================  ======================================================  ================
 case                                      what it probes                                          expected
@@ -47,6 +50,7 @@ import numpy as np
 from . import analytic, kinematics, linkages
 from .conditioning import LostDigitsWarning, lost_digits
 from .derivatives import SCHEMES
+from .schemes import own_stencil_points
 from .errors import AssemblyError, BranchError, ConvergenceError, InputError, NumkinError
 from .sweep import Sweep
 from .units import input_rate
@@ -173,16 +177,36 @@ def _subsweep(sweep, count: int):
 
 
 def _scheme_errors(sweep, j, schemes, dq, d2q) -> dict:
-    """Max error of each scheme over ``max |exact|`` (d/dtheta, so independent of omega), NaN if not applicable."""
+    """Each scheme's ``(interior, ends)`` errors of unknown `j`, over ``max |exact|`` (d/dtheta: independent of omega).
+
+    As :func:`numkin.compare.compare` does: the unknown's row is differenced
+    on its own (:func:`numkin.kinematics.prepare_rows`), and the interior
+    error is the largest over the points where the scheme's own stencil
+    applies (:func:`numkin.schemes.own_stencil_points`: one period of a full
+    turn; on an open sweep all but the first and last points, which take
+    one-sided end stencils); the ends' largest error is the second number
+    (NaN on a periodic sweep). Both divide by the largest ``|exact|`` over
+    the whole sweep. NaN, NaN for a scheme that does not apply (a spectral
+    one on an open sweep).
+    """
+    mech = sweep.mechanism
+    name = mech.unknowns[j]
     grid = kinematics.sweep_grid(sweep)
+    rows = kinematics.prepare_rows(sweep.values[j:j + 1], [name in mech.angles], [name], sweep.inputs, grid,
+                                   mech.length_scale)
+    n = sweep.inputs.size
     out = {}
     for scheme in schemes:
-        if scheme.periodic_only and not grid.periodic:
-            out[scheme.name] = math.nan
+        if scheme.periodic_only and not rows.periodic:
+            out[scheme.name] = (math.nan, math.nan)
             continue
         exact = dq[j] if scheme.derivative == 1 else d2q[j]
-        est = kinematics.sweep_derivative(sweep, scheme.name)[j]
-        out[scheme.name] = float(np.max(np.abs(est - exact)) / np.max(np.abs(exact)))
+        err = np.abs(rows.apply(scheme)[0] - exact) / np.max(np.abs(exact))
+        keep = np.zeros(n, dtype=bool)
+        keep[own_stencil_points([scheme], n, rows.periodic)] = True
+        ends = np.zeros(n, dtype=bool) if rows.periodic else ~keep
+        out[scheme.name] = (float(np.max(err[keep])) if keep.any() else math.nan,
+                            float(np.max(err[ends])) if ends.any() else math.nan)
     return out
 
 
@@ -236,6 +260,8 @@ def _run_case(case: Case, schemes) -> dict:
     }
     for scheme in schemes:
         row[f"{scheme.name} max rel error [-]"] = math.nan
+    for scheme in schemes:
+        row[f"{scheme.name} ends rel error [-]"] = math.nan
     row["error or warning raised"] = ""
     raised = []
     with warnings.catch_warnings(record=True) as caught:
@@ -252,9 +278,11 @@ def _run_case(case: Case, schemes) -> dict:
             dq_sub = analytic.derivatives(sub)[0][j] if sub is not sweep else dq[j]
             check = float(np.max(np.abs(cs - dq_sub)) / np.max(np.abs(dq_sub)))
             row["analytic vs complex step [-]"] = check
-            errors = _scheme_errors(sweep, j, schemes, dq, d2q)
-            for name, err in errors.items():
-                row[f"{name} max rel error [-]"] = err
+            both = _scheme_errors(sweep, j, schemes, dq, d2q)
+            errors = {name: inner for name, (inner, _) in both.items()}
+            for name, (inner, ends) in both.items():
+                row[f"{name} max rel error [-]"] = inner
+                row[f"{name} ends rel error [-]"] = ends
             wrong = []
             if not np.all(np.isfinite(sweep.values)):
                 wrong.append("non-finite positions")
@@ -356,8 +384,13 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
         digits`` (whether the analytic derivatives raised
         :class:`~numkin.conditioning.LostDigitsWarning`; ``what happened``
         then gives the estimated error), ``<scheme> max rel error [-]``
-        (max error over the sweep divided by the max of the exact
-        derivative) and ``error or warning raised``. Scale cases (with
+        (the largest error over the points where the scheme's own stencil
+        applies, as in :func:`numkin.compare.compare`: one period of a full
+        turn, all but the first and last points of an open sweep),
+        ``<scheme> ends rel error [-]`` (the largest error of the one-sided
+        end stencils at those first and last points; blank on a full turn),
+        both divided by the largest ``|exact|`` derivative over the sweep,
+        and ``error or warning raised``. Scale cases (with
         ``compare_to``) say in ``what happened`` how far their relative
         errors are from those of the case they scale.
 
@@ -370,6 +403,7 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
     import pandas as pd
 
     from .derivatives import get_scheme
+    from .report.study import PEAK, relative_text, set_views
 
     names = list(CASES) if cases is None else ([cases] if isinstance(cases, str) else list(cases))
     unknown = [n for n in names if n not in CASES]
@@ -396,8 +430,11 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
         rows[name] = row
     df = pd.DataFrame(list(rows.values()))
     df.attrs["caption"] = (
-        "Stability suite: each case through the solver and every finite-difference scheme; errors of d/dtheta "
-        "relative to the peak exact value; expected errors are outcomes. Max cond: the largest 2-norm condition "
+        "Stability suite: each case through the solver and every finite-difference scheme; expected errors are "
+        "outcomes. A scheme's max rel error is its largest error of dq/dtheta (d2q/dtheta2) over the points where "
+        "its own stencil applies: one period of a full turn; on an open sweep all but the first and last points, "
+        "which take one-sided end stencils and whose largest error is the scheme's ends rel error (blank on a full "
+        "turn)." + relative_text({"max rel error": PEAK, "ends rel error": PEAK}) + " Max cond: the largest 2-norm condition "
         "number of a loop's own block of the scaled Jacobian over the sweep. Sharpest turn: the input range over "
         "which the output turns (jump of dq/dtheta over max |d2q/dtheta2|), blank where wider than 3 grid steps. "
         "Errors need not grow with the stiffness: a first-derivative error peaks when the turn is about one grid "
@@ -406,7 +443,7 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
     )
     first = [f"{s.name} max rel error [-]" for s in scheme_list if s.derivative == 1]
     second = [f"{s.name} max rel error [-]" for s in scheme_list if s.derivative == 2]
-    from .report.study import set_views
+    ends = [f"{s.name} ends rel error [-]" for s in scheme_list]
 
     set_views(df, [
         ("outcome", ["case", "expected", "outcome", "as expected"]),
@@ -414,6 +451,8 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
                         "analytic lost digits"]),
         ("first-derivative schemes: max error of dq/dtheta over its peak", ["case", "sharpest turn [deg]"] + first),
         ("second-derivative schemes: max error of d2q/dtheta2 over its peak", ["case", "sharpest turn [deg]"] + second),
+        ("one-sided end stencils of an open sweep: max error at the first and last points over the peak",
+         ["case"] + ends),
         ("what happened", ["case", "what happened"]),
         ("errors and warnings raised", ["case", "error or warning raised"]),
     ], row_keys=["case"])

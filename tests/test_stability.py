@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 import re
 
+import mpmath as mp
 import numpy as np
 import pytest
 
@@ -214,3 +215,48 @@ def test_lost_digits_on_the_toggle_are_shown():
     assert numkin.LostDigitsWarning is numkin.conditioning.LostDigitsWarning
     assert not bool(stability.run_suite(["near toggle (4, 2, 4.0001, 2)"], schemes=["centred"]).iloc[0][
         "analytic lost digits"])
+
+
+def _toggle_theta4(theta, sign):
+    """Rocker angle of the 4/2/4.0001/2 four-bar by mpmath: |B - O4| = 2, |B - A| = 4.0001, A = 2 e^{i theta}."""
+    a = 2 * mp.expj(theta) - 4  # from O4 to the crank pin A
+    d = abs(a)
+    along = (2**2 - mp.mpf("4.0001") ** 2 + d**2) / (2 * d)
+    return mp.arg((along + sign * 1j * mp.sqrt(2**2 - along**2)) * a / d)
+
+
+def test_open_sweep_errors_leave_the_end_stencils_apart():
+    """Near toggle, swept 1..359 deg (an open sweep): the max rel error is over the interior points, where the
+    second difference's own stencil (1, -2, 1)/h^2 applies; the one-sided end stencil (2, -5, 4, -1)/h^2 at
+    1 and 359 deg has its own column. Reference: theta4 in closed form by mpmath, its exact second derivative
+    by mp.diff, both differences of its values by hand."""
+    name = "near toggle (4, 2, 4.0001, 2)"
+    row = stability.run_suite([name], schemes=["second_difference", "spectral"]).iloc[0]
+    deg = np.arange(1.0, 360.0)
+    first = float(stability.CASES[name].build().sweep(np.radians(deg[:1]))["theta4"][0])  # the branch only
+    with mp.workdps(30):
+        sign = min((1, -1), key=lambda s: abs(mp.arg(mp.expj(_toggle_theta4(mp.radians(1), s) - first))))
+        q = np.unwrap([float(_toggle_theta4(mp.radians(t), sign)) for t in deg])
+        exact = np.array([float(mp.diff(lambda t: _toggle_theta4(t, sign), mp.radians(t), 2)) for t in deg])
+    h = math.radians(1.0)
+    peak = np.abs(exact).max()
+    inner = np.abs((q[:-2] - 2 * q[1:-1] + q[2:]) / h**2 - exact[1:-1]) / peak
+    start = abs((2 * q[0] - 5 * q[1] + 4 * q[2] - q[3]) / h**2 - exact[0]) / peak
+    end = abs((2 * q[-1] - 5 * q[-2] + 4 * q[-3] - q[-4]) / h**2 - exact[-1]) / peak
+    assert 170 < deg[1 + int(np.argmax(inner))] < 190  # the interior's largest error is at the sharp turn
+    assert row["second_difference max rel error [-]"] == pytest.approx(inner.max(), rel=1e-6)
+    assert row["second_difference ends rel error [-]"] == pytest.approx(max(start, end), rel=1e-6)
+    assert round(inner.max(), 3) == 0.270 and round(start, 3) == 0.339  # the end stencil's is the larger
+    assert np.isnan(row["spectral max rel error [-]"]) and np.isnan(row["spectral ends rel error [-]"])
+    caption = stability.run_suite(["cannot assemble (10, 6, 1, 1)"]).attrs["caption"]
+    assert "over the points where its own stencil applies" in caption
+    assert "max rel error and ends rel error are divided by the largest |exact value| over the sweep" in caption
+
+
+def test_a_full_turn_has_no_end_stencils(suite):
+    ok = suite[suite["outcome"] == "ok"]
+    ends = [f"{name} ends rel error [-]" for name in SCHEMES]
+    open_sweeps = [c for c in ok.index if c.startswith("near toggle")]  # 1..359 deg: the only open sweeps
+    assert np.isnan(ok.drop(index=open_sweeps)[ends].to_numpy(dtype=float)).all()
+    assert np.isfinite(ok.loc[open_sweeps, ["centred ends rel error [-]", "five_point ends rel error [-]"]]
+                       .to_numpy(dtype=float)).all()

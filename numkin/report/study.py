@@ -76,6 +76,9 @@ __all__ = [
     "set_views",
     "grid_positions",
     "relative",
+    "PEAK",
+    "at_angle",
+    "relative_text",
     "zero_text",
     "warned_once",
 ]
@@ -525,6 +528,54 @@ def relative(error: float, exact) -> float:
     """
     peak = float(np.max(np.abs(np.asarray(exact, dtype=float))))
     return error / peak if peak > 0 else math.nan
+
+
+#: Denominator of a relative error taken over the sweep (:func:`relative`), as :func:`relative_text` names it.
+PEAK = "the largest |exact value| over the sweep"
+
+
+def at_angle(where: str) -> str:
+    """Denominator of a relative error taken at one input angle, as :func:`relative_text` names it.
+
+    Examples
+    --------
+    >>> at_angle("theta = 100 deg")
+    '|exact value| at theta = 100 deg'
+    """
+    return f"|exact value| at {where}"
+
+
+def relative_text(columns: Mapping[str, str]) -> str:
+    """A caption's sentence naming the denominator of each relative-error column.
+
+    Parameters
+    ----------
+    columns : mapping
+        Column (or its name as the caption calls it) -> denominator
+        (:data:`PEAK`, :func:`at_angle` or a phrase of the same kind).
+        Columns of one denominator are named together, in the given order.
+
+    Returns
+    -------
+    str
+        A sentence with a leading space, to append to a caption.
+
+    Examples
+    --------
+    >>> relative_text({"max rel error [-]": PEAK})
+    ' Relative errors: max rel error [-] is divided by the largest |exact value| over the sweep.'
+    >>> relative_text({"max rel error [%]": PEAK, "rel error at theta = 5 deg [%]": at_angle("theta = 5 deg")})
+    ' Relative errors: max rel error [%] is divided by the largest |exact value| over the sweep; rel error at theta = 5 deg [%] by |exact value| at theta = 5 deg.'
+    """
+    groups: dict = {}
+    for column, denominator in columns.items():
+        groups.setdefault(denominator, []).append(str(column))
+    parts = []
+    for k, (denominator, names) in enumerate(groups.items()):
+        verb = ("is" if len(names) == 1 else "are") + " divided by" if k == 0 else "by"
+        listed = names[0] if len(names) == 1 else f"{', '.join(names[:-1])} and {names[-1]}"
+        parts.append(f"{listed} {verb} {denominator}")
+    return " Relative errors: " + "; ".join(parts) + "." if parts else ""
 
 
 def zero_text(names) -> str:
