@@ -151,13 +151,14 @@ for k, (_, row) in enumerate(rnd.iterrows()):
         ax.loglog(row["measured optimal h [rad]"], row["rel error at measured optimal h [-]"], "*", ms=12,
                   color=color, markeredgecolor="black", markeredgewidth=0.5)
     if row["scheme"] != "complex step":
-        ax.loglog(row["textbook optimal h [rad]"], row["textbook error [-]"], "D", ms=6, mfc="white", color=color)
+        ax.loglog(row["textbook optimal h [rad]"], row["rel error on fitted curve at textbook h [-]"], "D", ms=6,
+                  mfc="white", color=color)
 ax.axhline(EPS, color="0.5", ls=":", lw=1)
 ax.annotate("machine epsilon", (1e-12, EPS), textcoords="offset points", xytext=(0, 4), fontsize=8)
 ax.set_xlabel("step h [rad]")
 ax.set_ylabel(r"relative error at $\theta = 100^\circ$ [-]")
 ax.set_title("the V-curve: rounding (left, small h) against truncation (right, large h)\n"
-             "star: measured optimum (fitted lines), diamond: textbook", fontsize=10)
+             "star: measured optimum, diamond: textbook step (both on the fitted lines)", fontsize=10)
 ax.legend(fontsize=8, loc="upper center")
 plt.show()
 

@@ -11,8 +11,8 @@ from ..derivatives import get_scheme
 from ..errors import InputError
 from ..schemes import point_stencil
 from .study import (
-    EPS, UNIT, branch_point, deg_text, exact_derivatives, order_text, position_record, set_caption, set_views,
-    solve_points,
+    EPS, UNIT, at_angle, branch_point, deg_text, exact_derivatives, order_text, position_record, relative_text,
+    set_caption, set_views, solve_points,
 )
 from .studied import studied_quantity
 
@@ -30,6 +30,9 @@ __all__ = [
 ROUNDOFF_SCHEMES = ("forward", "centred", "five_point", "second_difference", "complex_step")
 #: Steps shown as columns of :func:`roundoff_table`, rad.
 ROUNDOFF_STEPS = tuple(10.0 ** -k for k in range(1, 13))
+#: Columns of :func:`roundoff_table`: the error at the textbook step on the fitted curve, and measured there.
+_ON_CURVE_TEXTBOOK = "rel error on fitted curve at textbook h [-]"
+_AT_TEXTBOOK = "rel error measured at textbook h [-]"
 _TEXTBOOK = {
     # (derivative, order) -> rule text
     (1, 1): "sqrt(eps)",
@@ -98,6 +101,19 @@ def fitted_optimum(h, err, order: int, derivative: int) -> tuple:
     >>> bool(abs(hs / (2.2e-16 / 0.5) ** (1 / 3) - 1) < 0.05)
     True
     """
+    lines = _fitted_lines(h, err, order, derivative)
+    if lines is None:
+        return math.nan, math.nan
+    ct, cr, lo, hi = lines
+    p, n = int(order), int(derivative)
+    hstar = (cr * EPS / ct) ** (1.0 / (p + n))
+    if not (lo <= hstar <= hi):
+        return math.nan, math.nan
+    return float(hstar), float(ct * hstar**p + cr * EPS / hstar**n)
+
+
+def _fitted_lines(h, err, order: int, derivative: int):
+    """``(C_t, C_r, smallest h, largest h)`` of :func:`fitted_optimum`'s fit; None if the scan is too short."""
     h = np.asarray(h, dtype=float)
     err = np.asarray(err, dtype=float)
     ok = np.isfinite(err) & (err > 0) & np.isfinite(h) & (h > 0)
@@ -106,7 +122,7 @@ def fitted_optimum(h, err, order: int, derivative: int) -> tuple:
     h, err = h[order_idx], err[order_idx]
     p, n = int(order), int(derivative)
     if h.size < 4 or p <= 0:
-        return math.nan, math.nan
+        return None
     trunc = err / h**p
     rnd = err * h**n / EPS
     best = None
@@ -116,11 +132,20 @@ def fitted_optimum(h, err, order: int, derivative: int) -> tuple:
         cost = float(np.sum(np.abs(np.log(err / model))))
         if best is None or cost < best[0]:
             best = (cost, ct, cr)
-    _, ct, cr = best
-    hstar = (cr * EPS / ct) ** (1.0 / (p + n))
-    if not (h.min() <= hstar <= h.max()):
-        return math.nan, math.nan
-    return float(hstar), float(ct * hstar**p + cr * EPS / hstar**n)
+    return best[1], best[2], float(h.min()), float(h.max())
+
+
+def _on_fitted_curve(h, err, order: int, derivative: int, at: float) -> float:
+    """The fitted model ``C_t at**p + C_r eps / at**n`` of :func:`fitted_optimum`.
+
+    NaN where the fit finds no optimum, or `at` lies outside the scanned steps.
+    """
+    if not math.isfinite(fitted_optimum(h, err, order, derivative)[0]):
+        return math.nan
+    ct, cr, lo, hi = _fitted_lines(h, err, order, derivative)
+    if not lo <= at <= hi:  # outside the scan: no line was measured there
+        return math.nan
+    return float(ct * at**int(order) + cr * EPS / at**int(derivative))
 
 
 def complex_step_scan(mechanism, point, steps) -> np.ndarray:
@@ -241,10 +266,15 @@ def roundoff_table(
     (:func:`fitted_optimum`, robust to the lucky cancellations of single
     steps) and meet at the measured optimal h; the error given there is the
     fitted curve's, and the error measured at that very step stands
-    beside it. The textbook estimate ``h* ~ eps**(1/(p + n))`` with error
-    ``~ eps**(p/(p + n))`` (p the order, n the derivative: sqrt(eps)
-    forward, cbrt(eps) centred, eps^(1/4) second difference, eps^(1/5)
-    five-point) stands beside them. The scan itself is kept in
+    beside it. The textbook step ``h* ~ eps**(1/(p + n))`` (p the order,
+    n the derivative: sqrt(eps) forward, cbrt(eps) centred, eps^(1/4)
+    second difference, eps^(1/5) five-point; sqrt(eps) for the complex
+    step, below which it has no cancellation) stands beside them, with the
+    error there on the same fitted curve and the error measured at that
+    step: what the textbook's choice gives here, not its estimate
+    ``eps**(p/(p + n))``, which takes the constants of both lines as 1 (a
+    single measured error may be far below the curve, by a lucky
+    cancellation of rounding errors). The scan itself is kept in
     ``attrs["scan"]`` (``"h [rad]"`` and the relative error of each scheme)
     for plots, and each shown column's step in ``attrs["steps"]`` (column ->
     h in rad).
@@ -283,8 +313,10 @@ def roundoff_table(
         (one column per step), ``measured optimal h [rad]``, ``rel error at
         measured optimal h [-]`` (on the fitted curve), ``rel error measured
         at that h [-]``, ``textbook rule``, ``textbook optimal h
-        [rad]``, ``textbook error [-]``. Errors are relative to the exact
-        value (absolute if it is exactly 0). ``attrs["positions"]`` holds
+        [rad]``, ``rel error on fitted curve at textbook h [-]``, ``rel
+        error measured at textbook h [-]``. Errors are
+        relative to the exact value at the check angle (absolute if it is
+        exactly 0). ``attrs["positions"]`` holds
         the position at the check angle.
 
     Examples
@@ -371,12 +403,14 @@ def roundoff_table(
         if scheme is None:
             row["textbook rule"] = "any h <= sqrt(eps): no cancellation"
             row["textbook optimal h [rad]"] = math.sqrt(EPS)
-            row["textbook error [-]"] = EPS
         else:
             p, n = order, deriv
             row["textbook rule"] = _TEXTBOOK.get((n, p), f"eps^(1/{p + n})")
             row["textbook optimal h [rad]"] = EPS ** (1.0 / (p + n))
-            row["textbook error [-]"] = EPS ** (p / (p + n))
+        h_tb = row["textbook optimal h [rad]"]
+        row[_ON_CURVE_TEXTBOOK] = _on_fitted_curve(eff, rel, order, 0 if scheme is None else deriv, h_tb)
+        row[_AT_TEXTBOOK] = math.nan if scheme is None and no_complex else _error_at(
+            studied, base, scheme, stencils, theta, h_tb, exact)
         rows.append(row)
     df = pd.DataFrame(rows)
     df.attrs["quantities"] = studied.quantities
@@ -384,8 +418,11 @@ def roundoff_table(
         f"Round-off floor: {mechanism.title}, {studied.title} at {lab['input']} = {deg_text(theta)} deg on the sweep's "
         "branch; relative error against the step h, positions solved by Newton to the stopping rule's "
         "tol^(4/3). Measured optimum: where the truncation line C_t h^p and the rounding line C_r eps/h^n, "
-        f"fitted to {S} steps, meet (the error there is on the fitted curve)."
+        f"fitted to {S} steps, meet (the error there is on the fitted curve; beside it the error measured at that "
+        "step). Textbook step: eps^(1/(p+n)) (sqrt(eps) for the complex step), with the error on the same fitted "
+        "curve there and the error measured at that step."
     )
+    caption += relative_text({"every error": at_angle(f"{lab['input']} = {deg_text(theta)} deg")})
     zero = [lab[d] for d, v in (("d1", q1), ("d2", q2)) if abs(v) <= 1e-12 * (abs(v0) + 1.0)]
     if zero:
         caption += (
@@ -410,7 +447,8 @@ def roundoff_table(
         ("optimal step: measured (fitted lines)", key[:1] + key[2:] + [
             f"exact value {UNIT}", "measured optimal h [rad]", "rel error at measured optimal h [-]",
             "rel error measured at that h [-]"]),
-        ("optimal step: textbook", key[:2] + ["textbook rule", "textbook optimal h [rad]", "textbook error [-]"]),
+        ("optimal step: textbook", key[:2] + ["textbook rule", "textbook optimal h [rad]", _ON_CURVE_TEXTBOOK,
+                                               _AT_TEXTBOOK]),
     ], row_keys=["scheme"])
     df.attrs["scan"] = {"h [rad]": [float(h) for h in eff], **scan_errors}
     df.attrs["steps"] = {f"rel error at h = {h:.0e} rad [-]": float(h) for h in steps}

@@ -1,0 +1,84 @@
+"""Tests for numkin.report: each error column holds what its header and caption say.
+
+Independent references: the rocker angle of the near-toggle four-bar
+(ground 4, crank 2, coupler 4.0001, rocker 2) in closed form, evaluated and
+differentiated by mpmath at 40 digits; the two-line error model of the
+round-off table derived by hand; sums of the table's own parts where a
+column is defined as their sum.
+"""
+
+from __future__ import annotations
+
+import math
+
+import mpmath as mp
+import numpy as np
+import pytest
+
+from numkin import linkages, report
+from numkin.report.roundoff import stencil
+from numkin.schemes import get_scheme
+
+EPS = np.finfo(float).eps
+
+
+def _toggle_theta4(theta, sign):
+    """Rocker angle of the 4/2/4.0001/2 four-bar: |B - O4| = 2, |B - A| = 4.0001, A = 2 e^{i theta}, O4 = (4, 0)."""
+    a = 2 * mp.expj(theta) - 4
+    d = abs(a)
+    along = (2**2 - mp.mpf("4.0001") ** 2 + d**2) / (2 * d)
+    return mp.arg((along + sign * 1j * mp.sqrt(2**2 - along**2)) * a / d)
+
+
+# ------------------------------------------------------------------- round-off
+@pytest.fixture(scope="module")
+def toggle_roundoff():
+    mech = linkages.four_bar(4, 2, 4.0001, 2)
+    theta = math.radians(178.0)  # 2 deg before the sharp turn: truncation outweighs rounding at every textbook step
+    table = report.roundoff_table(mech, quantity="theta4", check_angle=theta, start=math.radians(90),
+                                  schemes=("centred", "five_point", "second_difference"))
+    return mech, theta, table.set_index("scheme")
+
+
+@pytest.mark.parametrize("scheme", ["five_point", "second_difference"])
+def test_error_at_the_textbook_step_is_measured(toggle_roundoff, scheme):
+    """The textbook step's error is the scheme's error at that step, not the estimate eps^(p/(p+n)): here the
+    stencil applied to exact (40-digit) values at the textbook step, against the exact derivative."""
+    mech, theta, table = toggle_roundoff
+    row = table.loc[scheme]
+    s = get_scheme(scheme)
+    p, n = s.order, s.derivative
+    assert row["textbook optimal h [rad]"] == pytest.approx(EPS ** (1 / (p + n)), rel=1e-12)
+    h = (theta + EPS ** (1 / (p + n))) - theta  # the step the table takes: theta + h a float
+    x = float(mech.solve(theta).x[1])
+    ks, ws = stencil(s)
+    with mp.workdps(40):
+        sign = min((1, -1), key=lambda g: abs(mp.arg(mp.expj(_toggle_theta4(mp.mpf(theta), g) - x))))
+        exact = mp.diff(lambda t: _toggle_theta4(t, sign), mp.mpf(theta), n)
+        est = sum(mp.mpf(float(w)) * _toggle_theta4(mp.mpf(theta) + int(k) * mp.mpf(h), sign)
+                  for k, w in zip(ks, ws)) / mp.mpf(h) ** n
+        truncation = float(abs(est - exact) / abs(exact))
+    assert truncation > 100 * EPS ** (p / (p + n))  # far from the textbook's estimate
+    assert row["rel error measured at textbook h [-]"] == pytest.approx(truncation, rel=0.02)
+
+
+def test_textbook_step_on_the_fitted_curve(toggle_roundoff):
+    """On the two-line model C_t h^p + C_r eps/h^n the lines meet at h* with C_t h*^p = C_r eps/h*^n = e*/2, so
+    at any step h the model is e*/2 ((h/h*)^p + (h*/h)^n)."""
+    from numkin.report.roundoff import ROUNDOFF_SCHEMES
+
+    hw = report.roundoff_table(linkages.chained_four_bars(), quantity="beta", check_angle=math.radians(100),
+                               schemes=ROUNDOFF_SCHEMES[:4]).set_index("scheme")
+    for table in (hw, toggle_roundoff[2]):
+        for scheme, row in table.iterrows():
+            s = get_scheme(scheme)
+            hs, es, h = row["measured optimal h [rad]"], row["rel error at measured optimal h [-]"], \
+                row["textbook optimal h [rad]"]
+            model = es / 2 * ((h / hs) ** s.order + (hs / h) ** s.derivative)
+            assert row["rel error on fitted curve at textbook h [-]"] == pytest.approx(model, rel=1e-9), scheme
+    # the second difference: textbook step 1.22e-4 rad, a third of h* = 3.4e-4 -> (1/2.8)^2 + 2.8^2 ~ 8 halves of e*
+    second = hw.loc["second_difference"]
+    assert second["rel error on fitted curve at textbook h [-]"] > 3 * second["rel error at measured optimal h [-]"]
+    caption = hw.attrs["caption"]
+    assert "Relative errors: every error is divided by |exact value| at theta = 100 deg." in caption
+    assert "error measured at that step" in caption and "textbook error" not in " ".join(hw.columns)
