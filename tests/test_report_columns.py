@@ -82,3 +82,32 @@ def test_textbook_step_on_the_fitted_curve(toggle_roundoff):
     caption = hw.attrs["caption"]
     assert "Relative errors: every error is divided by |exact value| at theta = 100 deg." in caption
     assert "error measured at that step" in caption and "textbook error" not in " ".join(hw.columns)
+
+
+# ------------------------------------------------------------- work-precision
+@pytest.fixture(scope="module")
+def timed_wp():
+    return report.work_precision_table(linkages.slider_crank(80, 200), omega="6000 rpm", quantity="x", repeat=2,
+                                       grids=(36, 72), schemes=("forward", "centred", "second_difference"))
+
+
+def test_total_time_is_the_sum_of_its_parts(timed_wp):
+    sweep, derivative, total = (timed_wp[f"{part} time [ms] (varies)"].to_numpy(dtype=float)
+                                for part in ("sweep", "derivative", "sweep + derivative"))
+    np.testing.assert_allclose(total, sweep + derivative, rtol=1e-12)
+    assert "the sweep + derivative time their sum" in timed_wp.attrs["caption"]
+
+
+def test_time_rankings_read_the_total(timed_wp):
+    """The Pareto front by time and the cheapest method by time, from the sum of the two medians, by hand."""
+    t = timed_wp["sweep time [ms] (varies)"].to_numpy(float) + timed_wp["derivative time [ms] (varies)"].to_numpy(float)
+    e = timed_wp["max rel error [-]"].to_numpy(float)
+    q = timed_wp["quantity"].to_numpy()
+    tie = 64 * EPS
+    front = [not any(q[j] == q[k] and t[j] <= t[k] and e[j] <= e[k] + tie and (t[j] < t[k] or e[j] < e[k] - tie)
+                     for j in range(len(t)) if j != k) for k in range(len(t))]
+    assert timed_wp["Pareto front (varies)"].tolist() == front
+    cheapest = report.cheapest_table(timed_wp, targets=(1e-2, 1e-4))
+    for _, row in cheapest.iterrows():
+        ok = (q == row["quantity"]) & (e <= row["wanted max rel error [-]"])
+        assert row["time [ms] (varies)"] == pytest.approx(t[ok].min(), rel=1e-12)
