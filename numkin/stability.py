@@ -434,7 +434,8 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
         "outcomes. A scheme's max rel error is its largest error of dq/dtheta (d2q/dtheta2) over the points where "
         "its own stencil applies: one period of a full turn; on an open sweep all but the first and last points, "
         "which take one-sided end stencils and whose largest error is the scheme's ends rel error (blank on a full "
-        "turn)." + relative_text({"max rel error": PEAK, "ends rel error": PEAK}) + " Max cond: the largest 2-norm condition "
+        "turn)." + relative_text({"max rel error": PEAK, "ends rel error": PEAK})
+        + " Max cond: the largest 2-norm condition "
         "number of a loop's own block of the scaled Jacobian over the sweep. Sharpest turn: the input range over "
         "which the output turns (jump of dq/dtheta over max |d2q/dtheta2|), blank where wider than 3 grid steps. "
         "Errors need not grow with the stiffness: a first-derivative error peaks when the turn is about one grid "

@@ -111,3 +111,43 @@ def test_time_rankings_read_the_total(timed_wp):
     for _, row in cheapest.iterrows():
         ok = (q == row["quantity"]) & (e <= row["wanted max rel error [-]"])
         assert row["time [ms] (varies)"] == pytest.approx(t[ok].min(), rel=1e-12)
+
+
+# --------------------------------------------------------- relative errors
+def _piston(t, r=80.0, rod=200.0):
+    """Slider-crank x and dx/dtheta in closed form."""
+    s, c = np.sin(t), np.cos(t)
+    d = np.sqrt(rod**2 - r**2 * s**2)
+    return r * c + d, -r * s - r**2 * s * c / d
+
+
+def test_every_caption_names_the_denominator_of_each_relative_error():
+    mech = linkages.slider_crank(80, 200)
+    tables = report.full_report(mech, omega=1.0, quantity="x", check_angle=math.radians(90), grids=(36, 72),
+                                schemes=("centred", "second_difference"), points_per_turn=36)
+    peak = "the largest |exact value| over the sweep"
+    for name, table in tables.items():
+        columns = [c for c in table.columns if "rel error" in c]
+        caption = table.attrs["caption"]
+        if name == "roundoff":  # every column is relative to the value at the check angle
+            assert "Relative errors: every error is divided by |exact value| at theta = 90 deg." in caption
+            continue
+        if not columns:
+            assert "Relative errors" not in caption, name
+            continue
+        sentence = caption[caption.index(" Relative errors: "):]
+        for column in columns:
+            assert column in sentence, (name, column)
+        assert peak in sentence, name
+    tol = tables["tolerance"]
+    assert ("v_x max rel error [%] and a_x max rel error [%] are divided by the largest |exact value| over the "
+            "sweep; v_x rel error at theta = 90 deg [%] and a_x rel error at theta = 90 deg [%] by |exact value| at "
+            "theta = 90 deg.") in tol.attrs["caption"]
+    # and the numbers are those quotients: the tight sweep's centred v_x against the closed form, by hand
+    row = tol[tol["rule"] == "numkin, tol = 1e-12"].iloc[0]
+    t = np.radians(np.arange(36) * 10.0)
+    x, dx = _piston(t)
+    err = np.abs((np.roll(x, -1) - np.roll(x, 1)) / (2 * t[1]) - dx)
+    assert row["v_x rel error at theta = 90 deg [%]"] == pytest.approx(100 * err[9] / abs(dx[9]), rel=1e-6)
+    assert row["v_x max rel error [%]"] == pytest.approx(100 * err.max() / np.abs(dx).max(), rel=1e-6)
+    assert "(the analytic rows: the largest |complex step| over the sweep" in tables["work_precision"].attrs["caption"]

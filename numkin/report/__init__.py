@@ -11,7 +11,7 @@ function                      what the table shows
 :func:`convergence_table`     max / RMS error of every scheme on every grid against the
                               analytic solution, the error at a check angle, observed order
 :func:`work_precision_table`  work (exact counts of evaluations, the same in every run) and
-                              run time (sweep, differencing, both) beside the error reached,
+                              run time (sweep, differencing, their sum) beside the error reached,
                               with the analytic solution and the complex step as rows, and
                               the Pareto fronts by work and by time
 :func:`cheapest_table`        from a work-precision table: the cheapest method for each
@@ -66,9 +66,13 @@ Conventions
   unknown ``"v_x [mm/s]"`` / ``"a_x [mm/s^2]"``; a derived quantity's are
   named the same way (``"omega_mu [rad/s]"``, ``"v_gap [mm/s]"``), from its
   :class:`~numkin.quantities.Quantity`. Absolute errors are in
-  that unit (column names say ``[unit of quantity]``); relative errors are
-  divided by the largest magnitude of the exact quantity over the sweep,
-  ``[-]``.
+  that unit (column names say ``[unit of quantity]``); relative errors
+  (``[-]``, or ``[%]`` in the tolerance table) are divided by the largest
+  magnitude of the exact quantity over the sweep, except those taken at one
+  angle (every error of the round-off table, the tolerance table's errors at
+  the check angle), divided by the exact value there. Every caption names
+  the denominator of each relative-error column
+  (:func:`~numkin.report.study.relative_text`).
 * Grids are given in points per turn N; a full-turn grid is
   ``np.linspace(start, start + 2 pi, N + 1)`` (the last sample repeats the
   first), differenced as periodic by :mod:`numkin.kinematics`; errors

@@ -11,7 +11,7 @@ from ..errors import InputError
 from ..schemes import own_stencil_points
 from .study import (
     DEFAULT_GRIDS, EPS, TURN, UNIT, check_index, deg_text, full_turn, grid_inputs, grid_positions, grid_study,
-    order_text, relative, set_caption, set_views, solve_sweep, warned_once, zero_text,
+    PEAK, order_text, relative, relative_text, set_caption, set_views, solve_sweep, warned_once, zero_text,
 )
 
 __all__ = [
@@ -196,6 +196,7 @@ def convergence_table(
         f"Convergence: {mechanism.title}, {studied.title}, input speed {w:g} rad/s; error of each scheme "
         "against the analytic solution over the sweep; observed order from successive grids. Absolute errors "
         f"in {lab['unit1']} ({lab['name1']}, first-derivative schemes) or {lab['unit2']} ({lab['name2']}, "
-        "second-derivative schemes)." + closure_text + ends_text + floor_text + zero_text(zero),
+        "second-derivative schemes)." + relative_text({"max rel error [-]": PEAK}) + closure_text + ends_text
+        + floor_text + zero_text(zero),
         grid_positions(mechanism, {n: data[n][0] for n in grid_list}, check_angle),
     )

@@ -13,8 +13,8 @@ from ..newton_rules import check_tol
 from ..schemes import own_stencil_points
 from ..sweep import Sweep
 from .study import (
-    TURN, check_index, deg_text, full_turn, grid_inputs, input_speed, position_record, relative, set_caption,
-    set_views, solve_sweep, zero_text,
+    PEAK, TURN, at_angle, check_index, deg_text, full_turn, grid_inputs, input_speed, position_record, relative,
+    relative_text, set_caption, set_views, solve_sweep, zero_text,
 )
 from .studied import studied_quantity
 
@@ -232,7 +232,8 @@ def tolerance_table(
         missing; for a derived quantity q, ``q error estimate max|q(x + dx)
         - q(x)|, dx = -J^-1 F [unit]``: the change of its value that step
         would make), the velocity and acceleration at the check angle
-        with their relative errors [%] (blank where the exact value is 0),
+        with their relative errors [%] (over ``|exact|`` at the check angle;
+        blank where the exact value is 0),
         their largest relative errors over
         the sweep [%] (over ``max |exact|``; blank where the exact values are
         all 0) and where the acceleration error is
@@ -392,7 +393,9 @@ def tolerance_table(
            "at the first and last points)")
         + ("" if periodic or not full_turn(span) else ";" + studied.closure_text(ref)[:-1])
         + (f"; at the check angle, an end point, {' and '.join(ends)} use the one-sided end stencil" if ends else "")
-        + "." + zero_text([lab[f"name{d}"] for d, ex in ((1, w_ex), (2, a_ex)) if math.isnan(relative(1.0, ex))]),
+        + "." + relative_text({cols["wm"]: PEAK, cols["am"]: PEAK, cols["we"]: at_angle(f"{lab['input']} = {deg} deg"),
+                               cols["ae"]: at_angle(f"{lab['input']} = {deg} deg")})
+        + zero_text([lab[f"name{d}"] for d, ex in ((1, w_ex), (2, a_ex)) if math.isnan(relative(1.0, ex))]),
         positions,
     )
 

@@ -12,8 +12,9 @@ from ..errors import InputError
 from ..schemes import get_scheme, own_stencil_points
 from .counting import count_evaluations, stencil_evaluations, sweep_evaluations
 from .study import (
-    DEFAULT_GRIDS, EPS, TURN, UNIT, VARIES, exact_derivatives, full_turn, grid_inputs, grid_positions, grid_study,
-    median_time, relative, set_caption, set_views, silenced, solve_sweep, timing_repeats, zero_text,
+    DEFAULT_GRIDS, EPS, PEAK, TURN, UNIT, VARIES, exact_derivatives, full_turn, grid_inputs, grid_positions,
+    grid_study, median_time, relative, relative_text, set_caption, set_views, silenced, solve_sweep, timing_repeats,
+    zero_text,
 )
 
 __all__ = [
@@ -27,6 +28,8 @@ _WORK_SWEEP = "sweep work [evaluations]"
 _WORK_DERIVATIVE = "derivative work [evaluations]"
 _WORK = "work [evaluations]"
 _PARETO_WORK = "Pareto front by work"
+#: Denominator of the relative errors of :func:`work_precision_table` (and so of :func:`cheapest_table`).
+_WP_DENOMINATOR = f"{PEAK} (the analytic rows: the largest |complex step| over the sweep, their reference)"
 #: Total time of a row of :func:`work_precision_table`: the sum of its sweep and derivative medians.
 _TIME = f"sweep + derivative time [ms] {VARIES}"
 
@@ -263,7 +266,8 @@ def work_precision_table(
         "difference, both exact to round-off)"
         + ("" if periodic else "; on this open grid a scheme's error is over the points where its own stencil "
            "applies (the one-sided end stencils at the first and last points apart, as in the convergence table)")
-        + "." + ("" if periodic or not full_turn(span) else studied.closure_text(per_grid[grid_list[0]][0]))
+        + "." + relative_text({"max rel error [-]": _WP_DENOMINATOR})
+        + ("" if periodic or not full_turn(span) else studied.closure_text(per_grid[grid_list[0]][0]))
         + zero_text(zero),
         grid_positions(mechanism, {n: per_grid[n][0] for n in grid_list}, None),
     )
@@ -349,6 +353,7 @@ def cheapest_table(work_precision, targets: Sequence[float] = (1e-2, 1e-4, 1e-6,
                    "equations plus stencil evaluations: the same in every run).")
     else:
         raise InputError(f"by must be 'time' or 'work', got {by!r}")
+    caption += relative_text({names[3]: _WP_DENOMINATOR, "wanted max rel error [-]": _WP_DENOMINATOR})
     if cost not in work_precision.columns:
         raise InputError(f"work_precision table has no column {cost!r}; columns are {list(work_precision.columns)}")
     err = "max rel error [-]"
