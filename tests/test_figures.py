@@ -303,6 +303,12 @@ def test_roundoff_v_curves(tables):
     assert 0 < k < h.size - 1  # a V: truncation to the right, rounding to the left
     textbook = [ln for ln in ax.get_lines() if ln.get_marker() == "D" and len(ln.get_xdata()) == 1]
     assert min(abs(ln.get_xdata()[0] - math.sqrt(np.finfo(float).eps)) for ln in textbook) < 1e-15
+    # each on its scheme's drawn curve at the textbook step: forward's between the errors at the steps around it
+    h_book = math.sqrt(np.finfo(float).eps)
+    on_forward = next(ln for ln in textbook if abs(ln.get_xdata()[0] - h_book) < 1e-15).get_ydata()[0]
+    below, above = np.searchsorted(h, h_book) - 1, np.searchsorted(h, h_book)
+    assert min(fwd[below], fwd[above]) <= on_forward <= max(fwd[below], fwd[above])
+    assert all(np.isfinite(ln.get_ydata()[0]) and ln.get_ydata()[0] > 0 for ln in textbook)
     eps_lines = [ln for ln in ax.get_lines() if list(ln.get_ydata()) == [np.finfo(float).eps] * 2]
     assert eps_lines
 

@@ -342,15 +342,14 @@ def roundoff(table):
     Each scheme's V-curve at the table's steps, the fine scan its optimum is
     measured on (``attrs["scan"]``, a thin line of the same colour), its
     measured optimal step on that scan (star) and the textbook estimate
-    ``h* ~ eps**(1/(p+n))`` (open marker); machine epsilon dotted.
+    ``h* ~ eps**(1/(p+n))`` on the same curve (open marker); machine epsilon dotted.
 
     Parameters
     ----------
     table : DataFrame
         From :func:`numkin.report.roundoff_table`: ``scheme``, columns
         ``rel error at h = 1e-01 rad [-]`` ..., ``measured optimal h [rad]``,
-        ``rel error at measured optimal h [-]``, ``textbook optimal h [rad]``,
-        ``textbook error [-]``.
+        ``rel error at measured optimal h [-]``, ``textbook optimal h [rad]``.
 
     {{returns_figure}}
 
@@ -409,7 +408,9 @@ def roundoff(table):
                 ax.plot(h_opt, on_curve(fine_h, fine_e, h_opt), marker="*", markersize=11, color=st["color"],
                         markeredgecolor="black", markeredgewidth=0.5, linestyle="none", zorder=5)
             if "textbook optimal h [rad]" in row.index and scheme not in ("complex step", "complex_step"):
-                ax.plot(row["textbook optimal h [rad]"], row.get("textbook error [-]", np.nan), marker="D",
+                # the textbook step on the drawn curve, as the measured optimum is
+                h_book = float(row["textbook optimal h [rad]"])
+                ax.plot(h_book, on_curve(fine_h, fine_e, h_book), marker="D",
                         markersize=6, markerfacecolor="white", markeredgecolor=st["color"], markeredgewidth=1.3,
                         linestyle="none", zorder=5)
         ax.axhline(eps, color="0.4", linestyle=":", linewidth=0.9)
