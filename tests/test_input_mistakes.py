@@ -760,3 +760,23 @@ def test_a_scene_error_names_the_linkage_with_its_unit(capsys, tmp_path):
     assert code == 2
     assert ("four-bar (ground 4 cm, crank 3 cm, coupler 2 cm, rocker 2.5 cm): a non-Grashof triple rocker: it can be "
             "assembled only for |theta2| <= 78.58°") in one_line_error(err)
+
+
+def test_a_report_grid_too_coarse_for_a_scheme_names_the_key(capsys, tmp_path):
+    """40° of sweep hold 5 points of the 36-point grid (10° steps); five_point_second needs 6 on an open grid."""
+    path = tmp_path / "short.toml"
+    path.write_text(textwrap.dedent(SHORT.format(compare="")).replace("start_deg = 45", "start_deg = 310").replace(
+        "stop_deg = 46", "stop_deg = 350"))
+    code, out, err = run(capsys, "report", str(path))
+    assert code == 2
+    line = one_line_error(err)
+    assert line.endswith("[report] grids (by default 36, 72, 180, 360, 720, 1440, 3600): the 36-point grid holds 5 "
+                         "points over 40 deg, and scheme 'five_point_second' needs at least 6 on an open grid: give "
+                         "grids of more points per turn (or leave the scheme out of [report] schemes)")
+    from numkin import report
+    from numkin.errors import InputError
+
+    with pytest.raises(InputError, match=r"^grids: the 36-point grid holds 5 points over 40 deg, and scheme "
+                                         r"'five_point_second' needs at least 6"):
+        report.convergence_table(linkages.slider_crank(50, 60, 20), omega=10.0, quantity="x", grids=(36, 72),
+                                 span=math.radians(40), start=math.radians(310))

@@ -310,6 +310,11 @@ def scene_report(scene, *, repeat: int | None = None) -> dict:
         try:
             tables = full_report(mech, **options)
         except NumkinError as error:
+            if getattr(error, "cause", None) == "too few samples" and error.args[0].startswith("grids: "):
+                said = "" if "grids" in (scene.report or {}) else f" (by default {', '.join(map(str, DEFAULT_GRIDS))})"
+                error.args = (f"[report] grids{said}: {error.args[0][len('grids: '):]}".replace(
+                    "(or leave the scheme out)", "(or leave the scheme out of [report] schemes)"), *error.args[1:])
+                raise
             solving = not isinstance(error, InputError)  # a solve that failed, not a value refused
             if solving and "span" in options and error.args and isinstance(error.args[0], str):  # less than a turn
                 error.args = (f"{error.args[0]}; the round-off and Newton tables solve from 20° before to 11.5° "

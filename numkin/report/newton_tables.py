@@ -7,9 +7,10 @@ import math
 import numpy as np
 
 from .study import (
-    TURN, VARIES, branch_point, deg_text, grid_inputs, median_time, position_record, set_caption, set_views,
-    solve_sweep, timing_repeats,
+    TURN, VARIES, branch_point, deg_text, grid_inputs, position_record, set_caption, set_views,
+    solve_sweep,
 )
+from .timing import median_time, timing_repeats
 
 __all__ = [
     "newton_table",

@@ -28,8 +28,6 @@ Examples
 from __future__ import annotations
 
 import math
-import statistics
-import time
 import warnings
 from contextlib import contextmanager
 from contextvars import ContextVar
@@ -63,8 +61,6 @@ __all__ = [
     "silenced",
     "shared_results",
     "shared_result",
-    "median_time",
-    "timing_repeats",
     "solve_points",
     "solve_sweep",
     "branch_point",
@@ -249,7 +245,26 @@ def grid_study(mechanism, omega, quantity: str, grids, span: float, schemes, sta
         if not periodic:
             why = (f"a quantity that returns to its start after the turn; {studied.name} misses it by "
                    f"{studied.gap_text(coarse)}: leave the spectral schemes out")
-    return w, studied, grids, periodic, scheme_list(schemes, periodic, why)
+    chosen = scheme_list(schemes, periodic, why)
+    _grids_hold(chosen, grids, start, span, periodic)
+    return w, studied, grids, periodic, chosen
+
+
+def _grids_hold(schemes, grids, start: float, span: float, periodic: bool) -> None:
+    """An InputError naming ``grids`` where a grid over `span` holds fewer points than a scheme needs (before any
+    sweep: a scheme on a grid too coarse for it has no value to tabulate)."""
+    n = min(grids)
+    count = grid_inputs(n, start, span).size - (1 if periodic else 0)
+    for s in schemes:
+        try:
+            s.function(np.zeros((1, count)), 1.0, periodic=periodic)
+        except InputError as error:
+            if error.cause != "too few samples":
+                raise
+            raise InputError(
+                f"grids: the {n}-point grid holds {count} points over {math.degrees(span):.4g} deg, and scheme "
+                f"'{s.name}' needs at least {error.minimum} on {error.grid} grid: give grids of more points per turn "
+                "(or leave the scheme out)", cause="too few samples") from None
 
 
 def check_index(inputs: np.ndarray, angle: float | None) -> int | None:
@@ -266,37 +281,6 @@ def silenced(fn, *args, **kwargs):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return fn(*args, **kwargs)
-
-
-def timing_repeats(repeat) -> int:
-    """Timing repeats asked for: None or 0 means no timing (the default of every table); else an integer >= 1."""
-    if repeat is None:
-        return 0
-    if isinstance(repeat, bool) or int(repeat) != repeat or repeat < 0:
-        raise InputError(f"repeat must be None (no timing) or a non-negative integer, got {repeat!r}")
-    return int(repeat)
-
-
-def median_time(fn: Callable[[], object], repeat: int, warmup: bool = True) -> float:
-    """Median wall time of ``fn()`` in seconds over `repeat` repeats.
-
-    With `warmup`, one untimed call comes first, and calls shorter than
-    2 ms are looped inside each repeat so that every timed block lasts at
-    least ~2 ms.
-    """
-    number = 1
-    if warmup:
-        t0 = time.perf_counter()
-        fn()
-        first = time.perf_counter() - t0
-        number = 1 if first >= 2e-3 else min(1000, max(1, int(2e-3 / max(first, 1e-7))))
-    samples = []
-    for _ in range(max(1, int(repeat))):
-        t0 = time.perf_counter()
-        for _ in range(number):
-            fn()
-        samples.append((time.perf_counter() - t0) / number)
-    return statistics.median(samples)
 
 
 def solve_points(mechanism, x0, t, *, what: str = "position") -> np.ndarray:

@@ -13,9 +13,10 @@ from ..schemes import get_scheme, own_stencil_points
 from .counting import count_evaluations, stencil_evaluations, sweep_evaluations
 from .study import (
     DEFAULT_GRIDS, EPS, PEAK, TURN, UNIT, VARIES, exact_derivatives, full_turn, grid_inputs, grid_positions,
-    grid_study, median_time, relative, relative_text, set_caption, set_views, silenced, solve_sweep, timing_repeats,
+    grid_study, relative, relative_text, set_caption, set_views, silenced, solve_sweep,
     zero_text,
 )
+from .timing import median_time, timing_repeats
 
 __all__ = [
     "work_precision_table",
