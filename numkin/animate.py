@@ -41,6 +41,7 @@ from .figures.drawing import (
     scale_text, slider_points, tip_offset,
 )
 from .figures.labels import deg_text, input_name, length_unit, mechanism_title, sym
+from .figures.fitting import fit_titles
 from .figures.style import close, style
 
 __all__ = ["animate", "frame_indices", "full_turn"]
@@ -292,6 +293,7 @@ def animate(sweep, path, frames: int = 72, fps: float = 24, *, dpi: int = 80, wi
                          va="bottom", fontsize=8, color=color)
             stamp = ax.text(0.03, 0.96, "", transform=ax.transAxes, ha="left", va="top", fontsize=11, zorder=8,
                             bbox={"boxstyle": "square,pad=0.3", "facecolor": "white", "edgecolor": "0.6"})
+            fit_titles(fig, relayout=False)  # the axes stay where they are
             writer = PillowWriter(fps=fps)
             with writer.saving(fig, str(path), dpi=dpi):
                 for k in idx:

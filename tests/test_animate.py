@@ -103,3 +103,24 @@ def test_full_turn_goes_through_the_change_points_the_sweep_went_through():
     whole = full_turn(part)
     assert whole is not None and len(whole) == 361
     np.testing.assert_allclose(whole.values[:, :341], part.values, atol=1e-9)
+
+
+def test_a_long_title_fits_a_narrow_animation(tmp_path, monkeypatch):
+    """The axes of an animation stay where they are: a title too wide for them is set smaller, inside the frame."""
+    import numkin.animate as animate_module
+    from numkin.figures.fitting import fit_titles
+
+    seen = []
+
+    def fit_and_keep(fig, *args, **kwargs):
+        changed = fit_titles(fig, *args, **kwargs)
+        renderer = fig.canvas.get_renderer()
+        seen.append((changed, fig.axes[0].title, fig.axes[0].title.get_window_extent(renderer), fig.bbox.frozen()))
+        return changed
+
+    monkeypatch.setattr(animate_module, "fit_titles", fit_and_keep)
+    sweep = linkages.four_bar(20, 50, 40, 50, branch="crossed").sweep(np.radians(np.arange(0, 361)))
+    animate(sweep, tmp_path / "narrow.gif", frames=2, width=3.0, dpi=60)
+    ((changed, title, extent, box),) = seen
+    assert changed and title.get_fontsize() < 9
+    assert box.x0 <= extent.x0 and extent.x1 <= box.x1 and extent.y1 <= box.y1

@@ -25,6 +25,7 @@ formats), :mod:`~numkin.figures.curves` (curves against the input),
 :mod:`~numkin.figures.drawing` (the linkage itself, shared with
 :mod:`numkin.animate`), :mod:`~numkin.figures.dispatch` (figures by name),
 :mod:`~numkin.figures.ticks` (log axes labelled ``10⁻¹²`` in the tick font),
+:mod:`~numkin.figures.fitting` (titles broken into lines, or set smaller, to fit the figure),
 :mod:`~numkin.figures.ends` (which values of an open grid come from one-sided
 end stencils, drawn and labelled apart), :mod:`~numkin.figures.series` (the
 values and rates of a derived quantity, drawn as an unknown's),

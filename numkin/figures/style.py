@@ -5,7 +5,9 @@ Every numkin figure is drawn inside :func:`style` (matplotlib's defaults plus
 Agg canvas that pyplot does not know (:func:`new_figure`), and written by
 :func:`save` with no date or version in the files, so regenerating a figure
 gives the same bytes. :func:`save` lays the figure out once, at the saving
-resolution, and draws each format once from that layout.
+resolution (again when a title had to be broken into lines to fit the
+figure, :mod:`~numkin.figures.fitting`), and draws each format once from
+that layout.
 
 Examples
 --------
@@ -151,23 +153,34 @@ _NO_LAYOUT = {"figure.autolayout": False, "figure.constrained_layout.use": False
 
 
 def _lay_out(fig, dpi: float) -> None:
-    """Run the figure's layout engine at `dpi`, then keep the axes there: no layout engine from now on.
+    """Run the figure's layout engine at `dpi`, fit the titles (:func:`~numkin.figures.fitting.fit_titles`),
+    then keep the axes there: no layout engine from now on.
 
     ``set_layout_engine("none")`` would leave a placeholder engine, and savefig draws a figure
     that has any engine once more before printing it (a pass that measures every text again).
     """
     import matplotlib
 
+    from .fitting import fit_titles
+
     engine = fig.get_layout_engine()
-    if engine is None:
-        return
     if fig.axes:
         before = fig.dpi
         fig.set_dpi(dpi)
         try:
-            engine.execute(fig)
+            if engine is None:  # axes that stay where they are: a title too wide is only set smaller
+                fit_titles(fig, relayout=False)
+            else:
+                engine.execute(fig)
+                # the engine leaves titles' widths out: one that runs off the figure is fitted, then made room for
+                for _ in range(2):
+                    if not fit_titles(fig):
+                        break
+                    engine.execute(fig)
         finally:
             fig.set_dpi(before)
+    if engine is None:
+        return
     with matplotlib.rc_context(_NO_LAYOUT):
         fig.set_layout_engine(None)
 

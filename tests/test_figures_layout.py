@@ -1,0 +1,160 @@
+"""Layout of saved figures, measured with matplotlib's renderer: titles inside the figure, boxes of
+check values clear of the legends, one rounding of an angle throughout the mechanism figure."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+import pytest
+
+pytest.importorskip("matplotlib")
+
+from numkin import figures, linkages
+from numkin.analytic import kinematics as analytic_kinematics
+from numkin.figures import dispatch
+from numkin.figures.fitting import MARGIN, fit_titles, titles, wrap_lines
+from numkin.kinematics import finite_difference
+from numkin.scene import load_scene, render_figures, run_scene
+
+SAVE_DPI = 150  # savefig.dpi of numkin.mplstyle
+
+FOUR_BAR_SCENE = """
+[scene]
+description = "four-bar"
+
+[mechanism]
+linkage = "four_bar"
+unit = "{unit}"
+branch = "{branch}"
+
+[mechanism.dimensions]
+ground = {ground}
+crank = {crank}
+coupler = {coupler}
+rocker = {rocker}
+
+[input]
+speed = "{speed}"
+start_deg = {start}
+stop_deg = {stop}
+step_deg = {step}
+
+[output]
+quantities = ["position", "velocity", "acceleration"]
+figures = {figures}
+
+[compare]
+schemes = {schemes}
+second_schemes = ["second_difference"]
+
+{checks}
+"""
+
+
+def scene_figures(tmp_path, monkeypatch, **values) -> dict:
+    """Stem -> Figure of a four-bar scene, each laid out and saved (PNG) as ``numkin figures`` saves it."""
+    values = {"unit": "mm", "branch": "open", "start": 0, "stop": 360, "step": 1, "schemes": '["forward", "centred"]',
+              "checks": "[[check]]\nat_deg = 100", **values}
+    values["figures"] = "[" + ", ".join(f'"{f}"' for f in values["figures"]) + "]"
+    path = tmp_path / "four-bar.toml"
+    path.write_text(FOUR_BAR_SCENE.format(**values), encoding="utf-8")
+    kept = {}
+
+    def keep(fig, stem, formats):
+        kept[stem.name] = fig
+        return figures.save(fig, stem, ["png"])
+
+    monkeypatch.setattr(dispatch, "save", keep)
+    render_figures(run_scene(load_scene(str(path)), figures=False), tmp_path / "out")
+    return kept
+
+
+def drawn(fig):
+    """The renderer of `fig` drawn at the saving resolution, from the layout :func:`figures.save` froze."""
+    fig.set_dpi(SAVE_DPI)
+    fig.canvas.draw()
+    return fig.canvas.get_renderer()
+
+
+def boxes_and_legends(fig, renderer) -> list[tuple[str, object]]:
+    """(what, window extent) of every legend and every text drawn in a box."""
+    found = []
+    for ax in fig.axes:
+        if ax.get_legend() is not None:
+            found.append(("legend", ax.get_legend().get_window_extent(renderer)))
+        for text in ax.texts:
+            patch = text.get_bbox_patch()
+            if patch is not None and text.get_visible() and patch.get_edgecolor()[3] > 0:
+                found.append((text.get_text().split("\n")[0], patch.get_window_extent(renderer)))
+    return found
+
+
+def assert_titles_inside(fig, renderer):
+    box = fig.bbox
+    shown = titles(fig)
+    assert shown
+    for title in shown:
+        extent = title.get_window_extent(renderer)
+        assert box.x0 <= extent.x0 and extent.x1 <= box.x1, (title.get_text(), extent, box)
+        assert box.y0 <= extent.y0 and extent.y1 <= box.y1, (title.get_text(), extent, box)
+
+
+# ----------------------------------------------------------------------------- titles
+@pytest.mark.parametrize("values, stem", [
+    ({"ground": 20, "crank": 50, "coupler": 40, "rocker": 50, "branch": "crossed", "speed": "-300 deg/s",
+      "figures": ["kinematics:theta4", "kinematics:theta3", "mechanism"]}, "kinematics-theta4"),
+    ({"ground": 10, "crank": 3, "coupler": 8, "rocker": 6, "unit": "cm", "speed": "2 rev/s", "start": 45,
+      "stop": 200, "step": 0.5, "figures": ["kinematics:theta3", "position:theta3", "mechanism"]},
+     "kinematics-theta3"),
+])
+def test_long_titles_of_four_bar_scenes_stay_inside_the_figure(tmp_path, monkeypatch, values, stem):
+    kept = scene_figures(tmp_path, monkeypatch, **values)
+    assert stem in kept
+    for name, fig in kept.items():
+        assert_titles_inside(fig, drawn(fig))
+    title = kept[stem].axes[0].get_title()
+    assert "\n" in title  # broken into lines, the mechanism's name whole on the first
+    assert title.split("\n")[0] == f"four-bar (ground {values['ground']} {values.get('unit', 'mm')}, crank " \
+                                   f"{values['crank']} {values.get('unit', 'mm')}, coupler {values['coupler']} " \
+                                   f"{values.get('unit', 'mm')}, rocker {values['rocker']} {values.get('unit', 'mm')})"
+
+
+def test_a_title_that_fits_is_left_as_it_is(tmp_path):
+    sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 361)))
+    fig = figures.kinematics(sweep, "beta", finite={"centred": finite_difference(sweep, "450 rad/min")})
+    before = fig.axes[0].get_title()
+    figures.save(fig, tmp_path / "beta", ["png"])
+    assert fig.axes[0].get_title() == before and "\n" not in before
+    assert fig.axes[0].title.get_fontsize() == pytest.approx(10.0)
+
+
+def test_a_title_wider_than_any_line_is_set_smaller_to_fit(tmp_path):
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(2.0, 1.5), dpi=SAVE_DPI, layout="none")
+    FigureCanvasAgg(fig)
+    ax = fig.add_axes((0.2, 0.2, 0.7, 0.6))
+    ax.set_title("Supercalifragilisticexpialidocious")
+    renderer = fig.canvas.get_renderer()
+    assert ax.title.get_window_extent(renderer).width > fig.bbox.width
+    assert fit_titles(fig, renderer, relayout=False)
+    assert ax.title.get_text() == "Supercalifragilisticexpialidocious"
+    assert ax.title.get_fontsize() < 10
+    extent = ax.title.get_window_extent(renderer)
+    margin = MARGIN * SAVE_DPI / 72
+    assert fig.bbox.x0 + margin - 0.5 <= extent.x0 and extent.x1 <= fig.bbox.x1 - margin + 0.5
+    assert not fit_titles(fig, renderer, relayout=False)  # fitted once, left alone after
+
+
+def test_wrap_lines_breaks_at_colons_then_commas_never_inside_mathtext():
+    def fits(n):
+        return lambda s: len(s) <= n
+
+    assert wrap_lines("head (a 1, b 2): $x$, velocity", fits(40)) == ["head (a 1, b 2): $x$, velocity"]
+    assert wrap_lines("head (a 1, b 2): $x$, velocity", fits(20)) == ["head (a 1, b 2)", "$x$, velocity"]
+    assert wrap_lines("head (a 1, b 2): $x$, velocity", fits(9)) == ["head", "(a 1,", "b 2)", "$x$,", "velocity"]
+    assert wrap_lines(r"$\omega_{a, b} = 1$ and more", fits(5)) == [r"$\omega_{a, b} = 1$", "and", "more"]
+    assert wrap_lines("one\ntwo words", fits(4)) == ["one", "two", "words"]
