@@ -158,3 +158,35 @@ def test_wrap_lines_breaks_at_colons_then_commas_never_inside_mathtext():
     assert wrap_lines("head (a 1, b 2): $x$, velocity", fits(9)) == ["head", "(a 1,", "b 2)", "$x$,", "velocity"]
     assert wrap_lines(r"$\omega_{a, b} = 1$ and more", fits(5)) == [r"$\omega_{a, b} = 1$", "and", "more"]
     assert wrap_lines("one\ntwo words", fits(4)) == ["one", "two", "words"]
+
+
+# ----------------------------------------------------------------------------- boxes and legends
+def test_check_values_do_not_cover_the_legend_of_three_schemes(tmp_path, monkeypatch):
+    """Three schemes on an open grid (each with its end-stencil entry) and two check angles: the box of
+    check values under each legend, the layout taller where they need it."""
+    kept = scene_figures(tmp_path, monkeypatch, ground=10, crank=3, coupler=8, rocker=6, unit="cm",
+                         speed="2 rev/s", start=45, stop=200, step=0.5,
+                         schemes='["centred", "forward", "five_point"]', figures=["kinematics:theta3"],
+                         checks="[[check]]\nat_deg = 100\n[[check]]\nat_deg = 150")
+    fig = kept["kinematics-theta3"]
+    renderer = drawn(fig)
+    assert "five point" in [t.get_text() for t in fig.axes[1].get_legend().get_texts()]
+    found = boxes_and_legends(fig, renderer)
+    assert sum(what == "legend" for what, _ in found) == 2 and len(found) == 5
+    for i, (a, box_a) in enumerate(found):
+        assert fig.bbox.x0 <= box_a.x0 and box_a.x1 <= fig.bbox.x1 and fig.bbox.y0 <= box_a.y0, a
+        for b, box_b in found[i + 1:]:
+            assert not box_a.overlaps(box_b), (a, b)
+
+
+def test_homework_check_values_clear_of_their_legends(tmp_path):
+    sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 361)))
+    finite = {s: finite_difference(sweep, "450 rad/min", method=s) for s in ("centred", "forward", "five_point")}
+    fig = figures.kinematics(sweep, "beta", analytic=analytic_kinematics(sweep, "450 rad/min"), finite=finite,
+                             check_angles=np.radians([30, 100, 250]))
+    figures.save(fig, tmp_path / "beta", ["png"])
+    found = boxes_and_legends(fig, drawn(fig))
+    assert len(found) == 5
+    for i, (a, box_a) in enumerate(found):
+        for b, box_b in found[i + 1:]:
+            assert not box_a.overlaps(box_b), (a, b)

@@ -102,6 +102,40 @@ def _title(fig, ax, head: str, title: str) -> None:
         text.set_text(f"{head}\n{title}")
 
 
+def _side_columns(fig, panels, texts, box: dict) -> None:
+    """Beside each panel its legend, and under it a box of the lines of `texts` for that panel.
+
+    The box hangs from the legend's lower edge (from the panel's top without
+    a legend), so the two never overlap; the figure is made taller when a
+    column needs more height than a panel of the default figure has (the
+    layout engine would otherwise widen the gap under that panel).
+    """
+    fontsize = 8.0
+    pad = 0.3 * fontsize  # the box's pad, in points (its boxstyle's pad is in font sizes)
+    gap = 5.0
+    renderer = fig.canvas.get_renderer()
+    tallest = 0.0  # pixels at the figure's dpi
+    for panel, lines in zip(panels, texts):
+        legend = None
+        height = 0.0
+        if panel.get_legend_handles_labels()[0]:
+            legend = panel.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
+            height += legend.get_window_extent(renderer).height
+        if lines:
+            where = ({"xy": (0.0, 0.0), "xycoords": legend, "xytext": (pad, -pad - gap)} if legend is not None
+                     else {"xy": (1.02, 1.0), "xycoords": "axes fraction", "xytext": (pad, -pad)})
+            text = panel.annotate("\n".join(lines), **where, textcoords="offset points", ha="left", va="top",
+                                  fontsize=fontsize, bbox=box, zorder=6, annotation_clip=False)
+            space = 2 * pad + (gap if legend is not None else 0.0)  # points
+            height += text.get_window_extent(renderer).height + space * fig.dpi / 72
+        tallest = max(tallest, height)
+    # a panel of the default figure: its height less the title, axis label and gaps (about 1.25 in)
+    width, height = fig.get_size_inches()
+    needed = len(panels) * (tallest / fig.dpi + 0.1) + 1.25
+    if needed > height:
+        fig.set_size_inches(width, math.ceil(needed * 10) / 10)
+
+
 def _derivative_units(sweep, name: str) -> tuple[str, str]:
     if is_angle(sweep, name):
         return "rad/rad", "rad/rad²"
@@ -358,13 +392,8 @@ def kinematics(
                     lines.insert(0, f"  {source_label(key)}{how}: {sig5(v)} {units[j]}")
                 qsym = labels[j].split(" [")[0]
                 texts[j] += [f"{qsym} at {sym(input_name(sweep))} = {deg_text(a)}", *lines]
-        # legends and check values beside the panels: nothing hides the curves
-        for j, panel in enumerate(axes[:, 0]):
-            if panel.get_legend_handles_labels()[0]:
-                panel.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
-            if texts[j]:
-                panel.text(1.02, 0.0, "\n".join(texts[j]), transform=panel.transAxes, ha="left", va="bottom",
-                           fontsize=8, bbox=box, zorder=6)
+        # legends and check values beside the panels, nothing hiding the curves
+        _side_columns(fig, axes[:, 0], [texts[j] for j in range(3)], box)
         axes[-1, 0].set_xlabel(input_label(sweep))
         degree_ticks(axes[-1, 0], x)
         ax0.set_title(title or f"{mechanism_title(sweep.mechanism)}: {sym(name)}, velocity and acceleration")
