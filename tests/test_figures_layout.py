@@ -190,3 +190,22 @@ def test_homework_check_values_clear_of_their_legends(tmp_path):
     for i, (a, box_a) in enumerate(found):
         for b, box_b in found[i + 1:]:
             assert not box_a.overlaps(box_b), (a, b)
+
+
+# ----------------------------------------------------------------------------- angles
+def test_the_mechanism_figure_writes_each_angle_one_way(tmp_path):
+    sweep = linkages.four_bar(10, 3, 8, 6, length_unit="cm").sweep(np.radians(np.arange(45, 200.5, 0.5)))
+    fig = figures.mechanism(sweep, math.radians(100))
+    figures.save(fig, tmp_path / "mechanism", ["png"])
+    ax = fig.axes[0]
+    (box,) = [t for t in ax.texts if t.get_text().count("\n") >= 2]
+    written = dict(line.split(" = ") for line in box.get_text().split("\n"))
+    arc = re.compile(r"\$\\theta_\{\d\}\$ = \S+°")
+    arcs = [t.get_text() for t in ax.texts if t is not box and arc.fullmatch(t.get_text())]
+    assert len(arcs) >= 2
+    decimals = {len(v.rstrip("°").partition(".")[2]) for v in written.values() if "." in v}
+    assert decimals == {3}
+    for arc in arcs:
+        name, value = arc.split(" = ")
+        assert written[name] == value, arc
+    assert ax.get_title().endswith("= " + written[r"$\theta_{2}$"])

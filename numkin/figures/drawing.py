@@ -21,9 +21,26 @@ from .registries import dimensions_of
 from .style import CYCLE, new_figure, shared_doc, style
 
 __all__ = [
-    "arrow_scale", "arrow_vectors", "block_corners", "block_directions", "bounds", "draw_block", "draw_ground",
-    "guided_points", "link_colors", "mechanism", "scale_text", "slider_points", "tip_offset",
+    "ANGLE_DECIMALS", "angle_text", "arrow_scale", "arrow_vectors", "block_corners", "block_directions", "bounds",
+    "draw_block", "draw_ground", "guided_points", "link_colors", "mechanism", "scale_text", "slider_points",
+    "tip_offset",
 ]
+
+#: Decimals of every angle :func:`mechanism` writes (its title, its angle arcs, its box of solved values).
+ANGLE_DECIMALS = 3
+
+
+def angle_text(rad: float) -> str:
+    """An angle of the mechanism figure in degrees: whole degrees plain, else :data:`ANGLE_DECIMALS` decimals.
+
+    One rule for every place the figure writes an angle, so that one angle reads the same in each.
+
+    Examples
+    --------
+    >>> angle_text(math.radians(154.7153)), angle_text(math.radians(100))
+    ('154.715°', '100°')
+    """
+    return deg_text(rad, ANGLE_DECIMALS)
 
 
 def slider_points(points: Mapping, ground: Sequence[str]) -> dict:
@@ -561,16 +578,16 @@ def mechanism(sweep, at: float | None = None, *, dimensions: Sequence | None = N
                              linewidth=0.9, zorder=2))
             mid = math.radians(0.5 * (lo + hi))
             labels.append((ax.text(cx + radius * math.cos(mid) + 0.02 * span, cy + radius * math.sin(mid),
-                                   f"{sym(name)} = {deg_text(values[name])}", fontsize=8.5, ha="left",
+                                   f"{sym(name)} = {angle_text(values[name])}", fontsize=8.5, ha="left",
                                    va="center", zorder=6, bbox=label_box), (cx, cy), radius, mid))
         # the solved unknowns, beside the drawing
-        lines = [f"{sym(input_name(sweep))} = {deg_text(at)}"]
+        lines = [f"{sym(input_name(sweep))} = {angle_text(at)}"]
         for name, v in zip(sweep.unknowns, q):
-            lines.append(f"{sym(name)} = {no_negative_zero(f'{math.degrees(v):.3f}')}°" if is_angle(sweep, name)
+            lines.append(f"{sym(name)} = {angle_text(v)}" if is_angle(sweep, name)
                          else f"{sym(name)} = {value_text(v)} {unit}")
         ax.text(1.03, 1.0, "\n".join(lines), transform=ax.transAxes, ha="left", va="top", fontsize=9,
                 zorder=7, bbox={"boxstyle": "square,pad=0.4", "facecolor": "white", "edgecolor": "0.6"})
         _setup_mechanism_axes(ax, sweep, xlim, ylim)
-        ax.set_title(f"{mechanism_title(mech)} at {sym(input_name(sweep))} = {deg_text(at)}")
+        ax.set_title(f"{mechanism_title(mech)} at {sym(input_name(sweep))} = {angle_text(at)}")
         _clear_labels(ax, labels, [pts[n] for n in joints], span)
     return fig

@@ -157,16 +157,18 @@ def length_text(value: float) -> str:
     return text.rstrip("0").rstrip(".") if "." in text else text
 
 
-def deg_text(rad: float) -> str:
-    """An angle given in rad, written in degrees: whole degrees plain, else two decimals.
+def deg_text(rad: float, decimals: int = 2) -> str:
+    """An angle given in rad, written in degrees: whole degrees plain, else `decimals` decimals.
 
     Examples
     --------
     >>> deg_text(math.radians(-30)), deg_text(math.radians(12.345)), deg_text(-1e-12)
     ('−30°', '12.35°', '0°')
+    >>> deg_text(math.radians(154.7153), 3)
+    '154.715°'
     """
     d = math.degrees(rad)
-    text = f"{round(d):.0f}°" if abs(d - round(d)) < 1e-6 else f"{d:.2f}°"
+    text = f"{round(d):.0f}°" if abs(d - round(d)) < 1e-6 else f"{d:.{decimals}f}°"
     return no_negative_zero(text)
 
 
