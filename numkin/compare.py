@@ -248,7 +248,7 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
         P, dP, d2P = point_derivatives(sweep, name)[name]
         y, d1, d2 = P[axis], dP[axis], d2P[axis]
         is_angle = False
-    rows = prepare_rows(y[None, :], [is_angle], [quantity], t, grid, mech.length_scale, periodic)
+    rows = prepare_rows(y[None, :], [is_angle], [name], t, grid, mech.length_scale, periodic, tangent=d1[None, :])
     exact = w * d1 if order == 1 else w**2 * d2 + a * d1
 
     if schemes is None:

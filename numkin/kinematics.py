@@ -27,13 +27,13 @@ Grids
 * Any other sweep is an open grid: one-sided end stencils of the same
   order (see :mod:`numkin.derivatives`).
 
-Angles are differenced unwrapped: a sweep's angles are continuous (its
-continuation tracks them step by step, so a step of more than pi between
-neighbouring samples is a real turn: a grid too coarse for difference
-quotients, said in a warning); in other samples (a derived quantity, data
-reduced modulo 2*pi), a jump larger than pi between neighbours is removed
-with :func:`numpy.unwrap`, with a warning, before any difference quotient is
-formed.
+Angles are differenced unwrapped. Where neighbouring samples of an angle
+differ by more than pi, the step is compared with what the angle's tangent
+(from the velocity equations) says it turned: whole turns between the two
+are wrapped data (reduced modulo 2*pi), removed with a warning; a real turn
+of more than pi between samples is kept, and warned of as a grid too coarse
+for difference quotients. Samples without a tangent are unwrapped as
+:func:`numpy.unwrap` does.
 
 Conventions of the student schemes
 ----------------------------------
@@ -55,6 +55,7 @@ import numpy as np
 from . import derivatives as _d
 from . import schemes as _schemes
 from .analytic import check_sweep, input_rates, kinematics_frame
+from .analytic import tangent as sweep_tangent
 from .conditioning import DIGITS_RTOL, rounding_error, warn_rounding
 from .errors import InputError, warn
 
@@ -145,43 +146,52 @@ def sweep_grid(sweep, periodic="auto") -> SweepGrid:
     return SweepGrid(h=abs(h), periodic=is_periodic, reverse=h < 0, full_turn=full_turn)
 
 
-def _unwrapped(y: np.ndarray, angle: np.ndarray, names, inputs, continuous: bool = False) -> np.ndarray:
-    """Angle rows with any jump larger than pi between neighbours removed (warns).
+def _unwrapped(y: np.ndarray, angle: np.ndarray, names, inputs, tangent=None) -> np.ndarray:
+    """Angle rows with the whole turns of wrapped data removed (warns).
 
-    ``continuous``: the rows are a sweep's solved angles, continuous by construction: a step larger than pi
-    is a real turn between samples, kept, and the warning says the grid is too coarse to difference them.
+    Only where neighbouring samples differ by more than pi is anything done. ``tangent``: the rows'
+    derivatives with respect to the input (an array like ``y``, or a function returning it, called only
+    then), e.g. a sweep's: a step is then compared with what the tangent says the angle turned
+    (the trapezoid rule), and the whole turns between the two are removed: data reduced modulo 2 pi
+    are unwrapped, while a real turn of more than pi between samples of a coarse grid is kept, and
+    warned of as a grid too coarse to difference. Without a tangent (or where it is unknown) a jump
+    of more than pi is taken for wrapping (:func:`numpy.unwrap`).
     """
     y = np.array(y, dtype=float, copy=True)
     if not angle.any():
         return y
-    if continuous:
-        steps = np.abs(np.diff(y[angle], axis=-1))
-        big = np.any(steps > math.pi, axis=-1)
-        if big.any():
-            rows = np.flatnonzero(angle)[big]
-            r = rows[0]
-            k = int(np.flatnonzero(np.abs(np.diff(y[r])) > math.pi)[0])
-            warn(
-                f"angle(s) {[names[i] for i in rows]} turn by more than 180° between neighbouring samples (first "
-                f"{names[r]}, by {math.degrees(abs(y[r, k + 1] - y[r, k])):.1f}° between inputs "
-                f"{math.degrees(inputs[k]):.3f}° and {math.degrees(inputs[k + 1]):.3f}°): the grid is too coarse "
-                "for difference quotients; sample the sweep more finely",
-                UserWarning,
-            )
+    rows = np.flatnonzero(angle)
+    steps = np.diff(y[rows], axis=-1)
+    if not np.any(np.abs(steps) > math.pi):
         return y
-    un = np.unwrap(y[angle], axis=-1)
-    changed = np.any(un != y[angle], axis=-1)
-    if changed.any():
-        rows = np.flatnonzero(angle)[changed]
-        r = rows[0]
-        k = int(np.flatnonzero(np.abs(np.diff(y[r])) > math.pi)[0])
+    turns = np.round(steps / _TURN)  # numpy.unwrap's reading
+    if tangent is not None:
+        d = np.asarray(tangent() if callable(tangent) else tangent, dtype=float)[rows]
+        expected = 0.5 * np.diff(inputs) * (d[:, 1:] + d[:, :-1])
+        known = np.isfinite(expected)
+        turns[known] = np.round((steps[known] - expected[known]) / _TURN)
+    wrapped = np.any(turns != 0, axis=-1)
+    if wrapped.any():
+        r = int(rows[wrapped][0])
+        k = int(np.flatnonzero(turns[np.flatnonzero(wrapped)[0]] != 0)[0])
         warn(
-            f"angle(s) {[names[i] for i in rows]} jump by more than 180° between neighbouring samples "
+            f"angle(s) {[names[i] for i in rows[wrapped]]} jump by more than 180° between neighbouring samples "
             f"(first {names[r]} between inputs {math.degrees(inputs[k]):.3f}° and "
             f"{math.degrees(inputs[k + 1]):.3f}°): wrapped data; unwrapped before differencing",
             UserWarning,
         )
-        y[angle] = un
+        y[rows] -= _TURN * np.concatenate([np.zeros((rows.size, 1)), np.cumsum(turns, axis=-1)], axis=-1)
+    real = (np.abs(steps) > math.pi) & (turns == 0)
+    if real.any():
+        i = int(np.flatnonzero(real.any(axis=-1))[0])
+        r, k = int(rows[i]), int(np.flatnonzero(real[i])[0])
+        warn(
+            f"angle(s) {[names[j] for j in rows[real.any(axis=-1)]]} turn by more than 180° between neighbouring "
+            f"samples (first {names[r]}, by {math.degrees(abs(steps[i, k])):.1f}° between inputs "
+            f"{math.degrees(inputs[k]):.3f}° and {math.degrees(inputs[k + 1]):.3f}°): the grid is too coarse for "
+            "difference quotients; sample the sweep more finely",
+            UserWarning,
+        )
     return y
 
 
@@ -229,7 +239,7 @@ class Rows:
 
 
 def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, periodic="auto", *,
-                 close: bool = False, continuous: bool = False) -> Rows:
+                 close: bool = False, tangent=None) -> Rows:
     """Unwrap the angle rows of ``y`` (k, N), orient them ascending and settle periodicity.
 
     On a full-turn grid every row must return to its starting value (up to
@@ -258,10 +268,11 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
         misses its first by solver error (a loosely solved sweep): the period
         offset is then the whole number of turns nearest to the rows' (0 for
         lengths), and the last sample is not used.
-    continuous : bool
-        The rows are a sweep's solved unknowns, whose angles are continuous:
-        not unwrapped (a step of more than pi is a real turn; warned of as a
-        grid too coarse to difference).
+    tangent : array_like or callable, optional
+        The rows' derivatives with respect to the input, shape (k, N) (or a
+        function returning them, called only where neighbouring angle samples
+        differ by more than pi): tells wrapped data from a real turn of more
+        than pi between the samples of a coarse grid (see :func:`_unwrapped`).
 
     Returns
     -------
@@ -285,7 +296,7 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
         k = int(np.flatnonzero(bad)[0])
         row = names[int(np.flatnonzero(~np.isfinite(y[:, k]))[0])]
         raise InputError(f"{row} is not finite at input {math.degrees(inputs[k]):.3f}°: cannot difference it")
-    y = _unwrapped(y, angle, names, inputs, continuous)
+    y = _unwrapped(y, angle, names, inputs, tangent)
     if grid.reverse:
         y = y[:, ::-1]
     is_periodic, offset = grid.periodic, None
@@ -314,7 +325,7 @@ def _unknown_rows(sweep, periodic, close=False):
     mech, t, q = check_sweep(sweep)
     angle = np.array([u in mech.angles for u in mech.unknowns], dtype=bool)
     return mech, t, prepare_rows(q, angle, mech.unknowns, t, grid, mech.length_scale, periodic, close=close,
-                                 continuous=True)
+                                 tangent=lambda: sweep_tangent(sweep))
 
 
 def scheme_for(name, derivative: int, parameter: str):

@@ -172,6 +172,12 @@ def test_wrapped_angles_are_unwrapped_with_a_warning(homework):
         rows = kinematics.prepare_rows(wrapped[None], True, ["beta"], homework.inputs, grid, 7.0)
     ref = kinematics.prepare_rows(beta[None], True, ["beta"], homework.inputs, grid, 7.0)
     np.testing.assert_allclose(rows.apply(get_scheme("centred")), ref.apply(get_scheme("centred")), atol=1e-9)
+    # a sweep whose values were reduced modulo 2 pi: its tangent tells the wrap from a turn
+    wrapped_sweep = dataclasses.replace(homework, values=(homework.values + np.pi) % (2 * np.pi) - np.pi)
+    with pytest.warns(UserWarning, match=r"\['beta'\] jump by more than 180°.*wrapped data; unwrapped"):
+        fd = kinematics.finite_difference(wrapped_sweep, W_HW)
+    np.testing.assert_allclose(fd.drop(columns="theta"), kinematics.finite_difference(homework, W_HW).drop(
+        columns="theta"), rtol=1e-7, atol=1e-7)
 
 
 def test_a_sweep_whose_angle_turns_more_than_half_a_turn_between_samples_is_not_unwrapped():
@@ -184,6 +190,14 @@ def test_a_sweep_whose_angle_turns_more_than_half_a_turn_between_samples_is_not_
     with pytest.warns(UserWarning, match=r"\['theta4'\] turn by more than 180° .* by 199.7° .* too coarse"):
         fd = kinematics.finite_difference(sweep, 1.0, method="spectral", second_method="spectral_second")
     assert fd["omega_theta4"][:-1].mean() == pytest.approx(1.0, abs=1e-12)
+    # compare reads the samples the same way: the same centred values
+    from numkin.compare import compare
+
+    with pytest.warns(UserWarning, match=r"\['theta4'\] turn by more than 180°"):
+        table = compare(sweep, 1.0, "omega_theta4", schemes=("centred",)).table
+    with pytest.warns(UserWarning, match="too coarse"):
+        centred = kinematics.finite_difference(sweep, 1.0, method="centred")["omega_theta4"].to_numpy()
+    np.testing.assert_array_equal(table["centred [rad/s]"].to_numpy(), centred)
 
 
 def test_sweep_that_does_not_close(homework):
