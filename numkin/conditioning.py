@@ -238,10 +238,8 @@ def _reach(stencil) -> int:
 
 def warn_rounding(sweep, mech, t, rows, scheme, d, rtol) -> None:
     """Warn if the estimated rounding error of a scheme's values `d` exceeds `rtol` (relative to each row's scale)."""
-    cond = np.asarray(getattr(sweep, "cond", np.ones(t.size)), dtype=float)
-    if rows.reverse:
-        cond = cond[::-1]
-    err = rounding_error(scheme, rows.h, rows.y, cond, mech.xscale)
+    cond = np.asarray(getattr(sweep, "cond", np.ones(t.size)), dtype=float)  # in the sweep's order, as t
+    err = rounding_error(scheme, rows.h, rows.y, cond[::-1] if rows.reverse else cond, mech.xscale)
     if rows.reverse:
         err = err[:, ::-1]
     scale = np.maximum(np.nanmax(np.abs(d), axis=1), mech.xscale)  # a column of zeros: per unit of the unknown

@@ -357,6 +357,15 @@ def test_a_rounding_warning_names_the_condition_number_it_used():
     text = str(next(w.message for w in caught if issubclass(w.category, LostDigitsWarning)))
     assert f"at input 179.000° (step h = 0.0175 rad, condition number {sweep.cond[k180]:.3g} at 180.000°, within " \
            "the stencil's reach)" in text
+    # a descending sweep (340° down to 10°, not symmetric about 180°): the same reading
+    with pytest.warns(SingularityWarning):
+        down = mech.sweep(np.radians(np.arange(340.0, 9.0, -1.0)), on_singular="report")
+    k180 = 160
+    assert down.cond[k180] > 1e8
+    with pytest.warns(LostDigitsWarning) as caught:
+        kinematics.finite_difference(down, 10.0)
+    text = str(next(w.message for w in caught if issubclass(w.category, LostDigitsWarning)))
+    assert f"at input 181.000° (step h = 0.0175 rad, condition number {down.cond[k180]:.3g} at 180.000°" in text
 
 
 def test_no_rounding_warning_on_a_degree_grid():
