@@ -56,9 +56,7 @@ def read_mechanism(r: SceneReader, scene: Scene, mech: dict) -> None:
     dims = r.table(mech.get("dimensions", {}), "[mechanism.dimensions]")
     _read_quantities(r, scene, mech)
     if "linkage" in mech:
-        _read_linkage(r, scene, mech, dims)
-        spec_kinds = {d.name: d.kind for d in _linkage_spec(scene.linkage).dimensions}
-        _check_quantity_kinds(r, scene, {n for n, kind in spec_kinds.items() if kind != "angle"})
+        _read_linkage(r, scene, mech, dims)  # (its quantities are checked against the mechanism when it is built)
         return
     if "loops" not in mech:
         r.fail("[mechanism]", "needs either `linkage` (a ready-made one) or [[mechanism.loops]]")
@@ -152,7 +150,8 @@ def _bare_names(text) -> set:
 
 def _whole_terms(text) -> tuple[set, list]:
     """The names (see :func:`_bare_names`) and the numbers (``180`` in ``"theta2 + 180"``, ``-30`` in
-    ``"theta2 - 30"``) that are whole additive terms of an expression string; none if it does not parse."""
+    ``"theta2 - 30"``, ``30/57.3`` by its value; not a multiple of ``pi``) that are whole additive terms of
+    an expression string; none if it does not parse."""
     try:
         node = ast.parse(str(text).replace("^", "**"), mode="eval").body
     except SyntaxError:
@@ -160,7 +159,11 @@ def _whole_terms(text) -> tuple[set, list]:
     names, numbers, terms = set(), [], [(node, 1.0)]
     while terms:
         t, sign = terms.pop()
-        if isinstance(t, ast.BinOp) and isinstance(t.op, (ast.Add, ast.Sub)):
+        value = _constant(t)
+        if value is not None:
+            if not any(isinstance(n, ast.Name) for n in ast.walk(t)):  # a multiple of pi is rad on purpose
+                numbers.append(sign * value)
+        elif isinstance(t, ast.BinOp) and isinstance(t.op, (ast.Add, ast.Sub)):
             terms += [(t.left, sign), (t.right, -sign if isinstance(t.op, ast.Sub) else sign)]
         elif isinstance(t, ast.UnaryOp) and isinstance(t.op, (ast.USub, ast.UAdd)):
             terms.append((t.operand, -sign if isinstance(t.op, ast.USub) else sign))
@@ -170,9 +173,24 @@ def _whole_terms(text) -> tuple[set, list]:
             terms.append((t.right, sign))
         elif isinstance(t, ast.Name):
             names.add(t.id)
-        elif isinstance(t, ast.Constant) and isinstance(t.value, (int, float)) and not isinstance(t.value, bool):
-            numbers.append(sign * float(t.value))
     return names, numbers
+
+
+def _constant(node) -> float | None:
+    """The value of an expression made of numbers and ``pi`` alone (``30/57.3``, ``-2*pi``); None otherwise."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) and not isinstance(node.value, bool):
+        return float(node.value)
+    if isinstance(node, ast.Name) and node.id == "pi":
+        return math.pi
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
+        value = _constant(node.operand)
+        return None if value is None else (-value if isinstance(node.op, ast.USub) else value)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub, ast.Mult, ast.Div)):
+        a, b = _constant(node.left), _constant(node.right)
+        if a is None or b is None or (isinstance(node.op, ast.Div) and b == 0):
+            return None
+        return {ast.Add: a + b, ast.Sub: a - b, ast.Mult: a * b}.get(type(node.op), a / b if b else 0.0)
+    return None
 
 
 def _check_kinds(r: SceneReader, where: str, length, angle, angles: set, lengths: set, unit: str) -> None:
@@ -186,6 +204,8 @@ def _check_kinds(r: SceneReader, where: str, length, angle, angles: set, lengths
 
 #: Functions whose argument is an angle (rad).
 _TRIG = ("sin", "cos", "tan")
+#: The largest number accepted in an angle (rad): a turn, written to a few figures (6.2832) too.
+_MOST_IN_AN_ANGLE = 2.0 * math.pi + 1e-3
 
 
 def _check_angle_terms(r: SceneReader, where: str, text, lengths: set, unit: str, doing: str, inside: str) -> None:
@@ -197,7 +217,7 @@ def _check_angle_terms(r: SceneReader, where: str, text, lengths: set, unit: str
         r.fail(where, f"'{name}' is a length (in {unit}, [mechanism.dimensions]) but {doing}; an angle dimension is "
                       f"given as {name}_deg")
     for number in numbers:
-        if abs(number) > 2.0 * math.pi * (1.0 + 1e-12):
+        if abs(number) > _MOST_IN_AN_ANGLE:
             r.fail(where, f"the number {number:g} {inside} is more than a turn: a number in an angle is rad "
                           f"({number:g} rad = {math.degrees(number):.4g}°); write pi for 180°, or give an angle "
                           "dimension as <name>_deg")
@@ -205,11 +225,12 @@ def _check_angle_terms(r: SceneReader, where: str, text, lengths: set, unit: str
 
 def _check_trig_arguments(r: SceneReader, where: str, text, lengths: set, unit: str) -> None:
     """The argument of every sin, cos and tan in ``text`` passes :func:`_check_angle_terms`."""
-    try:
-        tree = ast.parse(str(text).replace("^", "**"), mode="eval")
+    sides = str(text).replace("^", "**").split("=") if str(text).count("=") == 1 else [str(text).replace("^", "**")]
+    try:  # an equation "lhs = rhs": both sides
+        trees = [ast.parse(side.strip(), mode="eval") for side in sides]
     except SyntaxError:
         return  # the expression's own parse reports it
-    for node in ast.walk(tree):
+    for node in (n for tree in trees for n in ast.walk(tree)):
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in _TRIG and node.args:
             _check_angle_terms(r, where, ast.unparse(node.args[0]), lengths, unit,
                                f"is added to an angle (the argument of {node.func.id})",
@@ -227,11 +248,6 @@ def _check_quantity_kinds(r: SceneReader, scene: Scene, lengths: set) -> None:
                                "is a whole term of an angle (dimension = \"angle\")",
                                "in an angle (dimension = \"angle\")")
 
-
-def _linkage_spec(name: str):
-    from . import linkages
-
-    return linkages.spec(name)
 
 
 def _read_linkage(r: SceneReader, scene: Scene, mech: dict, dims: dict) -> None:

@@ -409,6 +409,12 @@ def test_zero_length_is_refused_by_the_mechanism(zero):
      "angle is rad (30 rad = 1719°)"),
     ([('["-r1", "0"]', '["r1", "180"]')], "1 vector 4 angle: the number 180 in an angle is more than a turn"),
     ([('["-r1", "0"]', '["r1", "theta2 - 180"]')], "1 vector 4 angle: the number -180 in an angle is more than"),
+    ([('["-r1", "0"]', '["r1", "theta2 + 400/57.3"]')], "1 vector 4 angle: the number 6.9808 in an angle is more"),
+    # an equation "lhs = rhs" is checked on both sides
+    ([('vectors = [["r2", "theta2"], ["r3", "theta3"], ["-r4", "theta4"], ["-r1", "0"]]',
+       'equations = ["r2*cos(theta2) + r3*cos(theta3 + r1) = r4*cos(theta4) + r1", '
+       '"r2*sin(theta2) + r3*sin(theta3) = r4*sin(theta4)"]')],
+     "1 equation 1: 'r1' is a length (in mm, [mechanism.dimensions]) but is added to an angle (the argument of cos)"),
     # a derived angle with a length as a whole term
     ([("[input]", '[mechanism.quantities]\nmu = { expression = "theta4 - theta3 + r1", dimension = "angle" }\n'
                   '[input]')],
@@ -419,6 +425,15 @@ def test_a_dimension_used_as_the_other_kind_is_refused(capsys, tmp_path, edits, 
     code, out, err = run(capsys, "run", loops_scene(tmp_path, step=10, edits=edits))
     assert code == 2
     assert words in one_line_error(err)
+
+
+@pytest.mark.parametrize("angle", ["theta2 + 30/57.29578", "theta2 + 30*0.01745329", "theta2 + 6.2832",
+                                   "theta2 - 10*pi", "2*pi - theta2", "theta2 + pi/6"])
+def test_numbers_in_an_angle_that_are_rad_are_fine(tmp_path, angle):
+    """A conversion written out (30/57.29578), a turn to a few figures, multiples of pi: rad on purpose."""
+    path = loops_scene(tmp_path, step=10, edits=[("[input]", f'[mechanism.points]\nO2 = ["0", "0"]\n'
+                                                            f'C = ["cos({angle})", "sin({angle})"]\n[input]')])
+    assert load_scene(path).custom["points"]["C"] == [f"cos({angle})", f"sin({angle})"]
 
 
 def test_an_angle_from_lengths_and_a_projected_length_are_fine(tmp_path):
