@@ -601,17 +601,17 @@ def as_written(got, want, allowed: float = 0.0) -> str | None:
     A number is read as rounded to d decimals (or s figures) when it is one, and its miss from the reference
     is at most half a unit of its last place, plus ``allowed`` (the check's own tolerance: the answer
     rounded may be of a value that was not quite the reference); the largest keeps at least two figures
-    (zeros, or 0 and 1 for values below one, are no rounded answer).  Numbers that float32 holds exactly and
-    that miss by at most a thousandth of the largest reference are read as computed in single precision (a
-    second difference of float32 angles at a step of 1° keeps about 3 of their 7 figures).  Non-finite
-    entries are left out.
+    (zeros, or 0 and 1 for values below one, are no rounded answer).  Numbers that float32 holds exactly,
+    most of them written with 8 figures or more (as a float32 value reads in float64; a typed 28.25 is
+    no float32 answer), and that miss by at most 1e-4 of the largest reference are read as computed in
+    single precision.  Non-finite entries are left out.
 
     >>> import numpy as np
     >>> want = np.array([10.63289649, -3.0512741, 0.00471233])
     >>> as_written(np.round(want, 4), want), as_written([10.633, -3.0513, 0.0047123], want)
     ('rounded to 4 decimals', 'rounded to 5 significant figures')
-    >>> as_written(want.astype(np.float32), want), as_written(want + 1e-3, want)
-    ('single precision (float32)', None)
+    >>> as_written(want.astype(np.float32), want), as_written(want + 1e-3, want), as_written(28.25, 28.26)
+    ('single precision (float32)', None, None)
     """
     got = np.atleast_1d(np.asarray(got, dtype=float)).ravel()
     want = np.atleast_1d(np.asarray(want, dtype=float)).ravel()
@@ -634,7 +634,9 @@ def as_written(got, want, allowed: float = 0.0) -> str | None:
             if s >= 2 and np.all(miss <= 0.5 * last + ulp):
                 return f"rounded to {s} significant figures"
             break
-    if np.array_equal(got.astype(np.float32).astype(float), got) and np.all(miss <= 1e-3 * np.max(np.abs(want))):
+    long = sum(_figures(g) >= 8 for g in got.tolist())
+    if (np.array_equal(got.astype(np.float32).astype(float), got) and 2 * long >= got.size
+            and np.all(miss <= 1e-4 * np.max(np.abs(want)))):
         return SINGLE
     return None
 
@@ -643,7 +645,7 @@ def _written_hint(written: str, what: str) -> str:
     """What to do about numbers :func:`as_written` explains; ``what`` names them ("its values", "it")."""
     if written == SINGLE:
         return f"{what} {'is' if what == 'it' else 'are'} {SINGLE}, about 7 figures: compute in float64, numpy's default"
-    return f"{what} {'is' if what == 'it' else 'are'} the expected {'value' if what == 'it' else 'ones'} {written}: give {'it' if what == 'it' else 'them'} unrounded"
+    return f"{what} {'is' if what == 'it' else 'are'} {written}: give {'it' if what == 'it' else 'them'} unrounded"
 
 
 def _figures(got: float) -> int:
