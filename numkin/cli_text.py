@@ -29,9 +29,13 @@ def fmt_value(value: float, expected: float | None = None, mismatch: bool = Fals
             decimals = 0 if text.endswith(".0") else len(text.split(".")[1])
             if not mismatch:
                 return f"{value:.{decimals}f}"
+            shown = f"{expected:.{decimals}f}"
+            for digits in range(decimals + 2, 16):  # two decimals more, and more until it differs from the expected
+                text = f"{value:.{digits}f}"
+                if text.rstrip("0") != shown.rstrip("0") and float(text) != float(shown):
+                    break
             six = f"{value:#.6g}".rstrip(".")
-            more = f"{value:.{decimals + 2}f}"
-            return six if "e" not in six and len(six.split(".")[-1]) > decimals + 2 else more
+            return six if "e" not in six and "." in six and len(six.split(".")[1]) > digits else text
     return f"{value:#.6g}".rstrip(".")
 
 

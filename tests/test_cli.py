@@ -579,3 +579,12 @@ def test_run_summary_gives_the_dimensions_with_their_unit(capsys):
     assert main(["run", "slider-crank"]) == 0
     out = capsys.readouterr().out
     assert "  slider-crank (crank 0.08 m, rod 0.2 m, offset 0 m); theta 0..180° step 1°" in out
+
+
+def test_a_mismatching_check_value_never_reads_as_its_expected_value():
+    from numkin.cli_text import fmt_value
+
+    assert fmt_value(123456.789, 123457.0, mismatch=True) == "123456.79"
+    assert fmt_value(0.004, 0.0, mismatch=True) == "0.00400000"
+    assert fmt_value(6.3701234, 6.371, mismatch=True) == "6.37012"
+    assert fmt_value(6.3701234, 6.371) == "6.370"  # a value that passes: to the expected value's decimals
