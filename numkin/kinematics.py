@@ -405,7 +405,7 @@ def apply_scheme(rows, scheme, argument, quantity, default=False):
         error = InputError(
             f"{argument}={scheme.name!r} ({given}scheme for {quantity}) needs at least {err.minimum} points on "
             f"{err.grid} grid; the sweep has {points}{' per turn' if rows.periodic else ''}: sweep more points, "
-            f"or pass another {argument}",
+            f"or choose a scheme of fewer points for {argument}",
             cause="too few samples")
         error.minimum, error.grid, error.scheme, error.points = err.minimum, err.grid, scheme.name, points
         raise error from None

@@ -472,11 +472,13 @@ def _differentiate(result: SceneResult) -> None:
                     if error.cause != "too few samples":
                         raise
                     key = "schemes" if q.order == 1 else "second_schemes"
+                    periodic = error.grid == "a periodic"  # (a full turn: only a smaller step gives more points)
                     raise InputError(
                         f"[compare] {key}: '{error.scheme}' needs at least {error.minimum} points on {error.grid} "
                         f"grid; the sweep ({scene.start_deg:g}° to {scene.stop_deg:g}° in steps of {scene.step_deg:g}°) "
-                        f"has {error.points}: widen the sweep, make its step "
-                        "smaller, or choose a scheme of fewer points", cause="too few samples") from None
+                        f"has {error.points}{' per turn' if periodic else ''}: "
+                        f"{'make its step smaller' if periodic else 'widen the sweep, make its step smaller'}, or "
+                        "choose a scheme of fewer points", cause="too few samples") from None
 
 
 def _evaluate(result: SceneResult, at_deg: float, check: dict | None = None, *, every: bool = False) -> CheckResult:

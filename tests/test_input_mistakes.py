@@ -743,6 +743,18 @@ def test_a_sweep_too_short_for_a_compared_scheme_names_the_key(capsys, tmp_path,
     assert words in line and "last axis" not in line
 
 
+def test_a_full_turn_too_coarse_for_a_compared_scheme_asks_for_a_smaller_step(capsys, tmp_path):
+    path = tmp_path / "coarse.toml"
+    path.write_text(textwrap.dedent(SHORT.format(compare='schemes = ["five_point"]')).replace(
+        "start_deg = 45", "start_deg = 0").replace("stop_deg = 46", "stop_deg = 360").replace(
+        "step_deg = 0.5", "step_deg = 120"))
+    code, out, err = run(capsys, "run", str(path))
+    assert code == 2
+    assert one_line_error(err).endswith(
+        "[compare] schemes: 'five_point' needs at least 5 points on a periodic grid; the sweep (0° to 360° in steps "
+        "of 120°) has 3 per turn: make its step smaller, or choose a scheme of fewer points")
+
+
 def test_compare_names_its_argument_when_the_sweep_is_too_short():
     from numkin import compare
     from numkin.errors import InputError
