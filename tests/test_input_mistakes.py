@@ -747,7 +747,7 @@ def test_a_full_turn_too_coarse_for_a_compared_scheme_asks_for_a_smaller_step(ca
     path = tmp_path / "coarse.toml"
     path.write_text(textwrap.dedent(SHORT.format(compare='schemes = ["five_point"]')).replace(
         "start_deg = 45", "start_deg = 0").replace("stop_deg = 46", "stop_deg = 360").replace(
-        "step_deg = 0.5", "step_deg = 120"))
+        "step_deg = 0.5", "step_deg = 120").replace("rod = 60", "rod = 160"))
     code, out, err = run(capsys, "run", str(path))
     assert code == 2
     assert one_line_error(err).endswith(
