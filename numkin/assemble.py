@@ -338,7 +338,7 @@ def build_mechanism(scene: Scene):
     try:
         mech.add_quantities(scene.derived)
     except InputError as error:
-        scene.fail("[mechanism.quantities]", str(error))
+        scene.fail("[mechanism.quantities]", str(error).replace(mech.name, mech.title))
     _check_names(scene, mech)
     return mech
 

@@ -304,7 +304,7 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
             # (NaN where the analytic value is zero over the whole sweep: no error is relative to it)
             "max rel error": float(np.nanmax(np.where(keep, rel, np.nan))) if scale > 0 else np.nan,
             "rms rel error": float(np.sqrt(np.nanmean(rel[keep] ** 2))) if scale > 0 else np.nan,
-            f"max at {in_col}": round(float(np.degrees(t[worst])), 9),  # no 6.000000000000001 from rad and back
+            f"max at {in_col}": float(input_degrees(t[worst])),
         }
         if not rows.periodic:  # the one-sided end stencils, apart
             ends = ~keep

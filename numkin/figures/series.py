@@ -37,14 +37,13 @@ __all__ = ["sampled", "with_rates"]
 def sampled(sweep, name: str) -> np.ndarray:
     """The values of an unknown or derived quantity over the sweep (rad or the length unit).
 
-    An unknown's are the sweep's own. A derived angle is unwrapped by the
-    rule :func:`numkin.kinematics.prepare_rows` applies to an unknown angle
-    before differencing it: where neighbouring samples jump by more than
-    half a turn (an ``atan2`` crossing ±180°), whole turns are added, with
-    the same warning (``wrapped data``) whenever the samples were changed.
-    An angle that truly moves more than half a turn between samples is thus
-    bent back, as an unknown's would be: the warning says so; sweep a finer
-    grid. Samples where its expression is undefined stay NaN.
+    An unknown's are the sweep's own. A derived angle is unwrapped as
+    :func:`numkin.kinematics.prepare_rows` unwraps samples without a tangent:
+    where neighbouring samples jump by more than half a turn (an ``atan2``
+    crossing ±180°), whole turns are added, with the same warning (``wrapped
+    data``) whenever the samples were changed. An angle that truly moves more
+    than half a turn between samples is thus bent back: the warning says so;
+    sweep a finer grid. Samples where its expression is undefined stay NaN.
     """
     if name in sweep.unknowns:
         return sweep[name]
