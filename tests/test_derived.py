@@ -261,7 +261,7 @@ def test_a_derived_quantity_that_is_not_periodic_is_compared_on_an_open_grid_and
     mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"half": ("theta2/2 + theta3", "angle"),
                                                          "arc": ("r2*theta2", "length")})
     sweep = mech.sweep(np.radians(np.arange(0.0, 361.0, 10.0)))
-    with pytest.warns(UserWarning, match=r"\['v_arc'\] do not return .* not periodic in the input .* derived quantity"):
+    with pytest.warns(UserWarning, match=r"\['arc'\] do not return .* not periodic in the input .* derived quantity"):
         v = compare(sweep, 10.0, "v_arc", schemes=["centred"])
     np.testing.assert_allclose(v.table["centred [mm/s]"], 10.0, rtol=1e-13)   # centred is exact on a line
     assert v.summary["ends abs error [mm/s]"].iloc[0] < 1e-12  # the one-sided end stencils, apart
