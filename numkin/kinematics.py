@@ -272,7 +272,7 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
         The rows' derivatives with respect to the input, shape (k, N) (or a
         function returning them, called only where neighbouring angle samples
         differ by more than pi): tells wrapped data from a real turn of more
-        than pi between the samples of a coarse grid (see :func:`_unwrapped`).
+        than pi between the samples of a coarse grid (see the module notes).
 
     Returns
     -------
