@@ -277,7 +277,9 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
                 value = value + a * apply_scheme(rows, partner, f"schemes ({s.name}'s partner)", target.name)[0]
         # the rows where the scheme's own stencil applies: on an open grid its ends take one-sided stencils
         used = [s, _d.get_scheme(PARTNER[s.name])] if order == 2 and np.any(a != 0) else [s]  # alpha: dq too
-        own = own_stencil_points(used, t.size, rows.periodic)
+        own = own_stencil_points(used, t.size, rows.periodic)  # (counted along increasing input)
+        if rows.reverse:  # a descending sweep: its first samples are the grid's last
+            own = slice(t.size - own.stop, t.size - own.start)
         keep = np.zeros(t.size, dtype=bool)
         keep[own] = True
         if not rows.periodic:
@@ -314,7 +316,7 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
     summary_df = pd.DataFrame(summary).set_index("scheme")
     for df in (table_df, summary_df):
         df.attrs.update({"quantity": quantity, "unit": unit, "h": rows.h, "periodic": rows.periodic,
-                         "target": target})
+                         "descending": rows.reverse, "target": target})
     table_df.attrs["quantities"] = columns
     table_df.attrs["ends"] = ends_of
     return Comparison(quantity, unit, table_df, summary_df, scale, rows.h, rows.periodic, target)

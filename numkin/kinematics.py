@@ -489,7 +489,7 @@ def finite_difference(sweep, omega, alpha=0.0, method=DEFAULT_METHOD, second_met
         warn_rounding(sweep, mech, t, rows, scheme, d, rtol)
     attrs = {
         "omega": w, "alpha": a, "method": s1.name, "second_method": s2.name,
-        "h": rows.h, "periodic": rows.periodic,
+        "h": rows.h, "periodic": rows.periodic, "descending": rows.reverse,
     }
     return kinematics_frame(mech, t, w * d1, w**2 * d2 + a * d1, attrs, s1.name, s2.name)
 

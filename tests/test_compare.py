@@ -196,3 +196,25 @@ def test_input_columns_read_as_the_grid_was_written():
     assert np.array_equal(sweep.to_frame()["theta2 [deg]"].to_numpy(), degrees)
     table = compare(sweep, 10.0, "omega_theta4", schemes=("centred",)).table
     assert np.array_equal(table["theta2 [deg]"].to_numpy(), degrees)
+
+
+def test_a_descending_sweep_keeps_its_end_stencils_apart():
+    """forward on 0..90° takes the mirrored (backward) stencil at 90°, the grid's last point: on the sweep run from 90°
+    down to 0° that point is the first row. The summary leaves it out and names it as the end, whichever way the
+    sweep runs; at 0° forward is its own stencil, (x(1°) - x(0°))/h of x = r cos t + sqrt(l^2 - r^2 sin^2 t)."""
+    from numkin.figures.ends import frame_ends
+
+    r, l, w = 80.0, 200.0, 10.0
+    mech = linkages.slider_crank(r, l)
+    t = np.radians(np.arange(0.0, 91.0))
+    x = r * np.cos(t) + np.sqrt(l**2 - (r * np.sin(t)) ** 2)
+    h = t[1] - t[0]
+    up = compare(mech.sweep(t), w, "v_x", schemes=("forward",))
+    down = compare(mech.sweep(t[::-1]), w, "v_x", schemes=("forward",))
+    own_at_0 = abs(w * (x[1] - x[0]) / h - 0.0)  # v_x(0°) = 0
+    mirrored_at_90 = abs(w * (x[90] - x[89]) / h - (-w * r))  # v_x(90°) = -r w (r sin 90° cos 90° = 0)
+    for c in (up, down):
+        assert c.summary.loc["forward", "ends abs error [mm/s]"] == pytest.approx(mirrored_at_90, rel=1e-6)
+        assert c.summary.loc["forward", "max abs error [mm/s]"] == pytest.approx(own_at_0, rel=1e-6)
+    assert up.table.attrs["ends"]["forward"] == (0, 1) and down.table.attrs["ends"]["forward"] == (1, 0)
+    assert frame_ends("forward", down.table, 1) == (1, 0)

@@ -57,7 +57,8 @@ def frame_ends(key: str, frame, derivative: int) -> tuple[int, int]:
     -------
     tuple of int
         ``(0, 0)`` on a periodic grid or when the frame does not say how it
-        was computed.
+        was computed; in the frame's row order (a descending sweep's first
+        rows are the grid's last, ``attrs["descending"]``).
 
     Examples
     --------
@@ -82,9 +83,10 @@ def frame_ends(key: str, frame, derivative: int) -> tuple[int, int]:
     else:
         names = [key]
     try:
-        return scheme_reach(names)
+        before, after = scheme_reach(names)
     except (KeyError, ValueError):
         return 0, 0
+    return (after, before) if attrs.get("descending") else (before, after)
 
 
 def end_mask(n: int, ends: tuple[int, int]) -> np.ndarray:
