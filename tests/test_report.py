@@ -851,3 +851,15 @@ def test_work_precision_and_convergence_agree_on_an_open_grid(slider):
     row = wp[(wp.method == "second_difference") & (wp["points per turn"] == n)].iloc[0]
     assert row["max abs error [unit of quantity]"] == pytest.approx(inner.max(), rel=1e-6)
     assert "own stencil applies" in wp.attrs["caption"]
+
+
+def test_a_check_angle_off_some_grids_is_said_in_the_caption():
+    """From 45°, grids of 10° and 2° steps miss 100° (45 + 10k, 45 + 2k), those of 5° and 1° hold it: their cells
+    are blank, and the caption says why."""
+    t = report.convergence_table(linkages.four_bar(10, 3, 8, 6), omega=10.0, quantity="theta4", grids=(36, 72, 180, 360),
+                                 span=math.radians(155), start=math.radians(45), check_angle=math.radians(100),
+                                 schemes=("centred",))
+    col = next(c for c in t.columns if c.startswith("abs error at theta2 = 100 deg"))
+    assert t.set_index("points per turn")[col].isna().to_dict() == {36: True, 72: False, 180: True, 360: False}
+    assert ("The error at theta2 = 100 deg is blank on the grid(s) of 36, 180 points per turn, which do not hold that "
+            "angle.") in t.attrs["caption"]

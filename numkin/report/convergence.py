@@ -187,6 +187,11 @@ def convergence_table(
            "stencil's" if at_end else "") + "."
     )
     closure_text = "" if periodic or not full_turn(span) else studied.closure_text(data[grid_list[0]][0])
+    off_grid = [n for n in grid_list if check_angle is not None and check_index(data[n][0].inputs, check_angle) is None]
+    off_text = "" if not off_grid else (
+        f" The error at {lab['input']} = {deg_text(check_angle)} deg is blank on the grid(s) of "
+        f"{', '.join(map(str, off_grid))} points per turn, which do not hold that angle."
+    )
     floor_text = "" if not floored else (
         f" An observed order is left blank where either grid's error is at the round-off floor "
         f"({ROUNDOFF_UNITS:g} eps max|q| |omega|^n / h^n for an n-th derivative): {', '.join(sorted(floored))}."
@@ -197,6 +202,6 @@ def convergence_table(
         "against the analytic solution over the sweep; observed order from successive grids. Absolute errors "
         f"in {lab['unit1']} ({lab['name1']}, first-derivative schemes) or {lab['unit2']} ({lab['name2']}, "
         "second-derivative schemes)." + relative_text({"max rel error [-]": PEAK}) + closure_text + ends_text
-        + floor_text + zero_text(zero),
+        + off_text + floor_text + zero_text(zero),
         grid_positions(mechanism, {n: data[n][0] for n in grid_list}, check_angle),
     )
