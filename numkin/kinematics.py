@@ -59,7 +59,7 @@ from .analytic import tangent as sweep_tangent
 from .conditioning import DIGITS_RTOL, rounding_error, warn_rounding
 from .errors import InputError, warn
 
-__all__ = ["finite_difference", "rounding_error", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "apply_scheme", "PARTNER",
+__all__ = ["finite_difference", "rounding_error", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "apply_scheme", "unwrap_angles", "PARTNER",
            "CLOSURE_TOL"]
 
 #: First-derivative scheme used with each second-derivative scheme (for the
@@ -146,8 +146,8 @@ def sweep_grid(sweep, periodic="auto") -> SweepGrid:
     return SweepGrid(h=abs(h), periodic=is_periodic, reverse=h < 0, full_turn=full_turn)
 
 
-def _unwrapped(y: np.ndarray, angle: np.ndarray, names, inputs, tangent=None) -> np.ndarray:
-    """Angle rows with the whole turns of wrapped data removed (warns).
+def unwrap_angles(y: np.ndarray, angle, names, inputs, tangent=None, purpose: str = "differencing") -> np.ndarray:
+    """Angle rows of samples ``y`` (k, N) with the whole turns of wrapped data removed (warns).
 
     Only where neighbouring samples differ by more than pi is anything done. ``tangent``: the rows'
     derivatives with respect to the input (an array like ``y``, or a function returning it, called only
@@ -155,9 +155,22 @@ def _unwrapped(y: np.ndarray, angle: np.ndarray, names, inputs, tangent=None) ->
     (the trapezoid rule), and the whole turns between the two are removed: data reduced modulo 2 pi
     are unwrapped, while a real turn of more than pi between samples of a coarse grid is kept, and
     warned of as a grid too coarse to difference. Without a tangent (or where it is unknown) a jump
-    of more than pi is taken for wrapping (:func:`numpy.unwrap`).
+    of more than pi is taken for wrapping (:func:`numpy.unwrap`). ``angle``: which rows are angles;
+    ``names``, ``inputs`` (rad): for the warnings, which say what the samples are unwrapped for (``purpose``).
+    A step next to a NaN sample is left as it is.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> t = np.radians([0.0, 90.0, 180.0, 270.0])
+    >>> wrapped = np.array([[3.0, -3.0, -2.0, -1.0]])    # 3 rad, then -3 rad: a wrap, the tangent says +0.28 rad
+    >>> with warnings.catch_warnings(record=True) as said:
+    ...     out = unwrap_angles(wrapped, [True], ["q"], t, tangent=np.full((1, 4), 0.18))
+    >>> out.round(4).tolist(), "wrapped data" in str(said[0].message)
+    ([[3.0, 3.2832, 4.2832, 5.2832]], True)
     """
     y = np.array(y, dtype=float, copy=True)
+    angle = np.broadcast_to(np.asarray(angle, dtype=bool), y.shape[:1])
     if not angle.any():
         return y
     rows = np.flatnonzero(angle)
@@ -170,6 +183,7 @@ def _unwrapped(y: np.ndarray, angle: np.ndarray, names, inputs, tangent=None) ->
         expected = 0.5 * np.diff(inputs) * (d[:, 1:] + d[:, :-1])
         known = np.isfinite(expected)
         turns[known] = np.round((steps[known] - expected[known]) / _TURN)
+    turns[~np.isfinite(turns)] = 0.0  # (a step next to a NaN sample)
     wrapped = np.any(turns != 0, axis=-1)
     if wrapped.any():
         r = int(rows[wrapped][0])
@@ -177,7 +191,7 @@ def _unwrapped(y: np.ndarray, angle: np.ndarray, names, inputs, tangent=None) ->
         warn(
             f"angle(s) {[names[i] for i in rows[wrapped]]} jump by more than 180° between neighbouring samples "
             f"(first {names[r]} between inputs {math.degrees(inputs[k]):.3f}° and "
-            f"{math.degrees(inputs[k + 1]):.3f}°): wrapped data; unwrapped before differencing",
+            f"{math.degrees(inputs[k + 1]):.3f}°): wrapped data; unwrapped before {purpose}",
             UserWarning,
         )
         y[rows] -= _TURN * np.concatenate([np.zeros((rows.size, 1)), np.cumsum(turns, axis=-1)], axis=-1)
@@ -272,7 +286,7 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
         The rows' derivatives with respect to the input, shape (k, N) (or a
         function returning them, called only where neighbouring angle samples
         differ by more than pi): tells wrapped data from a real turn of more
-        than pi between the samples of a coarse grid (see the module notes).
+        than pi between the samples of a coarse grid (:func:`unwrap_angles`).
 
     Returns
     -------
@@ -296,7 +310,7 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
         k = int(np.flatnonzero(bad)[0])
         row = names[int(np.flatnonzero(~np.isfinite(y[:, k]))[0])]
         raise InputError(f"{row} is not finite at input {math.degrees(inputs[k]):.3f}°: cannot difference it")
-    y = _unwrapped(y, angle, names, inputs, tangent)
+    y = unwrap_angles(y, angle, names, inputs, tangent)
     if grid.reverse:
         y = y[:, ::-1]
     is_periodic, offset = grid.periodic, None

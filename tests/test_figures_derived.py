@@ -440,16 +440,22 @@ def test_figure_functions_take_any_iterable_of_names_and_any_path(four_bar, tmp_
 
 
 # ----------------------------------------------------------------------------- what the frames hold
-def test_a_derived_angle_moving_more_than_half_a_turn_per_sample_is_not_bent_back_silently():
-    """5 theta2 on a 40° grid moves 200° per sample: unwrapped as an unknown's angle would be, and said so."""
+def test_a_derived_angle_moving_more_than_half_a_turn_per_sample_is_kept_and_said_so():
+    """5 theta2 on a 40° grid moves 200° per sample, as its tangent (5) says: a real turn, kept (not bent back by
+    -360°), and the grid said to be too coarse, as for an unknown's angle; the drawn values are 5 theta2."""
     mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"gear": ("5*theta2", "angle")})
     sweep = mech.sweep(np.radians(np.arange(0.0, 361.0, 40.0)))
     for draw in (lambda: figures.position(sweep, "gear"),
                  lambda: figures.kinematics(sweep, "gear", finite={"centred": finite_difference(sweep, 2.0)}),
                  lambda: figures.derivative(sweep, "gear")):
-        with pytest.warns(UserWarning, match=r"\['gear'\] jump by more than 180° .*between inputs 0.000° and "
-                                             r"40.000°\): wrapped data"):
+        with pytest.warns(UserWarning, match=r"\['gear'\] turn by more than 180° between neighbouring samples \(first "
+                                             r"gear, by 200.0° between inputs 0.000° and 40.000°\): the grid is too "
+                                             r"coarse"):
             draw()
+    from numkin.figures.series import sampled
+
+    with pytest.warns(UserWarning, match="too coarse"):
+        np.testing.assert_allclose(sampled(sweep, "gear"), 5 * sweep.inputs, atol=1e-12)
     # a fine grid needs no unwrapping: the rates are 5 omega, quietly
     fine = mech.sweep(np.radians(np.arange(0.0, 361.0, 5.0)))
     with warnings.catch_warnings():

@@ -38,12 +38,13 @@ def sampled(sweep, name: str) -> np.ndarray:
     """The values of an unknown or derived quantity over the sweep (rad or the length unit).
 
     An unknown's are the sweep's own. A derived angle is unwrapped as
-    :func:`numkin.kinematics.prepare_rows` unwraps samples without a tangent:
-    where neighbouring samples jump by more than half a turn (an ``atan2``
-    crossing ±180°), whole turns are added, with the same warning (``wrapped
-    data``) whenever the samples were changed. An angle that truly moves more
-    than half a turn between samples is thus bent back: the warning says so;
-    sweep a finer grid. Samples where its expression is undefined stay NaN.
+    :func:`numkin.kinematics.prepare_rows` unwraps it before differencing
+    (:func:`numkin.kinematics.unwrap_angles`, with its tangent from the chain
+    rule): where neighbouring samples jump by more than half a turn (an
+    ``atan2`` crossing ±180°), the whole turns the tangent does not account
+    for are removed, with the same warning (``wrapped data``); a real turn of
+    more than half a turn between samples is kept, and warned of as a grid
+    too coarse. Samples where its expression is undefined stay NaN.
     """
     if name in sweep.unknowns:
         return sweep[name]
@@ -53,22 +54,28 @@ def sampled(sweep, name: str) -> np.ndarray:
     return _unwrapped(sweep, name, y) if is_angle(sweep, name) else y
 
 
+def _derived_tangent(sweep, name: str) -> np.ndarray:
+    """A derived quantity's derivative with respect to the input over the sweep (chain rule; NaN where undefined)."""
+    from ..expressions import derived_derivatives
+
+    return np.asarray(derived_derivatives(sweep, [name])[name][1], dtype=float)
+
+
 def _unwrapped(sweep, name: str, y: np.ndarray) -> np.ndarray:
-    """A derived angle's samples with jumps of more than half a turn removed (warns when it changes them)."""
+    """A derived angle's samples unwrapped by their tangent (:func:`numkin.kinematics.unwrap_angles`), over the
+    samples where it is defined (NaN elsewhere, skipped)."""
+    from ..kinematics import unwrap_angles
+
     finite = np.isfinite(y)
     if finite.sum() < 2:
         return y
-    yf = y[finite]
-    un = np.unwrap(yf)
-    if np.array_equal(un, yf):
-        return y
-    k = int(np.flatnonzero(np.abs(np.diff(yf)) > math.pi)[0])
-    t = sweep.inputs[finite]
-    warn(f"angle(s) [{name!r}] jump by more than 180° between neighbouring samples (first {name} between inputs "
-         f"{math.degrees(t[k]):.3f}° and {math.degrees(t[k + 1]):.3f}°): wrapped data; unwrapped before drawing "
-         "and differencing", UserWarning)
+
+    def tangent():
+        return _derived_tangent(sweep, name)[finite][None]
+
     out = y.copy()
-    out[finite] = un
+    out[finite] = unwrap_angles(y[finite][None], [True], [name], np.asarray(sweep.inputs)[finite], tangent,
+                                "drawing and differencing")[0]
     return out
 
 
@@ -215,7 +222,7 @@ def _scheme_rates(sweep, name: str, key, frame, values: np.ndarray, idx):
                  "as an open grid", UserWarning)
             grid, periodic = replace(grid, periodic=False), False
         rows = prepare_rows(y[None, :], [is_angle(sweep, name)], [name], t, grid, sweep.mechanism.length_scale,
-                            periodic)
+                            periodic, tangent=lambda: _derived_tangent(sweep, name)[idx][None])
         d1, d2, is_periodic = rows.apply(s1)[0], rows.apply(s2)[0], rows.periodic
     else:
         (d1, d2), is_periodic = _runs_rates(y, grid, s1, s2), False

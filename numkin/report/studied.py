@@ -324,7 +324,7 @@ class StudiedQuantity:
             periodic_ = False if periodic is False else True if close else "auto"
             rows = kinematics.prepare_rows(self.values(sweep)[None], [self.is_angle], [self.name], t,
                                            kinematics.sweep_grid(sweep, periodic_), mech.length_scale, periodic_,
-                                           close=close)
+                                           close=close, tangent=lambda: self.exact(sweep, quiet)[0][None])
             if close and rows.periodic and gap:
                 rows.offset = rows.offset + gap  # whole turns (the solver's error dropped) and the quantity's own gap
             return rows.apply(scheme)[0]
