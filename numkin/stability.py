@@ -6,7 +6,9 @@ the Jacobian, the Newton iterations, the error of every finite-difference
 scheme against the analytic solution, and the error or warning raised. A
 scheme's error is taken, as :func:`numkin.compare.compare` takes it, over
 the points where its own stencil applies; on an open sweep the one-sided
-end stencils at the first and last points have a column of their own.
+end stencils, at the points near either end its stencil reaches past (the
+first and last for centred, two at each end for five-point, the last for
+forward), have a column of their own.
 
 ========================================  ======================================================  ================
 case                                      what it probes                                          expected
@@ -183,8 +185,9 @@ def _scheme_errors(sweep, j, schemes, dq, d2q) -> dict:
     on its own (:func:`numkin.kinematics.prepare_rows`), and the interior
     error is the largest over the points where the scheme's own stencil
     applies (:func:`numkin.schemes.own_stencil_points`: one period of a full
-    turn; on an open sweep all but the first and last points, which take
-    one-sided end stencils); the ends' largest error is the second number
+    turn; on an open sweep all but the points near either end that its
+    stencil reaches past, which take one-sided end stencils); the ends'
+    largest error is the second number
     (NaN on a periodic sweep). Both divide by the largest ``|exact|`` over
     the whole sweep. NaN, NaN for a scheme that does not apply (a spectral
     one on an open sweep).
@@ -386,9 +389,9 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
         then gives the estimated error), ``<scheme> max rel error [-]``
         (the largest error over the points where the scheme's own stencil
         applies, as in :func:`numkin.compare.compare`: one period of a full
-        turn, all but the first and last points of an open sweep),
-        ``<scheme> ends rel error [-]`` (the largest error of the one-sided
-        end stencils at those first and last points; blank on a full turn),
+        turn; on an open sweep all but the points near either end that its
+        stencil reaches past), ``<scheme> ends rel error [-]`` (the largest
+        error of the one-sided end stencils at those points; blank on a full turn),
         both divided by the largest ``|exact|`` derivative over the sweep,
         and ``error or warning raised``. Scale cases (with
         ``compare_to``) say in ``what happened`` how far their relative
@@ -432,9 +435,11 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
     df.attrs["caption"] = (
         "Stability suite: each case through the solver and every finite-difference scheme; expected errors are "
         "outcomes. A scheme's max rel error is its largest error of dq/dtheta (d2q/dtheta2) over the points where "
-        "its own stencil applies: one period of a full turn; on an open sweep all but the first and last points, "
-        "which take one-sided end stencils and whose largest error is the scheme's ends rel error (blank on a full "
-        "turn)." + relative_text({"max rel error": PEAK, "ends rel error": PEAK})
+        "its own stencil applies: one period of a full turn; on an open sweep all but the points near either end "
+        "that its stencil reaches past (the first and last for centred and the second difference, two at each end "
+        "for the five-point schemes, richardson and centred of centred, the last for forward, the first for backward, "
+        "the last two for forward of forward), which take one-sided end stencils and whose largest error is the scheme's ends rel error (blank "
+        "on a full turn)." + relative_text({"max rel error": PEAK, "ends rel error": PEAK})
         + " Max cond: the largest 2-norm condition "
         "number of a loop's own block of the scaled Jacobian over the sweep. Sharpest turn: the input range over "
         "which the output turns (jump of dq/dtheta over max |d2q/dtheta2|), blank where wider than 3 grid steps. "
@@ -452,7 +457,7 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
                         "analytic lost digits"]),
         ("first-derivative schemes: max error of dq/dtheta over its peak", ["case", "sharpest turn [deg]"] + first),
         ("second-derivative schemes: max error of d2q/dtheta2 over its peak", ["case", "sharpest turn [deg]"] + second),
-        ("one-sided end stencils of an open sweep: max error at the first and last points over the peak",
+        ("one-sided end stencils of an open sweep: max error at the points near either end over the peak",
          ["case"] + ends),
         ("what happened", ["case", "what happened"]),
         ("errors and warnings raised", ["case", "error or warning raised"]),

@@ -231,13 +231,14 @@ def test_open_sweep_errors_leave_the_end_stencils_apart():
     1 and 359 deg has its own column. Reference: theta4 in closed form by mpmath, its exact second derivative
     by mp.diff, both differences of its values by hand."""
     name = "near toggle (4, 2, 4.0001, 2)"
-    row = stability.run_suite([name], schemes=["second_difference", "spectral"]).iloc[0]
+    row = stability.run_suite([name], schemes=["second_difference", "spectral", "forward"]).iloc[0]
     deg = np.arange(1.0, 360.0)
     first = float(stability.CASES[name].build().sweep(np.radians(deg[:1]))["theta4"][0])  # the branch only
     with mp.workdps(30):
         sign = min((1, -1), key=lambda s: abs(mp.arg(mp.expj(_toggle_theta4(mp.radians(1), s) - first))))
         q = np.unwrap([float(_toggle_theta4(mp.radians(t), sign)) for t in deg])
         exact = np.array([float(mp.diff(lambda t: _toggle_theta4(t, sign), mp.radians(t), 2)) for t in deg])
+        slope = np.array([float(mp.diff(lambda t: _toggle_theta4(t, sign), mp.radians(t), 1)) for t in deg])
     h = math.radians(1.0)
     peak = np.abs(exact).max()
     inner = np.abs((q[:-2] - 2 * q[1:-1] + q[2:]) / h**2 - exact[1:-1]) / peak
@@ -248,8 +249,14 @@ def test_open_sweep_errors_leave_the_end_stencils_apart():
     assert row["second_difference ends rel error [-]"] == pytest.approx(max(start, end), rel=1e-6)
     assert round(inner.max(), 3) == 0.270 and round(start, 3) == 0.339  # the end stencil's is the larger
     assert np.isnan(row["spectral max rel error [-]"]) and np.isnan(row["spectral ends rel error [-]"])
+    # forward: its own stencil at every point but the last (1 deg included), the mirrored one at 359 deg
+    forward = np.abs(np.diff(q) / h - slope[:-1]) / np.abs(slope).max()
+    last = abs((q[-1] - q[-2]) / h - slope[-1]) / np.abs(slope).max()
+    assert row["forward max rel error [-]"] == pytest.approx(forward.max(), rel=1e-6)
+    assert row["forward ends rel error [-]"] == pytest.approx(last, rel=1e-6)
     caption = stability.run_suite(["cannot assemble (10, 6, 1, 1)"]).attrs["caption"]
     assert "over the points where its own stencil applies" in caption
+    assert "the last for forward, the first for backward" in caption
     assert "max rel error and ends rel error are divided by the largest |exact value| over the sweep" in caption
 
 
