@@ -341,8 +341,11 @@ def roundoff(table):
 
     Each scheme's V-curve at the table's steps, the fine scan its optimum is
     measured on (``attrs["scan"]``, a thin line of the same colour), its
-    measured optimal step on that scan (star) and the textbook estimate
-    ``h* ~ eps**(1/(p+n))`` on the same curve (open marker); machine epsilon dotted.
+    measured optimal step (star: where the truncation line and the rounding
+    line fitted to that scan meet) and the textbook estimate
+    ``h* ~ eps**(1/(p+n))`` (open marker), each at the error the table
+    measured at that step (its columns ``rel error measured at that h`` and
+    ``rel error measured at textbook h``); machine epsilon dotted.
 
     Parameters
     ----------
@@ -402,17 +405,18 @@ def roundoff(table):
                 allv.extend(fine_e)
                 ax.plot(fine_h, fine_e, color=st["color"], linestyle=st["linestyle"], linewidth=0.6, alpha=0.75,
                         label=f"_scan {scheme}", zorder=1.5)
-            if "measured optimal h [rad]" in row.index:
-                # the optimum at the table's step, on the drawn fine scan (else the coarse curve) there
-                h_opt = float(row["measured optimal h [rad]"])
-                ax.plot(h_opt, on_curve(fine_h, fine_e, h_opt), marker="*", markersize=11, color=st["color"],
-                        markeredgecolor="black", markeredgewidth=0.5, linestyle="none", zorder=5)
-            if "textbook optimal h [rad]" in row.index and scheme not in ("complex step", "complex_step"):
-                # the textbook step on the drawn curve, as the measured optimum is
-                h_book = float(row["textbook optimal h [rad]"])
-                ax.plot(h_book, on_curve(fine_h, fine_e, h_book), marker="D",
-                        markersize=6, markerfacecolor="white", markeredgecolor=st["color"], markeredgewidth=1.3,
-                        linestyle="none", zorder=5)
+            # the table's two steps at the errors it measured there (else, for a table without them, on the drawn
+            # fine scan or the coarse curve)
+            for h_col, e_col, kind in (("measured optimal h [rad]", "rel error measured at that h [-]", "*"),
+                                       ("textbook optimal h [rad]", "rel error measured at textbook h [-]", "D")):
+                if h_col not in row.index or (kind == "D" and scheme in ("complex step", "complex_step")):
+                    continue
+                h_at = float(row[h_col])
+                e_at = float(row[e_col]) if e_col in row.index else on_curve(fine_h, fine_e, h_at)
+                look = (dict(markersize=11, color=st["color"], markeredgecolor="black", markeredgewidth=0.5)
+                        if kind == "*" else dict(markersize=6, markerfacecolor="white", markeredgecolor=st["color"],
+                                                 markeredgewidth=1.3))
+                ax.plot(h_at, e_at, marker=kind, linestyle="none", zorder=5, **look)
         ax.axhline(eps, color="0.4", linestyle=":", linewidth=0.9)
         ax.text(hs.max(), eps * 1.6, "machine ε", ha="right", va="bottom", fontsize=7.5, color="0.3")
         # legend entries for the markers
