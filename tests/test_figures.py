@@ -732,3 +732,14 @@ def test_a_check_angle_outside_the_sweep_is_refused_not_dropped():
     sweep = linkages.four_bar(4, 1, 3, 3).sweep(np.radians(np.arange(0.0, 361.0, 5.0)))
     with pytest.raises(ValueError, match=r"check_angles 5729.58 deg lie outside the sweep, 0 to 360 deg"):
         figures.kinematics(sweep, "theta4", analytic=analytic.kinematics(sweep, 1.0), check_angles=[100.0])
+
+
+def test_second_derivative_schemes_drawn_together_have_their_own_colours():
+    """Schemes of one panel must be told apart in its legend (whose short handles hide dash patterns)."""
+    from numkin.derivatives import SCHEMES
+    from numkin.figures.style import source_style
+
+    for derivative in (1, 2):
+        names = [s.name for s in SCHEMES.values() if s.derivative == derivative]
+        colours = [source_style(name, k)["color"] for k, name in enumerate(names)]
+        assert len(set(colours)) == len(colours), dict(zip(names, colours))

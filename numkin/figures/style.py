@@ -57,6 +57,8 @@ SOURCE_STYLE = {
     "five_point": {"color": "#009E73", "linestyle": (0, (1.2, 1.8)), "linewidth": 2.4},
     "richardson": {"color": "#E69F00", "linestyle": (0, (6, 4)), "linewidth": 1.4},
     "spectral": {"color": "#56B4E9", "linestyle": "-.", "linewidth": 1.6},
+    # a second derivative of the centred family, drawn beside the second difference: a colour of its own
+    "centred_of_centred": {"color": "#1B3A6B", "linestyle": (0, (7, 2, 1.5, 2)), "linewidth": 1.6},
 }
 
 #: Markers of the sources on the error figures: (marker, size, filled). Sources that give the
