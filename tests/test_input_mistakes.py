@@ -297,23 +297,25 @@ step_deg = 5
 """
 
 
-def test_a_scene_through_a_change_point_is_told_its_own_key(capsys, tmp_path):
+def _parallelogram_refused(capsys, tmp_path, extra: str) -> str:
+    """The one line `numkin run` refuses the parallelogram scene with, `extra` added to its [input]."""
     path = tmp_path / "par.toml"
-    path.write_text(textwrap.dedent(PARALLELOGRAM.format(extra="")))
+    path.write_text(textwrap.dedent(PARALLELOGRAM.format(extra=extra)))
     code, out, err = run(capsys, "run", str(path))
     assert code == 2
-    line = one_line_error(err)
+    return one_line_error(err)
+
+
+def test_a_scene_through_a_change_point_is_told_its_own_key(capsys, tmp_path):
+    line = _parallelogram_refused(capsys, tmp_path, "")
     assert "change point" in line and 'set on_singular = "report" in [input]' in line
     assert "pass on_singular" not in line
 
 
 def test_a_branch_and_a_guess_together_are_refused(capsys, tmp_path):
     """Both pick the assembly: a [guess] on the other branch silently overruled `branch` before."""
-    path = tmp_path / "both.toml"
-    path.write_text(textwrap.dedent(PARALLELOGRAM.format(extra="[guess]\ntheta3_deg = 10\ntheta4_deg = 100")))
-    code, out, err = run(capsys, "run", str(path))
-    assert code == 2
-    assert '[mechanism] branch: "crossed" and a [guess] both pick the assembly branch: give one' in one_line_error(err)
+    line = _parallelogram_refused(capsys, tmp_path, "[guess]\ntheta3_deg = 10\ntheta4_deg = 100")
+    assert '[mechanism] branch: "crossed" and a [guess] both pick the assembly branch: give one' in line
 
 
 def test_a_scene_with_on_singular_report_keeps_the_branch_through_the_change_point(tmp_path):
@@ -333,11 +335,8 @@ def test_a_scene_with_on_singular_report_keeps_the_branch_through_the_change_poi
 
 
 def test_on_singular_takes_raise_or_report_only(capsys, tmp_path):
-    path = tmp_path / "par.toml"
-    path.write_text(textwrap.dedent(PARALLELOGRAM.format(extra='on_singular = "maybe"')))
-    code, out, err = run(capsys, "run", str(path))
-    assert code == 2
-    assert '[input] on_singular: must be "raise" or "report"' in one_line_error(err)
+    line = _parallelogram_refused(capsys, tmp_path, 'on_singular = "maybe"')
+    assert '[input] on_singular: must be "raise" or "report"' in line
 
 
 # ------------------------------------------------------------ equations and symbols
