@@ -48,6 +48,7 @@ for beta (the exact values are 10.6329 and -28.3750).
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -177,13 +178,17 @@ def unwrap_angles(y: np.ndarray, angle, names, inputs, tangent=None, purpose: st
     steps = np.diff(y[rows], axis=-1)
     if not np.any(np.abs(steps) > math.pi):
         return y
-    turns = np.round(steps / _TURN)  # numpy.unwrap's reading
+    big = np.abs(steps) > math.pi  # the steps read at all (NaN: a step next to a NaN sample, left as it is)
+    turns = np.where(big, np.round(steps / _TURN), 0.0)  # numpy.unwrap's reading
     if tangent is not None:
-        d = np.asarray(tangent() if callable(tangent) else tangent, dtype=float)[rows]
+        if callable(tangent):
+            with warnings.catch_warnings():  # (what the tangent's own solve says is not about these samples)
+                warnings.simplefilter("ignore")
+                tangent = tangent()
+        d = np.asarray(tangent, dtype=float)[rows]
         expected = 0.5 * np.diff(inputs) * (d[:, 1:] + d[:, :-1])
-        known = np.isfinite(expected)
+        known = big & np.isfinite(expected)
         turns[known] = np.round((steps[known] - expected[known]) / _TURN)
-    turns[~np.isfinite(turns)] = 0.0  # (a step next to a NaN sample)
     wrapped = np.any(turns != 0, axis=-1)
     if wrapped.any():
         r = int(rows[wrapped][0])
@@ -195,7 +200,7 @@ def unwrap_angles(y: np.ndarray, angle, names, inputs, tangent=None, purpose: st
             UserWarning,
         )
         y[rows] -= _TURN * np.concatenate([np.zeros((rows.size, 1)), np.cumsum(turns, axis=-1)], axis=-1)
-    real = (np.abs(steps) > math.pi) & (turns == 0)
+    real = big & (turns == 0)
     if real.any():
         i = int(np.flatnonzero(real.any(axis=-1))[0])
         r, k = int(rows[i]), int(np.flatnonzero(real[i])[0])

@@ -743,3 +743,16 @@ def test_second_derivative_schemes_drawn_together_have_their_own_colours():
         names = [s.name for s in SCHEMES.values() if s.derivative == derivative]
         colours = [source_style(name, k)["color"] for k, name in enumerate(names)]
         assert len(set(colours)) == len(colours), dict(zip(names, colours))
+
+
+def test_a_roundoff_error_measured_as_zero_keeps_its_star_on_the_log_axis():
+    """theta4 of the four-bar 4:1:3:3 at 100°: the complex step's error at its optimum is measured as exactly 0,
+    which a log axis cannot show; its star sits on the drawn scan there, at a positive error."""
+    ro = report.roundoff_table(linkages.four_bar(4, 1, 3, 3), quantity="theta4", check_angle=math.radians(100))
+    row = ro.set_index("scheme").loc["complex step"]
+    assert row["rel error measured at that h [-]"] == 0.0
+    ax = figures.roundoff(ro).axes[0]
+    star = next(ln for ln in ax.get_lines() if ln.get_marker() == "*" and len(ln.get_xdata()) == 1
+                and ln.get_xdata()[0] == row["measured optimal h [rad]"])
+    assert 0 < star.get_ydata()[0] < 1e-12
+    plt.close(ax.figure)

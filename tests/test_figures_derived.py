@@ -456,6 +456,12 @@ def test_a_derived_angle_moving_more_than_half_a_turn_per_sample_is_kept_and_sai
 
     with pytest.warns(UserWarning, match="too coarse"):
         np.testing.assert_allclose(sampled(sweep, "gear"), 5 * sweep.inputs, atol=1e-12)
+    # and differenced as it is: the centred difference of 5 theta2 is exactly 5 (times omega = 2), ends too
+    with pytest.warns(UserWarning, match="too coarse"):
+        fig = figures.kinematics(sweep, "gear", finite={"centred": finite_difference(sweep, 2.0)})
+    drawn = np.concatenate([ln.get_ydata() for ln in fig.axes[1].get_lines() if "centred" in ln.get_label()
+                            or "one-sided" in ln.get_label()])
+    np.testing.assert_allclose(drawn, 10.0, atol=1e-9)
     # a fine grid needs no unwrapping: the rates are 5 omega, quietly
     fine = mech.sweep(np.radians(np.arange(0.0, 361.0, 5.0)))
     with warnings.catch_warnings():

@@ -572,3 +572,15 @@ def test_the_spectral_refusal_gives_a_length_gap_in_its_unit():
     mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"arc": ("r2*theta2", "length")})
     with pytest.raises(InputError, match=r"arc misses it by 6\.28319 mm: leave the spectral schemes out"):
         report.convergence_table(mech, omega=W, quantity="arc", grids=(36,), schemes=("spectral",))
+
+
+def test_a_derived_angle_turning_more_than_half_a_turn_per_step_is_studied_as_it_turns():
+    """f = 20 theta2 + 0.1 sin(theta2) turns 200° per step of the 36-point grid: the report differences it as it
+    turns (its tangent says so), so the centred difference's error is its truncation error alone,
+    0.1 omega cos(theta2) (1 - sin(h)/h), largest at theta2 = 0 (hand derivation)."""
+    mech = linkages.four_bar(4, 1, 3, 3).add_quantities({"f": ("20*theta2 + 0.1*sin(theta2)", "angle")})
+    with pytest.warns(UserWarning, match="too coarse"):
+        table = report.convergence_table(mech, omega=2.0, quantity="f", grids=(36, 72), schemes=("centred",))
+    row = table.set_index("points per turn").loc[36]
+    h = 2 * math.pi / 36
+    assert row["max abs error [unit of quantity]"] == pytest.approx(0.1 * 2.0 * (1 - math.sin(h) / h), rel=1e-6)

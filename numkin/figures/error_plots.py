@@ -345,14 +345,16 @@ def roundoff(table):
     line fitted to that scan meet) and the textbook estimate
     ``h* ~ eps**(1/(p+n))`` (open marker), each at the error the table
     measured at that step (its columns ``rel error measured at that h`` and
-    ``rel error measured at textbook h``); machine epsilon dotted.
+    ``rel error measured at textbook h``; an error measured as exactly 0, which
+    a log axis cannot show, on the drawn curve there); machine epsilon dotted.
 
     Parameters
     ----------
     table : DataFrame
         From :func:`numkin.report.roundoff_table`: ``scheme``, columns
         ``rel error at h = 1e-01 rad [-]`` ..., ``measured optimal h [rad]``,
-        ``rel error at measured optimal h [-]``, ``textbook optimal h [rad]``.
+        ``rel error measured at that h [-]``, ``textbook optimal h [rad]``,
+        ``rel error measured at textbook h [-]``.
 
     {{returns_figure}}
 
@@ -412,7 +414,9 @@ def roundoff(table):
                 if h_col not in row.index or (kind == "D" and scheme in ("complex step", "complex_step")):
                     continue
                 h_at = float(row[h_col])
-                e_at = float(row[e_col]) if e_col in row.index else on_curve(fine_h, fine_e, h_at)
+                e_at = float(row[e_col]) if e_col in row.index else math.nan
+                if not e_at > 0:  # no column, or an error measured as exactly 0 (no place on a log axis): the curve's
+                    e_at = on_curve(fine_h, fine_e, h_at)
                 look = (dict(markersize=11, color=st["color"], markeredgecolor="black", markeredgewidth=0.5)
                         if kind == "*" else dict(markersize=6, markerfacecolor="white", markeredgecolor=st["color"],
                                                  markeredgewidth=1.3))

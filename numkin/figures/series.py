@@ -62,21 +62,14 @@ def _derived_tangent(sweep, name: str) -> np.ndarray:
 
 
 def _unwrapped(sweep, name: str, y: np.ndarray) -> np.ndarray:
-    """A derived angle's samples unwrapped by their tangent (:func:`numkin.kinematics.unwrap_angles`), over the
-    samples where it is defined (NaN elsewhere, skipped)."""
+    """A derived angle's samples unwrapped by their tangent (:func:`numkin.kinematics.unwrap_angles`): each run
+    of samples where it is defined on its own (a step across undefined samples is left as it is)."""
     from ..kinematics import unwrap_angles
 
-    finite = np.isfinite(y)
-    if finite.sum() < 2:
+    if np.isfinite(y).sum() < 2:
         return y
-
-    def tangent():
-        return _derived_tangent(sweep, name)[finite][None]
-
-    out = y.copy()
-    out[finite] = unwrap_angles(y[finite][None], [True], [name], np.asarray(sweep.inputs)[finite], tangent,
-                                "drawing and differencing")[0]
-    return out
+    return unwrap_angles(y[None], [True], [name], np.asarray(sweep.inputs), lambda: _derived_tangent(sweep, name)[None],
+                         "drawing and differencing")[0]
 
 
 def _span(t: np.ndarray) -> str:
