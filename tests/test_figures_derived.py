@@ -660,3 +660,20 @@ def test_a_derived_angle_undefined_on_part_of_the_sweep_is_drawn_where_it_is_def
     np.testing.assert_array_equal(np.isnan(drawn[1:-1]), np.isnan(ref[1:-1]))
     np.testing.assert_allclose(drawn[1:-1], OMEGA * ref[1:-1], atol=1e-8)
     assert np.isnan(drawn).sum() > np.isnan(q).sum()  # the stencils at each gap's edge are left out
+
+
+def test_an_ordinary_step_next_to_a_toggle_is_not_read_by_the_tangent():
+    """psi = atan2(sin(theta3 + 2.6), cos(theta3 + 2.6)) wraps once on the way to the crank's toggle of the
+    four-bar 4:3:1.5:3 (where d theta3/d theta2 grows without bound): unwrapped, it is theta3 + 2.6 plus one
+    constant whole number of turns, the last steps (ordinary ones, under half a turn) included."""
+    from numkin.figures.series import sampled
+
+    mech = linkages.four_bar(4, 3, 1.5, 3).add_quantities(
+        {"psi": ("atan2(sin(theta3 + 2.6), cos(theta3 + 2.6))", "angle")})
+    limit = math.degrees(math.acos(4.75 / 24))  # |A O4| = r3 + r4: 16 + 9 - 24 cos t = 20.25
+    sweep = mech.sweep(np.radians(np.linspace(30.0, limit - 1e-9, 60)))
+    with pytest.warns(UserWarning, match="wrapped data"):
+        psi = sampled(sweep, "psi")
+    offset = psi - (sweep["theta3"] + 2.6)
+    turns = offset / (2 * math.pi)
+    assert np.ptp(offset) < 1e-9 and abs(turns[0] - round(turns[0])) < 1e-9
