@@ -767,21 +767,9 @@ def test_compare_names_its_argument_when_the_sweep_is_too_short():
 def test_a_scene_error_names_the_linkage_with_its_unit(capsys, tmp_path):
     """numkin run heads its output with the dimensions and their unit; its errors name the linkage the same way.
     4/3/2/2.5 cm reaches |A - O4| = 4.5 up to cos t = (16 + 9 - 20.25) / 24: |theta2| <= 78.58°."""
-    path = tmp_path / "toggle.toml"
-    path.write_text(textwrap.dedent("""
-        [scene]
-        description = "a four-bar driven past its toggle"
-        [mechanism]
-        linkage = "four_bar"
-        unit = "cm"
-        [mechanism.dimensions]
-        ground = 4
-        crank = 3
-        coupler = 2
-        rocker = 2.5
-        [input]
-        stop_deg = 120
-        """))
+    path = tmp_path / "toggle.toml"  # RANGE's four-bar in cm, driven to 120°
+    path.write_text(RANGE.format(extra="", report="").replace('linkage = "four_bar"', 'linkage = "four_bar"\nunit = "cm"')
+                    .replace("stop_deg = 78", "stop_deg = 120"))
     code, out, err = run(capsys, "run", str(path))
     assert code == 2
     assert ("four-bar (ground 4 cm, crank 3 cm, coupler 2 cm, rocker 2.5 cm): a non-Grashof triple rocker: it can be "
