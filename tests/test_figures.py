@@ -215,7 +215,7 @@ def test_kinematics_of_beta_marks_the_check_point(hw):
     # the exact omega_beta(100°) = 10.633 rad/s, alpha_beta(100°) = -28.375 rad/s² listed for document 003
     assert "analytic: 10.633 rad/s" in text
     assert "analytic: −28.375 rad/s²" in text
-    assert r"$\beta$(100°) = 214.73 deg" in text
+    assert r"$\beta$(100°) = 214.727°" in text  # as the mechanism figure writes it (README: 214.7270)
     assert any(abs(ln.get_xdata()[0] - 100) < 1e-12 for ln in ax1.get_lines() if ln.get_linestyle() == ":")
 
 

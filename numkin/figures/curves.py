@@ -9,7 +9,7 @@ import numpy as np
 
 from ..errors import InputError
 from .labels import (
-    check_points, check_unknown, deg_text, degree_ticks, derived_of, frame_column, frame_input, input_label,
+    angle_text, check_points, check_unknown, deg_text, degree_ticks, derived_of, frame_column, frame_input, input_label,
     input_name, is_angle, length_unit, mechanism_title, quantity_labels, rate_columns, sig5, sym, tex, uniform_step,
     unit_of,
 )
@@ -377,7 +377,8 @@ def kinematics(
                 panel.axvline(math.degrees(a), color="0.4", linestyle=":", linewidth=0.9)
             k = sweep.index(a)
             ax0.plot(x[k], pos[k], "o", color="black", markersize=5, zorder=5)
-            texts[0].append(f"{sym(name)}({deg_text(sweep.inputs[k])}) = {sig5(pos[k])} {units[0]}")
+            value = angle_text(math.radians(pos[k])) if units[0] == "deg" else f"{sig5(pos[k])} {units[0]}"
+            texts[0].append(f"{sym(name)}({deg_text(sweep.inputs[k])}) = {value}")
             for j, (panel, col, src) in enumerate(zip(axes[1:, 0], (vcol, acol), panels), start=1):
                 if not src:
                     continue

@@ -13,7 +13,7 @@ from typing import Iterable, Mapping, Sequence
 import numpy as np
 
 from .labels import (
-    deg_text, input_name, is_angle, length_text, length_unit, mechanism_title, no_negative_zero, sym,
+    angle_text, deg_text, input_name, is_angle, length_text, length_unit, mechanism_title, no_negative_zero, sym,
     value_text,
 )
 from ..errors import ConvergenceWarning, InputError
@@ -21,26 +21,10 @@ from .registries import dimensions_of
 from .style import CYCLE, new_figure, shared_doc, style
 
 __all__ = [
-    "ANGLE_DECIMALS", "angle_text", "arrow_scale", "arrow_vectors", "block_corners", "block_directions", "bounds",
+    "arrow_scale", "arrow_vectors", "block_corners", "block_directions", "bounds",
     "draw_block", "draw_ground", "guided_points", "link_colors", "mechanism", "scale_text", "slider_points",
     "tip_offset",
 ]
-
-#: Decimals of every angle :func:`mechanism` writes (its title, its angle arcs, its box of solved values).
-ANGLE_DECIMALS = 3
-
-
-def angle_text(rad: float) -> str:
-    """An angle of the mechanism figure in degrees: whole degrees plain, else :data:`ANGLE_DECIMALS` decimals.
-
-    One rule for every place the figure writes an angle, so that one angle reads the same in each.
-
-    Examples
-    --------
-    >>> angle_text(math.radians(154.7153)), angle_text(math.radians(100))
-    ('154.715°', '100°')
-    """
-    return deg_text(rad, ANGLE_DECIMALS)
 
 
 def slider_points(points: Mapping, ground: Sequence[str]) -> dict:

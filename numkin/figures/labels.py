@@ -20,7 +20,7 @@ from ..errors import InputError
 from ..quantities import GREEK, tex
 
 __all__ = [
-    "GREEK", "check_points", "check_unknown", "deg_text", "derived_of", "degree_ticks", "frame_column", "frame_input",
+    "ANGLE_DECIMALS", "GREEK", "angle_text", "check_points", "check_unknown", "deg_text", "derived_of", "degree_ticks", "frame_column", "frame_input",
     "input_label", "input_name", "is_angle", "length_text", "length_unit", "mechanism_title", "no_negative_zero", "quantity_labels", "rate_columns",
     "sig5", "sym", "table_column", "tex", "uniform_step", "unit_of", "value_text",
 ]
@@ -155,6 +155,22 @@ def length_text(value: float) -> str:
     """A dimension: as :func:`value_text`, trailing zeros dropped (60, 6.5, 130.767, 0.08)."""
     text = value_text(value)
     return text.rstrip("0").rstrip(".") if "." in text else text
+
+
+#: Decimals of an angle a figure gives as a value (the mechanism figure's title, arcs and box, the check values of the
+#: kinematics figure): one rule, so that one angle reads the same in each.
+ANGLE_DECIMALS = 3
+
+
+def angle_text(rad: float) -> str:
+    """An angle's value in degrees: whole degrees plain, else :data:`ANGLE_DECIMALS` decimals.
+
+    Examples
+    --------
+    >>> angle_text(math.radians(154.7153)), angle_text(math.radians(100))
+    ('154.715°', '100°')
+    """
+    return deg_text(rad, ANGLE_DECIMALS)
 
 
 def deg_text(rad: float, decimals: int = 2) -> str:
