@@ -76,7 +76,8 @@ are optional. ::
                              # [input] speed they are per rad/s of input speed):
     quantity = "theta4"      # the unknown or derived quantity studied (default: the first reported)
     check_deg = 100          # check angle (default: the first [[check]])
-    grids = [36, 72, 180, 360]   # points per turn of the convergence tables (distinct, <= 100000)
+    grids = [36, 72, 180, 360]   # points per turn of the convergence tables (distinct, <= 100000;
+                                 # by default 36 ... 3600, those too coarse for a part of a turn left out)
     schemes = ["forward", "centred"]   # default: all
     points_per_turn = 360    # grid of the Jacobian and tolerance tables (<= 100000)
     repeat = 3               # timing repeats

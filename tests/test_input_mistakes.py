@@ -777,16 +777,23 @@ def test_a_scene_error_names_the_linkage_with_its_unit(capsys, tmp_path):
 
 
 def test_a_report_grid_too_coarse_for_a_scheme_names_the_key(capsys, tmp_path):
-    """40° of sweep hold 5 points of the 36-point grid (10° steps); five_point_second needs 6 on an open grid."""
+    """40° of sweep hold 5 points of the 36-point grid (10° steps); five_point_second needs 6 on an open grid: a
+    grid the scene asks for is refused, a default one left out (and the captions say so)."""
     path = tmp_path / "short.toml"
-    path.write_text(textwrap.dedent(SHORT.format(compare="")).replace("start_deg = 45", "start_deg = 310").replace(
-        "stop_deg = 46", "stop_deg = 350"))
+    text = textwrap.dedent(SHORT.format(compare="")).replace("start_deg = 45", "start_deg = 310").replace(
+        "stop_deg = 46", "stop_deg = 350")
+    path.write_text(text + "[report]\ngrids = [36, 72]\n")
     code, out, err = run(capsys, "report", str(path))
     assert code == 2
     line = one_line_error(err)
-    assert line.endswith("[report] grids (by default 36, 72, 180, 360, 720, 1440, 3600): the 36-point grid holds 5 "
-                         "points over 40 deg, and scheme 'five_point_second' needs at least 6 on an open grid: give "
-                         "grids of more points per turn (or leave the scheme out of [report] schemes)")
+    assert line.endswith("[report] grids: the 36-point grid holds 5 points over 40 deg, and scheme 'five_point_second' "
+                         "needs at least 6 on an open grid: give grids of more points per turn (or leave the scheme "
+                         "out of [report] schemes)")
+    path.write_text(text)
+    code, out, err = run(capsys, "report", str(path))
+    assert code == 0, err
+    assert ("The default grids of 36 points per turn are left out: over the scene's 40 deg the finest of them holds "
+            "5 points, fewer than five_point_second needs (6).") in " ".join(out.split())
     from numkin import report
     from numkin.errors import InputError
 

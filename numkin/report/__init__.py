@@ -303,6 +303,7 @@ def scene_report(scene, *, repeat: int | None = None) -> dict:
         options["omega"] = 1.0
     if repeat:
         options["repeat"] = repeat
+    left_out = _coarse_defaults_left_out(scene, options)
     from ..errors import InputError, NumkinError
     from ..pipeline import in_scene_terms
 
@@ -321,6 +322,10 @@ def scene_report(scene, *, repeat: int | None = None) -> dict:
                               "after the check angle ([report] check_deg), inside the linkage's range",
                               *error.args[1:])
             raise
+    if left_out:
+        for table in tables.values():
+            if "points per turn" in table.columns:
+                table.attrs["caption"] = f"{table.attrs.get('caption', '')} {left_out}".strip()
     if per_unit:
         _add_to_captions(tables, 1, "The scene gives no input speed: velocities and accelerations are per rad/s "
                                     "of input speed (d/dtheta and d2/dtheta2).")
@@ -331,6 +336,28 @@ def scene_report(scene, *, repeat: int | None = None) -> dict:
             "acceleration here is omega^2 d2q/dtheta2 alone: `numkin run` gives the scene's, which adds "
             "alpha_in dq/dtheta."))
     return tables
+
+
+def _coarse_defaults_left_out(scene, options: dict) -> str:
+    """On a scene's sweep of less than a turn, with the default grids, leave out of ``options`` the grids that hold
+    fewer points over it than a scheme studied needs; what was left out, for the captions ("" if nothing)."""
+    import math
+
+    from .study import scheme_list, too_coarse
+
+    if "grids" in (scene.report or {}) or "span" not in options:
+        return ""
+    schemes = scheme_list(options.get("schemes"), periodic=False)
+    short = too_coarse(schemes, DEFAULT_GRIDS, options["start"], options["span"], False)
+    kept = [n for n in DEFAULT_GRIDS if n not in {s[0] for s in short}]
+    if not short or len(kept) < 2:  # (too few left for an observed order: the grid check says why)
+        return ""
+    options["grids"] = tuple(kept)
+    n, count, name, minimum, _ = short[-1]
+    needs = f"fewer than {name} needs ({minimum})" if name else "fewer than 5"
+    return (f"The default grids of {', '.join(str(s[0]) for s in short)} points per turn are left out: over the "
+            f"scene's {math.degrees(options['span']):.4g} deg the finest of them holds {count if count else 'under 5'} "
+            f"points, {needs}.")
 
 
 def _add_to_captions(tables: dict, order: int, note: str) -> None:

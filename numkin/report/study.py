@@ -250,21 +250,39 @@ def grid_study(mechanism, omega, quantity: str, grids, span: float, schemes, sta
     return w, studied, grids, periodic, chosen
 
 
+def too_coarse(schemes, grids, start: float, span: float, periodic: bool) -> list:
+    """The grids (points per turn) that hold fewer points over `span` than one of `schemes` needs, each as
+    ``(grid, points, scheme name, points needed, "an open" or "a periodic")``, coarsest first."""
+    out = []
+    for n in sorted(grids):
+        try:
+            count = grid_inputs(n, start, span).size - (1 if periodic else 0)
+        except InputError:  # fewer than 5 points over the span: too coarse for any table
+            out.append((n, None, None, 5, "an open"))
+            continue
+        for s in schemes:
+            try:
+                s.function(np.zeros((1, count)), 1.0, periodic=periodic)
+            except InputError as error:
+                if error.cause != "too few samples":
+                    raise
+                out.append((n, count, s.name, error.minimum, error.grid))
+                break
+    return out
+
+
 def _grids_hold(schemes, grids, start: float, span: float, periodic: bool) -> None:
     """An InputError naming ``grids`` where a grid over `span` holds fewer points than a scheme needs (before any
     sweep: a scheme on a grid too coarse for it has no value to tabulate)."""
-    n = min(grids)
-    count = grid_inputs(n, start, span).size - (1 if periodic else 0)
-    for s in schemes:
-        try:
-            s.function(np.zeros((1, count)), 1.0, periodic=periodic)
-        except InputError as error:
-            if error.cause != "too few samples":
-                raise
-            raise InputError(
-                f"grids: the {n}-point grid holds {count} points over {math.degrees(span):.4g} deg, and scheme "
-                f"'{s.name}' needs at least {error.minimum} on {error.grid} grid: give grids of more points per turn "
-                "(or leave the scheme out)", cause="too few samples") from None
+    short = too_coarse(schemes, [min(grids)], start, span, periodic)
+    if short:
+        n, count, name, minimum, grid = short[0]
+        if name is None:
+            grid_inputs(n, start, span)  # (raises its own error: fewer than 5 points)
+        raise InputError(
+            f"grids: the {n}-point grid holds {count} points over {math.degrees(span):.4g} deg, and scheme "
+            f"'{name}' needs at least {minimum} on {grid} grid: give grids of more points per turn "
+            "(or leave the scheme out)", cause="too few samples")
 
 
 def check_index(inputs: np.ndarray, angle: float | None) -> int | None:
