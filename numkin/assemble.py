@@ -187,9 +187,11 @@ def _constant(node) -> float | None:
         return None if value is None else (-value if isinstance(node.op, ast.USub) else value)
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub, ast.Mult, ast.Div)):
         a, b = _constant(node.left), _constant(node.right)
-        if a is None or b is None or (isinstance(node.op, ast.Div) and b == 0):
+        if a is None or b is None:
             return None
-        return {ast.Add: a + b, ast.Sub: a - b, ast.Mult: a * b}.get(type(node.op), a / b if b else 0.0)
+        if isinstance(node.op, ast.Div):
+            return a / b if b else None
+        return a + b if isinstance(node.op, ast.Add) else a - b if isinstance(node.op, ast.Sub) else a * b
     return None
 
 

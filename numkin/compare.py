@@ -268,15 +268,15 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
     summary = []
     ends_of = {}  # scheme -> rows at the start and at the end taken by one-sided end stencils
     for s in chosen:
+        used = [s]  # the schemes the value is made of
         if order == 1:
             value = w * apply_scheme(rows, s, "schemes", target.name)[0]
         else:
-            partner = _d.get_scheme(PARTNER[s.name])
             value = w**2 * apply_scheme(rows, s, "schemes", target.name)[0]
             if np.any(a != 0):  # the input's acceleration times dq/dtheta, by the scheme's partner
-                value = value + a * apply_scheme(rows, partner, f"schemes ({s.name}'s partner)", target.name)[0]
+                used.append(_d.get_scheme(PARTNER[s.name]))
+                value = value + a * apply_scheme(rows, used[1], f"schemes ({s.name}'s partner)", target.name)[0]
         # the rows where the scheme's own stencil applies: on an open grid its ends take one-sided stencils
-        used = [s, _d.get_scheme(PARTNER[s.name])] if order == 2 and np.any(a != 0) else [s]  # alpha: dq too
         own = own_stencil_points(used, t.size, rows.periodic)  # (counted along increasing input)
         if rows.reverse:  # a descending sweep: its first samples are the grid's last
             own = slice(t.size - own.stop, t.size - own.start)

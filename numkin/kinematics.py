@@ -176,9 +176,9 @@ def unwrap_angles(y: np.ndarray, angle, names, inputs, tangent=None, purpose: st
         return y
     rows = np.flatnonzero(angle)
     steps = np.diff(y[rows], axis=-1)
-    if not np.any(np.abs(steps) > math.pi):
-        return y
     big = np.abs(steps) > math.pi  # the steps read at all (NaN: a step next to a NaN sample, left as it is)
+    if not big.any():
+        return y
     turns = np.where(big, np.round(steps / _TURN), 0.0)  # numpy.unwrap's reading
     if tangent is not None:
         if callable(tangent):

@@ -275,10 +275,8 @@ def _grids_hold(schemes, grids, start: float, span: float, periodic: bool) -> No
     """An InputError naming ``grids`` where a grid over `span` holds fewer points than a scheme needs (before any
     sweep: a scheme on a grid too coarse for it has no value to tabulate)."""
     short = too_coarse(schemes, [min(grids)], start, span, periodic)
-    if short:
+    if short and short[0][2] is not None:  # (fewer than 5 points: the table's own grid_inputs says so)
         n, count, name, minimum, grid = short[0]
-        if name is None:
-            grid_inputs(n, start, span)  # (raises its own error: fewer than 5 points)
         raise InputError(
             f"grids: the {n}-point grid holds {count} points over {math.degrees(span):.4g} deg, and scheme "
             f"'{name}' needs at least {minimum} on {grid} grid: give grids of more points per turn "
