@@ -41,16 +41,59 @@ from .figures.drawing import (
     scale_text, slider_points, tip_offset,
 )
 from .figures.labels import deg_text, input_name, length_unit, mechanism_title, sym
-from .figures.fitting import fit_titles
+from .figures.fitting import fit_text, fit_titles
 from .figures.style import close, style
 
-__all__ = ["animate", "frame_indices", "full_turn"]
+__all__ = ["animate", "frame_indices", "full_turn", "labels_inside"]
 
 _TURN = 2.0 * math.pi
 
 
 def _is_full_turn(t: np.ndarray) -> bool:
     return t.size > 2 and abs(abs(t[-1] - t[0]) - _TURN) <= 1e-9 * max(1.0, abs(t[-1]))
+
+
+#: Space kept between the axis labels and the frame's edge, in points.
+_EDGE = 3.0
+
+
+def labels_inside(fig, ax) -> bool:
+    """Move the edges of ``ax`` in until its labels are inside ``fig``, and a title too wide for one line has two.
+
+    An animation's axes are placed once, as fractions of the frame, with no
+    layout engine (the frames must not jitter); the labels are in points, so
+    a narrow frame (``width=3``) would cut the y-label off. The left and
+    bottom edges move in until the tick labels and axis labels are inside;
+    where the title is wider than the frame, the top edge comes down by a
+    line of it, which :func:`numkin.figures.fitting.fit_titles` (called
+    next) breaks it into. Measured once, before the first frame: the limits
+    are fixed, so the tick labels do not change. Returns whether the axes
+    moved (never on frames wide enough).
+    """
+    renderer = fig.canvas.get_renderer()
+    edge = _EDGE * fig.dpi / 72.0
+    shown = ax.title.get_visible()
+    moved = False
+    ax.title.set_visible(False)
+    try:
+        for _ in range(3):  # (the labels move with the axes: once or twice is enough)
+            tight = ax.get_tightbbox(renderer)
+            dx = max(0.0, fig.bbox.x0 + edge - tight.x0) / fig.bbox.width
+            dy = max(0.0, fig.bbox.y0 + edge - tight.y0) / fig.bbox.height
+            if dx <= 0.0 and dy <= 0.0:
+                break
+            pos = ax.get_position()
+            ax.set_position((pos.x0 + dx, pos.y0 + dy, pos.width - dx, pos.height - dy))
+            moved = True
+    finally:
+        ax.title.set_visible(shown)
+    if shown and ax.title.get_text() and ax.title.get_window_extent(renderer).width > fig.bbox.width - 2.0 * edge:
+        line = 1.2 * ax.title.get_fontsize() * fig.dpi / 72.0 / fig.bbox.height
+        pos = ax.get_position()
+        ax.set_position((pos.x0, pos.y0, pos.width, pos.height - line))
+        moved = True
+    fig.draw_without_rendering()  # (the title placed again, over the axes where they are now)
+    return moved
 
 
 def frame_indices(inputs, frames: int) -> np.ndarray:
@@ -289,10 +332,14 @@ def animate(sweep, path, frames: int = 72, fps: float = 24, *, dpi: int = 80, wi
                                     ha="center", va="center", fontsize=8, color=color, zorder=7)
                 arrow_artists[name] = (arrow, label)
             if vectors:
-                fig.text(0.13, 0.015, f"{arrows} arrows: {scale_text(scale, vec_unit, span, unit)}", ha="left",
-                         va="bottom", fontsize=8, color=color)
+                footer = fig.text(0.13, 0.015, f"{arrows} arrows: {scale_text(scale, vec_unit, span, unit)}",
+                                  ha="left", va="bottom", fontsize=8, color=color)
+                renderer = fig.canvas.get_renderer()
+                room = fig.bbox.x1 - _EDGE * fig.dpi / 72.0 - footer.get_window_extent(renderer).x0
+                fit_text(footer, renderer, room, top=footer.get_window_extent(renderer).y1)  # (one line, smaller)
             stamp = ax.text(0.03, 0.96, "", transform=ax.transAxes, ha="left", va="top", fontsize=11, zorder=8,
                             bbox={"boxstyle": "square,pad=0.3", "facecolor": "white", "edgecolor": "0.6"})
+            labels_inside(fig, ax)
             fit_titles(fig, relayout=False)  # the axes stay where they are
             writer = PillowWriter(fps=fps)
             with writer.saving(fig, str(path), dpi=dpi):

@@ -106,7 +106,8 @@ def test_full_turn_goes_through_the_change_points_the_sweep_went_through():
 
 
 def test_a_long_title_fits_a_narrow_animation(tmp_path, monkeypatch):
-    """The axes of an animation stay where they are: a title too wide for them is set smaller, inside the frame."""
+    """A title too wide for a narrow animation is broken into lines over axes brought down for them, inside the
+    frame, its font kept."""
     import numkin.animate as animate_module
     from numkin.figures.fitting import fit_titles
 
@@ -122,5 +123,30 @@ def test_a_long_title_fits_a_narrow_animation(tmp_path, monkeypatch):
     sweep = linkages.four_bar(20, 50, 40, 50, branch="crossed").sweep(np.radians(np.arange(0, 361)))
     animate(sweep, tmp_path / "narrow.gif", frames=2, width=3.0, dpi=60)
     ((changed, title, extent, box),) = seen
-    assert changed and title.get_fontsize() < 9
+    assert changed and title.get_text().count("\n") >= 1 and title.get_fontsize() == 9
     assert box.x0 <= extent.x0 and extent.x1 <= box.x1 and extent.y1 <= box.y1
+
+
+def test_a_narrow_animation_keeps_its_axis_labels_inside(tmp_path, monkeypatch):
+    """At 3 inches the y-label and tick labels are inside the frame; at the default width the axes do not move."""
+    import numkin.animate as animate_module
+
+    original = animate_module.labels_inside
+    seen = []
+
+    def inside_and_keep(fig, ax):
+        moved = original(fig, ax)
+        renderer = fig.canvas.get_renderer()
+        ax.title.set_visible(False)
+        seen.append((moved, ax.get_tightbbox(renderer), ax.yaxis.label.get_window_extent(renderer), fig.bbox.frozen()))
+        ax.title.set_visible(True)
+        return moved
+
+    monkeypatch.setattr(animate_module, "labels_inside", inside_and_keep)
+    sweep = linkages.chained_four_bars().sweep(np.radians(np.arange(0, 361)))
+    animate(sweep, tmp_path / "narrow.gif", frames=2, width=3.0, dpi=100)
+    animate(sweep, tmp_path / "wide.gif", frames=2, dpi=100)
+    (moved3, tight3, ylabel3, box3), (moved_default, tight, _, box) = seen
+    assert moved3 and not moved_default
+    assert box3.x0 < ylabel3.x0 and box3.x0 < tight3.x0 and box3.y0 < tight3.y0
+    assert box.x0 < tight.x0 and box.y0 < tight.y0
