@@ -62,8 +62,6 @@ Examples
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from .compiled import jacobian_rows, rates as rates_of
@@ -80,7 +78,7 @@ from .conditioning import (
 )
 from .errors import warn
 from .quantities import input_quantity, unknown_quantities
-from .units import input_rates
+from .units import deg_text, input_rates
 from .complex_solve import COMPLEX_STEP, complex_positions, complex_step, complex_tangent
 from .sweep import COND_MAX, SingularityWarning, check_sweep, record_evaluations
 
@@ -111,10 +109,6 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- helpers
-def _deg(t) -> str:
-    return f"{math.degrees(float(t)):.3f}°"
-
-
 def column_units(mechanism) -> dict:
     """Units of the columns of :func:`kinematics` for a mechanism, column -> unit string.
 
@@ -146,7 +140,7 @@ def _singular_mask(sweep, mech, inputs, what: str, skip=()) -> np.ndarray:
         k = int(np.flatnonzero(bad)[0])
         warn(
             f"{mech.name}: {what} undefined at {int(bad.sum())} point(s) where the Jacobian is singular "
-            f"(a toggle or change point; first at input {_deg(inputs[k])}, condition number {cond[k]:.3g}): "
+            f"(a toggle or change point; first at input {deg_text(inputs[k])}, condition number {cond[k]:.3g}): "
             "set to NaN",
             SingularityWarning,
         )

@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from .errors import warn
-from .march import COND_TANGENT, MAX_CORRECTION, Continuation, deg_text
+from .march import COND_TANGENT, MAX_CORRECTION, Continuation
 from .newton import COND_MAX, COND_WARN, is_singular, residual_floor
 from .newton import colmax as _colmax
 from .predictors import (
@@ -30,6 +30,7 @@ from .predictors import (
     quintic_terms,
 )
 from .sweep import SingularityWarning, SweepEvent
+from .units import deg_text
 from .turn_predictor import turn_predict
 
 __all__ = ["nodes_of", "fill", "report_near_singular", "CHUNK"]

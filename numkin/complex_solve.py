@@ -18,7 +18,7 @@ import numbers
 import numpy as np
 
 from .errors import InputError, warn
-from .march import deg_text
+from .units import deg_text
 from .newton import iterate
 from .sweep import COND_MAX, SingularityWarning, check_sweep, record_evaluations
 

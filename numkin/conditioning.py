@@ -22,6 +22,7 @@ import numpy as np
 from .errors import InputError, warn
 from .quantities import catalogue
 from .sweep import COND_MAX, SingularityWarning
+from .units import deg_text
 
 __all__ = [
     "DIGITS_RTOL",
@@ -55,10 +56,6 @@ class LostDigitsWarning(SingularityWarning):
     """The estimated rounding error of a value, from the condition number, exceeds the stated tolerance."""
 
 
-
-
-def _deg(t) -> str:
-    return f"{math.degrees(float(t)):.3f}°"
 
 
 def condition_numbers(sweep, inputs) -> np.ndarray:
@@ -126,7 +123,7 @@ def continue_branch(mech, t, cond, change, arrays, what: str, at_change_point: s
     for k in change:
         left = [j for j in range(k - 1, -1, -1) if good[j]][:CHANGE_NEIGHBOURS]
         right = [j for j in range(k + 1, t.size) if good[j]][:CHANGE_NEIGHBOURS]
-        where = (f"{mech.name}: the Jacobian is singular at the change point at input {_deg(t[k])} "
+        where = (f"{mech.name}: the Jacobian is singular at the change point at input {deg_text(t[k])} "
                  f"(condition number {cond[k]:.3g}), where the branches meet")
         if len(left) < 2 or len(right) < 2:
             for a in arrays:
@@ -182,7 +179,7 @@ def warn_lost_digits(mech, t, cond, skip, rtol, what="analytic") -> None:
         k = int(np.flatnonzero(over)[np.argmax(est[over])])
         warn(
             f"{mech.name}: {what} derivatives lose digits near a singular position at {int(over.sum())} "
-            f"point(s): at input {_deg(t[k])} (condition number {cond[k]:.3g}) the estimated relative error "
+            f"point(s): at input {deg_text(t[k])} (condition number {cond[k]:.3g}) the estimated relative error "
             f"is {lost_digits(cond[k], 1):.1e} for velocities and {est[k]:.1e} for accelerations, above the "
             f"tolerance {rtol:.0e}",
             LostDigitsWarning,

@@ -18,9 +18,9 @@ from collections.abc import Mapping
 import numpy as np
 
 from .errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning, InputError, warn
-from .march import FAR, TWO_PI, Continuation, deg_text
+from .march import FAR, TWO_PI, Continuation
 from .newton import COND_MAX, is_singular
-from .units import number_array
+from .units import deg_text, number_array
 
 __all__ = ["solve_start", "guess_vector", "far_guesses", "still_far", "degrees_hint", "unsolved", "never_closes"]
 
@@ -156,7 +156,11 @@ def solve_start(ctx: Continuation, t0: float, guess, maxiter: int):
         tg = float(mech.guess_input)
         x_g, _, v = _solve_first(ctx, tg, guess_vector(mech, g, tg), maxiter, note=" (the default guess's input)")
         d, o = ctx.local1(v)
-        x, d_t0, o_t0, iters = ctx.march(tg, x_g, d, o, t0)
+        ctx.approach = ctx.approach_inputs = (tg, t0)
+        try:
+            x, d_t0, o_t0, iters = ctx.march(tg, x_g, d, o, t0)
+        finally:
+            ctx.approach = None
         o_t0 = ctx.unpassed_crossings(t0, o_t0)  # a singular position at t0: passed (or not) by the sweep
         if d_t0 is None or o_t0 is None:
             d_t0, o_t0 = ctx.local1(ctx.eval1(x, t0))

@@ -27,6 +27,7 @@ from .newton import (
 )
 from .predictors import MAX_PREDICTION, unrolled_predict
 from .sweep import SingularityWarning, SweepEvent
+from .units import deg_text
 from .unrolled import scaled_distance, scaled_size, unrolled_kink
 
 __all__ = ["Continuation", "deg_text", "MAX_CORRECTION", "CORRECTOR_ITERATIONS",
@@ -64,10 +65,6 @@ TOGGLE_GROWTH = 30.0
 #: Scaled residual above which a point where Newton met a singular Jacobian is not a solution.
 FAR = 1e-6
 TWO_PI = 2.0 * math.pi
-
-def deg_text(t: float, digits: int = 3) -> str:
-    """An input angle (rad) as degrees with the unit, for messages."""
-    return f"{math.degrees(t):.{digits}f}°"
 
 class Continuation:
     """State and numerical kernels shared by the steps of one sweep.
@@ -115,6 +112,9 @@ class Continuation:
         self.started_on_default = False
         self.crossings: list = []  # change points passed: (input, loop)
         self.pending = None  # a change point passed, raised once the march has gone on past it
+        #: (input of the default guess, the sweep's first input) while the march goes from one to the other
+        self.approach = None
+        self.before_sweep: list = []  # change points passed on that way only: (input, loop)
         self.floor = 0.0  # round-off floor of the batch's residuals (set before the batch)
         #: Point evaluations of the residuals and of the Jacobian so far (a fused evaluation counts
         #: in both; a finite-difference Jacobian is one Jacobian and its n or 2n residuals).
@@ -350,8 +350,23 @@ class Continuation:
         tc = 0.5 * (t + t_new) if tc is None else tc
         if self.on_singular == "raise":
             self.pending = (tc, loop)
-        if not any(abs(c - tc) <= 1e-6 * max(1.0, abs(tc)) and lp == loop for c, lp in self.crossings):
+        met = [(c, lp) for c, lp in self.crossings if abs(c - tc) <= 1e-6 * max(1.0, abs(tc)) and lp == loop]
+        if not met:
             self.crossings.append((tc, loop))
+        if self.approach is not None:
+            self.before_sweep.append((tc, loop))
+        elif met and met[0] in self.before_sweep:  # passed again by the sweep itself
+            self.before_sweep.remove(met[0])
+
+    def where_passed(self, tc, loop) -> str:
+        """``" on the way from the default guess at ... to the sweep's first input ..."`` for a change point
+        passed before the sweep (marching from the default guess's input to the sweep's start), else ``""``."""
+        for c, lp in self.before_sweep:
+            if lp == loop and abs(c - tc) <= 1e-6 * max(1.0, abs(tc)):
+                tg, t0 = self.approach_inputs
+                return (f" on the way from the default guess at {deg_text(tg, 3)} to the sweep's first input "
+                        f"{deg_text(t0, 3)}, before the sweep")
+        return ""
 
     def unpassed_crossings(self, t_end, o):
         """Forget the change points found at ``t_end``, where a march stops: no step went past them (a
@@ -381,11 +396,13 @@ class Continuation:
             return
         tc, loop = self.pending
         self.pending = None
+        way = self.where_passed(tc, loop)
+        advice = " (or pass sweep() a guess at its first input)" if way else ""
         self.record(
             "change point", tc, loop,
-            f"{self.mech.name}: loop '{loop}' passes a singular position at input {deg_text(tc, 4)} (its Jacobian "
-            "changes sign): a change point, where the branches meet and the continuation is ambiguous; pass "
-            "on_singular='report' to go on along the branch whose tangent is continuous",
+            f"{self.mech.name}: loop '{loop}' passes a singular position at input {deg_text(tc, 4)}{way} (its "
+            "Jacobian changes sign): a change point, where the branches meet and the continuation is ambiguous; pass "
+            f"on_singular='report' to go on along the branch whose tangent is continuous{advice}",
             raise_kind="change point",
         )
 
@@ -436,9 +453,11 @@ class Continuation:
             rates = ", ".join(f"d{u}/d{inp} = {v:.4f}" for u, v in zip(mech.unknowns, tangent))
             how = {True: "its tangent is continuous", False: "its tangent jumps here",
                    None: "its tangent from one side"}[continuous]
+            way = self.where_passed(tc, loop)
             message = (
-                f"{mech.name}: loop '{loop}' passes a singular position at input {deg_text(tc, 4)} (its Jacobian "
-                f"changes sign): a change point, where the branches meet; kept {kept} ({how}: {rates})"
+                f"{mech.name}: loop '{loop}' passes a singular position at input {deg_text(tc, 4)}{way} (its "
+                f"Jacobian changes sign): a change point, where the branches meet; kept "
+                f"{'the branch the guess was on' if way else kept} ({how}: {rates})"
             )
             self.record(
                 "change point", tc, loop, message, branch=kept, tangent=tuple(tangent),

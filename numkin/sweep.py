@@ -13,7 +13,6 @@ derivatives at the singular input can be taken from that branch.
 
 from __future__ import annotations
 
-import math
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field
@@ -23,7 +22,7 @@ import numpy as np
 
 from .errors import InputError
 from .newton import COND_MAX, COND_WARN
-from .units import input_degrees
+from .units import deg_text, input_degrees
 
 __all__ = ["Sweep", "SweepEvent", "SingularityWarning", "run_sweep", "COND_MAX", "COND_WARN", "EvaluationCounter",
            "count_evaluations", "record_evaluations", "check_sweep"]
@@ -81,10 +80,6 @@ class SweepEvent:
     tangent_before: tuple = ()
     tangent_after: tuple = ()
     tangent_continuous: bool | None = None
-
-
-def _deg(t: float, digits: int = 3) -> str:
-    return f"{math.degrees(t):.{digits}f}°"
 
 
 @dataclass
@@ -217,7 +212,7 @@ class Sweep:
         return pd.DataFrame(cols)
 
     def __repr__(self) -> str:
-        lo, hi = (_deg(self.inputs[0]), _deg(self.inputs[-1])) if self.inputs.size else ("", "")
+        lo, hi = (deg_text(self.inputs[0]), deg_text(self.inputs[-1])) if self.inputs.size else ("", "")
         return (
             f"Sweep({self.mechanism.name!r}, {self.inputs.size} points {lo}..{hi}, "
             f"unknowns={list(self.unknowns)}, max iterations={int(self.iterations.max(initial=0))}, "

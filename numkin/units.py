@@ -35,6 +35,7 @@ __all__ = [
     "number_array",
     "with_length_unit",
     "input_degrees",
+    "deg_text",
     "UnitError",
     "angular_speed",
     "angular_acceleration",
@@ -502,6 +503,18 @@ def input_degrees(t) -> np.ndarray:
     (29.999999999999996, 30.0)
     """
     return np.round(np.degrees(t), 9) + 0.0  # (+ 0.0: no -0.0)
+
+
+def deg_text(t: float, digits: int = 3) -> str:
+    """An input angle (rad) written in degrees with the unit, for messages (no sign on a zero).
+
+    Examples
+    --------
+    >>> deg_text(math.radians(100.0)), deg_text(-1e-12, 4), deg_text(math.radians(-30.0), 1)
+    ('100.000°', '0.0000°', '-30.0°')
+    """
+    text = f"{math.degrees(float(t)):.{digits}f}°"
+    return text[1:] if text.startswith("-") and not text.strip("-0.°") else text
 
 
 def with_length_unit(name: str, unit: str) -> str:

@@ -140,6 +140,34 @@ def test_a_start_on_a_change_point_reached_from_the_guess_keeps_the_guess_branch
     assert "toggle" not in [e.kind for e in ahead.events]
 
 
+def test_a_change_point_passed_before_the_sweep_is_said_to_be_there():
+    """4/2/3/3 (2 + 4 = 3 + 3) meets its other assembly at 180°. Swept from 200° to 300° with the default
+    guess at 0°, the march to the sweep's start passes it: raised or reported as met on that way, before
+    the sweep, not as if the sweep went through 180°; the sweep keeps the guess's branch carried on
+    with a continuous tangent (at 200° the other circle intersection than at 0°)."""
+    mech = _four_bar_loop((4.0, 2.0, 3.0, 3.0), {"theta3": 0.3, "theta4": 1.5}, 0.0)
+    inputs = np.radians(np.arange(200.0, 301.0))
+    where = "on the way from the default guess at 0.000° to the sweep's first input 200.000°, before the sweep"
+    with pytest.raises(BranchError) as err:
+        mech.sweep(inputs)
+    assert err.value.kind == "change point" and abs(err.value.input_value - np.pi) < 1e-6
+    assert where in str(err.value) and "a guess at its first input" in str(err.value)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sweep = mech.sweep(inputs, on_singular="report")
+        through = mech.sweep(np.radians(np.arange(170.0, 191.0)), on_singular="report")
+    (event,) = [e for e in sweep.events if e.kind == "change point"]
+    assert where in event.message and "kept the branch the guess was on" in event.message
+    (inside,) = [e for e in through.events if e.kind == "change point"]
+    assert "before the sweep" not in inside.message and "kept the branch the sweep was on" in inside.message
+    near_guess = np.radians([0.0, 10.0, 20.0])
+    start = mech.sweep(near_guess)  # the guess's branch by the guess: the open one
+    open_ = closed_form(near_guess, 4.0, 2.0, 3.0, 3.0, 1.0)
+    assert max(_wrap(start["theta3"] - open_[0]).max(), _wrap(start["theta4"] - open_[1]).max()) < 1e-9
+    crossed = closed_form(inputs, 4.0, 2.0, 3.0, 3.0, -1.0)
+    assert max(_wrap(sweep["theta3"] - crossed[0]).max(), _wrap(sweep["theta4"] - crossed[1]).max()) < 1e-9
+
+
 # The non-Grashof four-bar 4/3/2/2.5: its crank reaches a limit where coupler and rocker line up,
 # |A - O4| = r3 + r4, at cos t = (16 + 9 - 20.25) / 24.
 TOGGLE_DIMS = (4.0, 3.0, 2.0, 2.5)
