@@ -30,7 +30,7 @@ from .sweep import SingularityWarning, SweepEvent
 from .units import deg_text
 from .unrolled import scaled_distance, scaled_size, unrolled_kink
 
-__all__ = ["Continuation", "deg_text", "MAX_CORRECTION", "CORRECTOR_ITERATIONS",
+__all__ = ["Continuation", "MAX_CORRECTION", "CORRECTOR_ITERATIONS",
            "DEFAULT_MAX_STEP", "FAR", "TWO_PI", "MAX_TANGENT_TURN", "TREND_REACH", "CROSSING_STEP", "COND_TANGENT"]
 
 #: Correction (scaled: rad, or lengths / length_scale) above which a continuation step is refused.
