@@ -4,8 +4,8 @@
 Each homework folder ``assignments/<hw>/`` holds an otter master notebook kept
 as a jupytext percent-format source ``<hw>.py``, the reference values its
 hidden tests use (``expected.json``) and the deliberate mistakes used to test
-the feedback (``mistakes.toml``).  ``kincheck.py`` (next to this script) is the
-feedback module every homework ships.
+the feedback (``mistakes.toml``).  ``kincheck/`` (next to this script) is the
+feedback package every homework ships.
 
 Commands::
 
@@ -46,7 +46,7 @@ if str(HERE) not in sys.path:
     sys.path.insert(0, str(HERE))  # fromscene.py, grading.py, exam004.py
 
 from grading import environment, grading_venv, isolated_env, run, tool, zip_requirements  # noqa: E402,F401
-KINCHECK = HERE / "kincheck.py"
+KINCHECK = HERE / "kincheck"  # the feedback package, a folder of modules
 DIST = HERE / "dist"
 
 HOMEWORK = (
@@ -384,14 +384,15 @@ def stale(hw: str, fresh: dict | None = None) -> list[str]:
 
 
 def notebook(hw, dest: Path) -> Path:
-    """Convert the jupytext master to ``dest/<hw>.ipynb``; copy kincheck.py and the folder's other .py files beside it."""
+    """Convert the jupytext master to ``dest/<hw>.ipynb``; copy kincheck/ and the folder's other .py files beside it."""
     import jupytext
 
     dest.mkdir(parents=True, exist_ok=True)
     nb = jupytext.read(master_path(hw))
     path = dest / f"{folder(hw).name}.ipynb"
     jupytext.write(nb, path)
-    shutil.copy(KINCHECK, dest / KINCHECK.name)
+    no_bytecode = shutil.ignore_patterns("__pycache__")
+    shutil.copytree(KINCHECK, dest / KINCHECK.name, ignore=no_bytecode, dirs_exist_ok=True)
     for extra in sorted(folder(hw).glob("*.py")):  # linkage.py, odecheck.py: listed in the config's files
         if extra != master_path(hw):
             shutil.copy(extra, dest / extra.name)

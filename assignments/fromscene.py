@@ -2,7 +2,7 @@
 
 The scene's loop-closure equations are written out as plain numpy code in
 ``linkage.py`` (the residual ``F``, its Jacobian ``J`` and ``F_theta`` = ∂F/∂θ),
-shipped with the homework next to ``kincheck.py``, so students and the autograder
+shipped with the homework next to ``kincheck/``, so students and the autograder
 need no numkin.  The master asks for
 
 * q1 — the position over the scene's sweep by Newton with continuation, and the

@@ -1,8 +1,8 @@
 """The homework in assignments/: reference values, feedback helpers, and grading with otter.
 
 These tests are fast: the committed reference values are numkin's, the masters are
-otter notebooks, the deliberate mistakes apply, and the feedback module
-``assignments/kincheck.py`` works on its own.  Building and grading with otter is in
+otter notebooks, the deliberate mistakes apply, and the feedback package
+``assignments/kincheck/`` works on its own.  Building and grading with otter is in
 ``tests/test_grading.py``.
 """
 
@@ -23,7 +23,7 @@ _load = load_module
 
 
 build = _load("numkin_assignments_build", ASSIGNMENTS / "build.py")
-kc = _load("kincheck", ASSIGNMENTS / "kincheck.py")
+kc = _load("kincheck", ASSIGNMENTS / "kincheck" / "__init__.py")  # a package: its modules load with it
 
 HOMEWORK = list(build.HOMEWORK)
 MISTAKES = [(hw, m["name"]) for hw in HOMEWORK for m in build.mistakes(hw)]
@@ -137,6 +137,16 @@ def _fails(check, *args, **kwargs) -> str:
     with pytest.raises(AssertionError) as info:
         check(*args, **kwargs)
     return str(info.value)
+
+
+def test_kincheck_gives_every_name_of_its_modules():
+    """``import kincheck`` gives each name of its modules' ``__all__``, defined in one module only."""
+    modules = {p.stem for p in (ASSIGNMENTS / "kincheck").glob("*.py")} - {"__init__"}
+    names = [(name, getattr(kc, module)) for module in sorted(modules) for name in getattr(kc, module).__all__]
+    assert len({name for name, _ in names}) == len(names)
+    assert set(kc.__all__) <= {name for name, _ in names}
+    for name, module in names:
+        assert getattr(kc, name) is getattr(module, name), name
 
 
 @pytest.mark.parametrize(

@@ -45,6 +45,7 @@ _load = load_module
 build = _load("numkin_assignments_build", ASSIGNMENTS / "build.py")
 
 HOMEWORK = list(build.HOMEWORK)
+KINCHECK = sorted(p.name for p in build.KINCHECK.glob("*.py"))  # the feedback package's modules
 MISTAKES = [(hw, m["name"]) for hw in HOMEWORK for m in build.mistakes(hw)]
 
 OFFSET_SLIDER_CRANK = """\
@@ -170,7 +171,7 @@ def test_otter_assign_builds_student_and_autograder_versions(built, hw):
     result = built[hw][1]
     student = (result / "student" / f"{hw}.ipynb").read_text()
     autograder = (result / "autograder" / f"{hw}.ipynb").read_text()
-    assert (result / "student" / "kincheck.py").exists()
+    assert sorted(p.name for p in (result / "student" / "kincheck").iterdir()) == KINCHECK  # all, no bytecode
     assert "grader.check(" in student
     assert "BEGIN SOLUTION" not in student and "hidden: true" not in student
     expected = build.load_expected(hw)
@@ -184,7 +185,7 @@ def test_otter_assign_builds_student_and_autograder_versions(built, hw):
     with zipfile.ZipFile(build.autograder_zip(result)) as archive:
         names = archive.namelist()
         tests = "".join(archive.read(n).decode() for n in names if re.match(r"tests/.*\.py$", n))
-    assert "files/kincheck.py" in names
+    assert sorted(n for n in names if n.startswith("files/kincheck/")) == [f"files/kincheck/{m}" for m in KINCHECK]
     assert "hidden=True" in tests
 
 

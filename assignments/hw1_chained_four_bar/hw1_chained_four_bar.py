@@ -14,7 +14,7 @@
 # # ASSIGNMENT CONFIG
 # name: hw1-chained-four-bar
 # files:
-#   - kincheck.py
+#   - kincheck
 # requirements:
 #   - numpy>=1.24,<3
 #   - matplotlib>=3.7,<4

@@ -14,7 +14,7 @@
 # # ASSIGNMENT CONFIG
 # name: hw3-slider-crank
 # files:
-#   - kincheck.py
+#   - kincheck
 # requirements:
 #   - numpy>=1.24,<3
 #   - matplotlib>=3.7,<4

@@ -14,7 +14,7 @@
 # # ASSIGNMENT CONFIG
 # name: hw5-quadrature-pendulum
 # files:
-#   - kincheck.py
+#   - kincheck
 #   - odecheck.py
 # requirements:
 #   - numpy>=1.24,<3

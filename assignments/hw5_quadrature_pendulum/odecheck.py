@@ -1,4 +1,4 @@
-"""Checks of homework 5 (quadrature and an ODE), shipped next to kincheck.py.
+"""Checks of homework 5 (quadrature and an ODE), shipped next to the kincheck package.
 
 Like kincheck, it holds no answers: the hidden tests pass in the reference values.
 """
