@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError
-from .outputs import made_folder
+from .folders import made_folder
 from .figures.drawing import (
     arrow_scale, arrow_vectors, block_corners, block_directions, bounds, draw_ground, guided_points, link_colors,
     scale_text, slider_points, tip_offset,
@@ -43,14 +43,11 @@ from .figures.drawing import (
 from .figures.labels import deg_text, input_name, length_unit, mechanism_title, sym
 from .figures.fitting import fit_text, fit_titles
 from .figures.style import close, style
+from .units import is_full_turn
 
 __all__ = ["animate", "frame_indices", "full_turn", "labels_inside"]
 
 _TURN = 2.0 * math.pi
-
-
-def _is_full_turn(t: np.ndarray) -> bool:
-    return t.size > 2 and abs(abs(t[-1] - t[0]) - _TURN) <= 1e-9 * max(1.0, abs(t[-1]))
 
 
 #: Space kept between the axis labels and the frame's edge, in points.
@@ -126,7 +123,7 @@ def frame_indices(inputs, frames: int) -> np.ndarray:
     if isinstance(frames, bool) or not isinstance(frames, numbers.Integral) or frames < 2:
         raise InputError(f"frames must be an integer >= 2, got {frames!r}")
     n = t.size
-    full = _is_full_turn(t)
+    full = is_full_turn(t)
     distinct = n - 1 if full else n
     if frames > distinct:
         raise InputError(
@@ -161,7 +158,7 @@ def full_turn(sweep):
     from .errors import NumkinError
 
     t = np.asarray(sweep.inputs, dtype=float)
-    if _is_full_turn(t):
+    if is_full_turn(t):
         return sweep
     step = abs(sweep.step) if sweep.step else math.radians(1.0)
     n = max(int(round(_TURN / step)), 4)

@@ -119,9 +119,9 @@ def _cmd_scenes(args) -> int:
 
 
 def _out_checked(out) -> None:
-    """``--out`` refused before any work when it is a file or lies under one (:func:`numkin.outputs.output_folder`)."""
+    """``--out`` refused before any work when it is a file or lies under one (:func:`numkin.folders.output_folder`)."""
     if out is not None:
-        from .outputs import output_folder
+        from .folders import output_folder
 
         output_folder(out, "--out")
 

@@ -22,14 +22,17 @@ Examples
 from __future__ import annotations
 
 import ast
+import math
 import re
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from .errors import InputError
+import numpy as np
+
+from .errors import InputError, warn
 
 __all__ = ["Derived", "DIMENSIONS", "FUNCTIONS", "read_quantities", "taken_names", "names_of", "bind",
-           "refuse_unknown_names", "names_in"]
+           "refuse_unknown_names", "names_in", "warn_not_finite"]
 
 #: What a derived quantity's value is: an angle (rad) or a length (the mechanism's length unit).
 DIMENSIONS = ("angle", "length")
@@ -233,3 +236,30 @@ def bind(mechanism, derived: Derived):
     if expr.has(sp.I) or expr.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
         raise InputError(f"{where}: the expression {derived.expression!r} is not a finite real expression")
     return expr
+
+
+def warn_not_finite(mech, names, rows, q, t) -> None:
+    """Warn, naming the quantity and the first input, of values that are not finite where the unknowns ``q`` are.
+
+    ``rows[k]`` holds the values of ``names[k]`` at the inputs ``t`` (rad): an
+    expression outside its domain (``sqrt`` of a negative number) there.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from numkin import linkages
+    >>> mech = linkages.slider_crank(80, 200)
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warn_not_finite(mech, ["x_P"], np.array([[1.0, np.nan]]), np.zeros((2, 2)), np.radians([0.0, 10.0]))
+    >>> print(caught[0].message)
+    slider-crank (crank 80, rod 200, offset 0): x_P is not finite at 1 of 2 inputs, first at input 10°: its expression is undefined there (outside its domain)
+    """
+    t = np.asarray(t, dtype=float)
+    solved = np.all(np.isfinite(q), axis=0)
+    for name, values in zip(names, rows):
+        bad = np.flatnonzero(~np.isfinite(values) & solved)
+        if bad.size:
+            warn(f"{mech.name}: {name} is not finite at {bad.size} of {t.size} inputs, first at input "
+                 f"{math.degrees(t[bad[0]]):.6g}°: its expression is undefined there (outside its domain)",
+                 RuntimeWarning)

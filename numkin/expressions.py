@@ -26,7 +26,6 @@ Examples
 
 from __future__ import annotations
 
-import math
 import weakref
 from collections.abc import Iterable
 
@@ -34,12 +33,12 @@ import numpy as np
 
 from .analytic import check_sweep, derivatives, input_rates, label_frame, scalar_attr
 from .compiled import vector_function
-from .derived import bind
-from .errors import InputError, warn
+from .derived import bind, warn_not_finite
+from .errors import InputError
 from .quantities import Quantity, input_quantity, point_quantities
 
 __all__ = ["point_derivatives", "point_kinematics", "derived_values", "derived_derivatives", "derived_kinematics",
-           "expression_functions", "derived_functions", "warn_not_finite"]
+           "expression_functions", "derived_functions"]
 
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
@@ -149,33 +148,6 @@ def _derived_group(mech, name: str):
 def _point_group(mech, name: str):
     """``(key, expressions, rows)`` of one named point (its x and y) for :func:`_evaluate`."""
     return ("point", name), (lambda: list(mech.points[name])), 2
-
-
-def warn_not_finite(mech, names, rows, q, t) -> None:
-    """Warn, naming the quantity and the first input, of values that are not finite where the unknowns ``q`` are.
-
-    ``rows[k]`` holds the values of ``names[k]`` at the inputs ``t`` (rad): an
-    expression outside its domain (``sqrt`` of a negative number) there.
-
-    Examples
-    --------
-    >>> import warnings
-    >>> from numkin import linkages
-    >>> mech = linkages.slider_crank(80, 200)
-    >>> with warnings.catch_warnings(record=True) as caught:
-    ...     warnings.simplefilter("always")
-    ...     warn_not_finite(mech, ["x_P"], np.array([[1.0, np.nan]]), np.zeros((2, 2)), np.radians([0.0, 10.0]))
-    >>> print(caught[0].message)
-    slider-crank (crank 80, rod 200, offset 0): x_P is not finite at 1 of 2 inputs, first at input 10°: its expression is undefined there (outside its domain)
-    """
-    t = np.asarray(t, dtype=float)
-    solved = np.all(np.isfinite(q), axis=0)
-    for name, values in zip(names, rows):
-        bad = np.flatnonzero(~np.isfinite(values) & solved)
-        if bad.size:
-            warn(f"{mech.name}: {name} is not finite at {bad.size} of {t.size} inputs, first at input "
-                 f"{math.degrees(t[bad[0]]):.6g}°: its expression is undefined there (outside its domain)",
-                 RuntimeWarning)
 
 
 def _names(mech, wanted, have, what: str, how: str, argument: str) -> list:

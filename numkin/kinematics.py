@@ -59,6 +59,7 @@ from .analytic import check_sweep, input_rates, kinematics_frame
 from .analytic import tangent as sweep_tangent
 from .conditioning import DIGITS_RTOL, rounding_error, warn_rounding
 from .errors import InputError, warn
+from .units import is_full_turn
 
 __all__ = ["finite_difference", "rounding_error", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "apply_scheme", "unwrap_angles", "PARTNER",
            "CLOSURE_TOL"]
@@ -137,7 +138,7 @@ def sweep_grid(sweep, periodic="auto") -> SweepGrid:
         )
     h = float(np.mean(d))
     span = float(t[-1] - t[0])
-    full_turn = bool(t.size >= 3 and abs(abs(span) - _TURN) <= 1e-9 * _TURN)
+    full_turn = is_full_turn(t)
     if periodic is True and not full_turn:
         raise InputError(
             "periodic=True needs a sweep over exactly one turn, inputs[-1] = inputs[0] + 360° "

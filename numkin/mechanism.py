@@ -16,7 +16,7 @@ import numpy as np
 
 from .cached_model import CachedModel, count_message
 from .compiled import BlockStructure, CompiledMechanism, compiled_once
-from .derived import bind, names_of, read_quantities, taken_names
+from .derived import bind, names_of, read_quantities, taken_names, warn_not_finite
 from .errors import AssemblyError, ConvergenceError, GuessWarning, InputError, warn
 from .loops import (Loop, as_symbol, check_lengths, check_point_names, check_symbols, default_length_scale, describe,
                     read_parameters, read_points)
@@ -524,7 +524,7 @@ class Mechanism(CachedModel):
         A coordinate that is not finite where the unknowns are (its
         expression undefined there, ``sqrt`` of a negative number) is warned
         of, naming the point's coordinate and the input
-        (:func:`numkin.expressions.warn_not_finite`).
+        (:func:`numkin.derived.warn_not_finite`).
         """
         if not self.points:
             return {}
@@ -532,8 +532,6 @@ class Mechanism(CachedModel):
         with np.errstate(all="ignore"):
             xy = self.point_function(*x, t, *self.parameter_values)
         if not np.all(np.isfinite(xy)):
-            from .expressions import warn_not_finite
-
             names = [f"{axis}_{name}" for name in self.points for axis in "xy"]
             rows = np.broadcast_to(np.asarray(xy).reshape(len(names), -1), (len(names), t.size))
             warn_not_finite(self, names, rows, np.asarray(x), t)

@@ -31,6 +31,7 @@ from . import outputs
 from .assemble import scene_quantities, scene_unit
 from .schema import Scene, SceneReader, check_scene_argument, in_range, load_scene, nearest
 from .errors import InputError, warn
+from .folders import output_folder
 from .units import is_number
 
 __all__ = ["CheckResult", "SceneResult", "run_scene", "render_figures", "written_tolerance", "in_scene_terms"]
@@ -226,7 +227,7 @@ def run_scene(
     InputError
         An argument of the wrong kind, before anything is computed: ``scene``
         neither a :class:`Scene`, a name nor a path; ``out`` a file or under
-        one (:func:`numkin.outputs.output_folder`); ``at`` not one finite
+        one (:func:`numkin.folders.output_folder`); ``at`` not one finite
         number; ``figures`` not True or False; ``progress`` not callable.
 
     Examples
@@ -242,7 +243,7 @@ def run_scene(
     if not isinstance(scene, Scene):
         check_scene_argument(scene, "scene")
     if out is not None:
-        outputs.output_folder(out)
+        output_folder(out)
     if at is not None and not is_number(at, finite=True):
         raise InputError(f"at must be an input angle in degrees (a finite number), got {type(at).__name__} {at!r:.60}")
     if not isinstance(figures, bool):

@@ -183,11 +183,11 @@ def read_figures(r: SceneReader, out: dict) -> tuple:
 
 
 def read_compare(r: SceneReader, scene: Scene, cmp: dict) -> None:
-    from .derivatives import SCHEMES, get_scheme
-
     for key, order, quantity in (("schemes", 1, "velocity"), ("second_schemes", 2, "acceleration")):
         if key not in cmp:
             continue
+        from .derivatives import SCHEMES, get_scheme  # (the schemes only for a scene that compares them)
+
         names = []
         for s in r.strings(cmp[key], f"[compare] {key}"):
             try:

@@ -1,7 +1,7 @@
 """The result of a position sweep: :class:`Sweep`, and what it met on its way.
 
 The algorithm that computes it, continuation on one assembly branch, is in
-:mod:`numkin.continuation` (:func:`run_sweep`, also importable from here).
+:mod:`numkin.continuation` (:func:`~numkin.continuation.run_sweep`).
 
 Every sweep's angles are continuous along it (unwrapped): neighbouring
 points never differ by a whole turn, whatever the grid, ``max_step`` or
@@ -24,7 +24,7 @@ from .errors import InputError
 from .newton import COND_MAX, COND_WARN
 from .units import deg_text, input_degrees
 
-__all__ = ["Sweep", "SweepEvent", "SingularityWarning", "run_sweep", "COND_MAX", "COND_WARN", "EvaluationCounter",
+__all__ = ["Sweep", "SweepEvent", "SingularityWarning", "COND_MAX", "COND_WARN", "EvaluationCounter",
            "count_evaluations", "record_evaluations", "check_sweep"]
 
 
@@ -308,15 +308,3 @@ def count_evaluations(mechanism) -> Iterator[EvaluationCounter]:
         yield counter
     finally:
         _COUNTERS.reset(token)
-
-
-_MOVED = ("run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "CORRECTOR_ITERATIONS", "TOGGLE_COND", "TOGGLE_GROWTH")
-
-
-def __getattr__(name):
-    # The algorithm (which imports this module) is loaded on first use of its names here.
-    if name in _MOVED:
-        from . import continuation, march
-
-        return getattr(continuation, name, None) or getattr(march, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -36,6 +36,7 @@ __all__ = [
     "with_length_unit",
     "input_degrees",
     "deg_text",
+    "is_full_turn",
     "UnitError",
     "angular_speed",
     "angular_acceleration",
@@ -503,6 +504,21 @@ def input_degrees(t) -> np.ndarray:
     (29.999999999999996, 30.0)
     """
     return np.round(np.degrees(t), 9) + 0.0  # (+ 0.0: no -0.0)
+
+
+def is_full_turn(inputs) -> bool:
+    """Whether a grid of inputs (rad), three or more, spans exactly one turn (to 1e-9 relative): a periodic grid,
+    its last sample the first one turn on, either way round.
+
+    Examples
+    --------
+    >>> is_full_turn(np.radians(np.arange(0.0, 361.0))), is_full_turn(np.radians([360.0, 180.0, 0.0]))
+    (True, True)
+    >>> is_full_turn(np.radians(np.arange(0.0, 360.0))), is_full_turn(np.radians([0.0, 360.0]))
+    (False, False)
+    """
+    t = np.asarray(inputs, dtype=float)
+    return bool(t.size >= 3 and abs(abs(float(t[-1] - t[0])) - _TURN) <= 1e-9 * _TURN)
 
 
 def deg_text(t: float, digits: int = 3) -> str:

@@ -29,6 +29,7 @@ import math
 import numpy as np
 
 from ..errors import InputError, warn
+from ..units import is_full_turn
 from .labels import derived_of, input_name, is_angle, length_unit, rate_columns
 
 __all__ = ["sampled", "with_rates"]
@@ -102,7 +103,7 @@ def _grid(sweep, idx: np.ndarray, periodic):
     d = np.diff(t)
     if t.size < 2 or not np.allclose(d, d[0], rtol=1e-9, atol=1e-14):
         return None
-    full = bool(t.size >= 3 and abs(abs(float(t[-1] - t[0])) - 2 * math.pi) <= 1e-9 * 2 * math.pi)
+    full = is_full_turn(t)
     h = float(np.mean(d))
     return SweepGrid(h=abs(h), periodic=full and periodic is not False, reverse=h < 0, full_turn=full)
 

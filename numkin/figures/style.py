@@ -26,7 +26,7 @@ from pathlib import Path
 from typing import Sequence
 
 from ..errors import InputError
-from ..outputs import made_folder
+from ..folders import made_folder
 from .registries import family_of
 
 __all__ = [

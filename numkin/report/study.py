@@ -53,6 +53,7 @@ __all__ = [
     "table_quantities",
     "deg_text",
     "scheme_list",
+    "too_coarse",
     "full_turn",
     "grid_inputs",
     "grid_list",

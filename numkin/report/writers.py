@@ -8,7 +8,7 @@ from typing import Mapping, Sequence
 import numpy as np
 
 from ..errors import InputError
-from ..outputs import made_folder
+from ..folders import made_folder
 
 __all__ = [
     "write_tables",
