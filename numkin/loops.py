@@ -286,7 +286,9 @@ def describe(loops, input_symbol, parameters, points) -> dict:
     {name: [names its coordinates use]}}``: the kernel cache keeps it so a
     mechanism can be checked and solved without sympy. ``lengths`` are the parameters in the loop's
     vector lengths, ``links`` those in the lengths of vectors that turn (whose angle holds the input or
-    an unknown): a vector of fixed direction is an offset, which may have either sign.
+    an unknown): a vector of fixed direction is an offset, which may have either sign. ``numbers`` is
+    the largest length written as a number (0 if none), ``angle_parameters`` the parameters in the
+    vectors' angles (a ground's tilt): both for :func:`default_length_scale`.
 
     Examples
     --------
@@ -306,7 +308,10 @@ def describe(loops, input_symbol, parameters, points) -> dict:
                    "angles": [str(u) for u in lp.unknowns if u in lp.angles],
                    "lengths": sorted(str(s) for s in lp.length_symbols),
                    "links": sorted({str(s) for length, angle in lp.vector_symbols if angle & moving
-                                    for s in length - set(lp.unknowns)})} for lp in loops],
+                                    for s in length - set(lp.unknowns)}),
+                   "numbers": max([abs(float(length)) for length, _ in lp.vectors if not length.free_symbols] + [0.0]),
+                   "angle_parameters": sorted({str(s) for _, angle in lp.vectors for s in angle.free_symbols}
+                                              - {str(s) for s in moving})} for lp in loops],
         "points": [str(k) for k in (points or {})],
         "point_symbols": {str(k): sorted({s.name for c in xy for s in getattr(c, "free_symbols", ())})
                           for k, xy in (points or {}).items()},
@@ -462,11 +467,27 @@ def check_lengths(model: dict, value_of: dict, every_link: bool = False) -> None
 
 
 def default_length_scale(model: dict, value_of: dict) -> float:
-    """The largest parameter that is a vector's length (else the largest parameter, else 1)."""
+    """The characteristic length of a mechanism: its largest vector length.
+
+    That is the largest value of a parameter in a vector's length or of a
+    length written as a number; where the loops have neither (loops written
+    as equations), the largest parameter that is not in a vector's angle;
+    else 1.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> t2, t3, t4, tilt = sp.symbols("theta2 theta3 theta4 tilt")
+    >>> loop = Loop.from_vectors([(1e6, t2), (3e6, t3), (-3e6, t4), (-4e6, tilt)], [t3, t4])
+    >>> default_length_scale(describe([loop], t2, {tilt: 1e-6}, None), {"tilt": 1e-6})
+    4000000.0
+    """
     lengths = {s for lp in model["loops"] for s in lp["lengths"]}
     values = [abs(v) for s, v in value_of.items() if s in lengths]
-    if not values:
-        values = [abs(v) for v in value_of.values()]
+    values += [lp.get("numbers", 0.0) for lp in model["loops"]]
+    if not any(values):
+        angles = {s for lp in model["loops"] for s in lp.get("angle_parameters", ())}
+        values = [abs(v) for s, v in value_of.items() if s not in angles]
     return max(values) if values and max(values) > 0 else 1.0
 
 

@@ -79,7 +79,9 @@ class Mechanism(CachedModel):
         Unit of the lengths (labels only; no conversion), default ``"mm"``.
     length_scale : float, optional
         Characteristic length for the stopping rule; default the largest
-        parameter that appears as a vector length. It must lie in
+        vector length (:func:`numkin.loops.default_length_scale`: a
+        parameter in a vector's length, or a length written as a number;
+        a parameter in a vector's angle, a ground's tilt, is none). It must lie in
         :data:`LENGTH_SCALE_RANGE` (1e-150 to 1e150); within it, a linkage
         scaled by any factor solves in the same iterations to the same
         relative accuracy.

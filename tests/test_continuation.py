@@ -171,6 +171,50 @@ def test_any_representable_length_scale_solves_alike(scale):
     np.testing.assert_allclose(scaled.cond, base.cond, rtol=1e-9)
 
 
+def _number_four_bar(scale, tilt=None):
+    """The 4:1:3:3 four-bar with its lengths written as numbers (times ``scale``); the ground tilted by the
+    parameter ``tilt`` (rad) if given."""
+    t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    tilt_symbol = sp.Symbol("tilt", real=True)
+    ground = tilt_symbol if tilt is not None else 0
+    loop = Loop.from_vectors([(1 * scale, t2), (3 * scale, t3), (-3 * scale, t4), (-4 * scale, ground)], [t3, t4])
+    return Mechanism([loop], t2, {tilt_symbol: tilt} if tilt is not None else None,
+                     guess={"theta3": 0.5, "theta4": 1.5})
+
+
+@pytest.mark.parametrize("scale, tilt", [(1e6, None), (1e-6, None), (1.0, 1e-6), (1e6, 1e-9)])
+def test_lengths_written_as_numbers_set_the_default_length_scale(scale, tilt):
+    """The characteristic length is the largest vector length, written as a number or as a parameter; a
+    parameter in a vector's angle (a ground's tilt) is none: the 4:1:3:3 scaled by 1e6, written in numbers,
+    was refused ("did not converge", residual 9.3e-10, against a length scale of 1), and a tilt of 1e-6
+    rad taken as the length scale made a regular linkage a "bad guess". The closed form of the tilted
+    four-bar is the untilted one's at the crank angle less the tilt, plus the tilt."""
+    mech = _number_four_bar(scale, tilt)
+    assert mech.length_scale == 4 * scale
+    inputs = np.radians(np.arange(0.0, 361.0, 1.0))
+    sweep = mech.sweep(inputs)
+    t = 0.0 if tilt is None else tilt
+    ref, rate = four_bar_on_branch(inputs - t, (4, 1, 3, 3), side_of(sweep, (4, 1, 3, 3)))
+    same_branch_continuous(sweep, ref + t, rate, atol=1e-9)
+    assert sweep.cond.max() < 10
+
+
+def test_a_slider_offset_far_smaller_than_the_crank_is_no_length_scale():
+    """An offset slider-crank 80/200 with the offset e = 1e-9 a parameter: the length scale is the rod,
+    200 (it was e, and the regular linkage was called a toggle at 5.73°); the piston at 0.1 rad from
+    its closed form."""
+    t2, t3, x = sp.symbols("theta2 theta3 x")
+    e = sp.Symbol("e", real=True)
+    loop = Loop.from_vectors([(80, t2), (200, t3), (-x, 0), (-e, sp.pi / 2)], [t3, x])
+    mech = Mechanism([loop], t2, {e: 1e-9}, guess={"theta3": -0.05, "x": 283.0}, guess_input=0.1)
+    assert mech.length_scale == 200.0
+    inputs = np.linspace(0.1, 0.1 + 2 * np.pi, 73)
+    sweep = mech.sweep(inputs)
+    piston = 80 * np.cos(inputs) + np.sqrt(200**2 - (80 * np.sin(inputs) - 1e-9) ** 2)
+    np.testing.assert_allclose(sweep["x"], piston, rtol=0, atol=1e-10)
+    assert sweep.cond.max() < 10
+
+
 @pytest.mark.parametrize("scale", [1e-158, 1e-165, 1e-300, 1e154, 1e300])
 def test_length_scale_outside_the_range_is_refused_up_front(scale):
     with pytest.raises(ValueError, match=r"1e-150 to 1e\+150"):
