@@ -13,7 +13,11 @@ it estimates; its weights and order of accuracy are computed exactly
   its family is ``centred``;
 * its **ends**: how the samples of an open grid where the interior stencil
   does not fit are handled (``"one-sided"``: the smallest one-sided window
-  of at least the interior's order; ``"mirror"``: the interior reflected).
+  of at least the interior's order; ``"mirror"``: the interior reflected);
+* how it is **shown**: its ``label`` in tables, its line ``style`` and
+  ``marker`` in figures (a second-derivative scheme that is its family's
+  partner is drawn in the family's colours, see
+  :func:`numkin.figures.style.source_style`).
 
 Rule for partners (checked by the tests): a second-derivative scheme's
 partner is a first-derivative scheme of the same family and the same order,
@@ -51,19 +55,8 @@ from .errors import InputError
 from .stencils import Rule, Stencil
 
 __all__ = [
-    "Scheme",
-    "SCHEMES",
-    "REGISTRY",
-    "RegistryView",
-    "PARTNER",
-    "FAMILY",
-    "BUILT_IN",
-    "ALIASES",
-    "register",
-    "unregister",
-    "get_scheme",
-    "lookup",
-    "point_stencil",
+    "Scheme", "SCHEMES", "REGISTRY", "RegistryView", "PARTNER", "FAMILY", "BUILT_IN", "ALIASES",
+    "register", "unregister", "get_scheme", "lookup", "by_label", "point_stencil",
     "own_stencil_points",
 ]
 
@@ -104,6 +97,16 @@ class Scheme:
         End handling on open grids.
     rule : numkin.stencils.Rule or None
         Interior and end stencils, for stencil schemes.
+    label : str
+        How tables name the scheme's rows: its name unless declared
+        (``"complex step"``); :func:`by_label` finds the scheme again.
+    style : tuple of (str, object)
+        Matplotlib keywords of its curves (``color``, ``linestyle``,
+        ``linewidth``, ...) as declared; empty or without a colour: drawn
+        as :func:`numkin.figures.style.source_style` derives.
+    marker : tuple
+        ``(marker, size, filled)`` on the error figures as declared; empty:
+        derived likewise (:func:`numkin.figures.style.marker_style`).
 
     Examples
     --------
@@ -129,6 +132,13 @@ class Scheme:
     family: str = ""
     ends: str = ""
     rule: Rule | None = field(default=None, compare=False, repr=False)
+    label: str = ""
+    style: tuple = field(default=(), repr=False)
+    marker: tuple = field(default=(), repr=False)
+
+    def __post_init__(self):
+        if not self.label:
+            object.__setattr__(self, "label", self.name)
 
     @property
     def reach(self) -> tuple[int, int]:
@@ -148,32 +158,49 @@ class Scheme:
 
 #: Declarations of the built-in schemes: name -> keyword arguments of :func:`register`
 #: (``offsets``/``derivative`` for stencils, ``kind`` and the rest for the others).
+#: Figure styles: schemes that can give the same numbers (forward and backward on a
+#: symmetric curve, five-point and Richardson) have dash patterns that interleave and
+#: markers that stay visible one over the other (a large open one around a small
+#: filled one). centred_of_centred, drawn beside the second difference (the centred
+#: family's partner), has a colour of its own.
 BUILT_IN = {
     "forward": dict(offsets=(0, 1), derivative=1, ends="mirror", partner="forward_of_forward",
-                    description="forward difference"),
-    "backward": dict(offsets=(-1, 0), derivative=1, ends="mirror", description="backward difference"),
+                    description="forward difference",
+                    style=dict(color="#D55E00", linestyle=(0, (5, 5)), linewidth=1.8), marker=("^", 8.5, False)),
+    "backward": dict(offsets=(-1, 0), derivative=1, ends="mirror", description="backward difference",
+                     style=dict(color="#CC79A7", linestyle=(5, (5, 5)), linewidth=1.8), marker=("v", 4.5, True)),
     "centred": dict(offsets=(-1, 0, 1), derivative=1, partner="second_difference",
-                    description="centred difference"),
+                    description="centred difference",
+                    style=dict(color="#0072B2", linestyle="-", linewidth=2.6, alpha=0.55, zorder=1.9),
+                    marker=("o", 4.5, True)),
     "five_point": dict(offsets=(-2, -1, 0, 1, 2), derivative=1, partner="five_point_second",
-                       description="five-point centred difference"),
+                       description="five-point centred difference",
+                       style=dict(color="#009E73", linestyle=(0, (1.2, 1.8)), linewidth=2.4),
+                       marker=("D", 8.0, False)),
     "richardson": dict(kind="richardson", derivative=1, order=4, stencil="(4 D(h) - D(2h))/3",
                        offsets=(-2, -1, 0, 1, 2), ends="one-sided (five_point's)",
-                       description="Richardson extrapolation of centred differences with steps h and 2h"),
+                       description="Richardson extrapolation of centred differences with steps h and 2h",
+                       style=dict(color="#E69F00", linestyle=(0, (6, 4)), linewidth=1.4), marker=("o", 3.5, True)),
     "spectral": dict(kind="spectral", derivative=1, order=0, stencil="ik Y_k (FFT)", partner="spectral_second",
-                     description="FFT differentiation of one full period"),
+                     description="FFT differentiation of one full period",
+                     style=dict(color="#56B4E9", linestyle="-.", linewidth=1.6), marker=("*", 7.0, True)),
     "second_difference": dict(offsets=(-1, 0, 1), derivative=2, partner="centred",
-                              description="centred second difference"),
+                              description="centred second difference",
+                              style=dict(linestyle="-")),
     "forward_of_forward": dict(offsets=(0, 1, 2), derivative=2, ends="mirror", partner="forward",
-                               description="forward difference applied twice (centred on sample i+1)"),
+                               description="forward difference applied twice (centred on sample i+1)",
+                               marker=("^", 5.5, True)),
     "centred_of_centred": dict(offsets=(-2, 0, 2), derivative=2, partner="centred",
-                               description="centred difference applied twice (2h-wide second difference)"),
+                               description="centred difference applied twice (2h-wide second difference)",
+                               style=dict(color="#1B3A6B", linewidth=1.6), marker=("s", 8.0, False)),
     "five_point_second": dict(offsets=(-2, -1, 0, 1, 2), derivative=2, partner="five_point",
                               description="five-point centred second difference"),
     "spectral_second": dict(kind="spectral", derivative=2, order=0, stencil="-k^2 Y_k (FFT)",
                             partner="spectral", description="FFT second derivative of one full period"),
     "complex_step": dict(kind="complex_step", derivative=1, order=2, stencil="Im f(x + ih)/h",
-                         family="complex_step",
-                         description="complex step of a function: no subtractive cancellation"),
+                         description="complex step of a function: no subtractive cancellation",
+                         label="complex step",
+                         style=dict(color="0.45", linestyle="-", linewidth=1.2), marker=("s", 8.0, False)),
 }
 
 #: Other spellings accepted by :func:`get_scheme`.
@@ -197,13 +224,16 @@ def _load() -> dict[str, Scheme]:
 
 
 class RegistryView(Mapping):
-    """A read-only, always current view of the registry: ``value(scheme)`` of every scheme ``select`` keeps."""
+    """A read-only, always current view of the registry: ``value(scheme)`` of every scheme ``select`` keeps.
 
-    def __init__(self, select, value):
-        self._select, self._value = select, value
+    The entries of `fixed` (sources that are no schemes, such as ``"analytic"``) come first.
+    """
+
+    def __init__(self, select, value, fixed: Mapping | None = None):
+        self._select, self._value, self._fixed = select, value, dict(fixed or {})
 
     def _items(self):
-        return {k: self._value(s) for k, s in _load().items() if self._select(s)}
+        return {**self._fixed, **{k: self._value(s) for k, s in _load().items() if self._select(s)}}
 
     def __getitem__(self, key):
         return self._items()[key]
@@ -229,7 +259,8 @@ FAMILY: Mapping = RegistryView(lambda s: True, lambda s: s.family)
 
 
 def _build(name, *, derivative, offsets=(), kind="stencil", ends="one-sided", partner=None, family=None,
-           description=None, order=None, stencil=None, function=None) -> Scheme:
+           description=None, order=None, stencil=None, function=None, label="",
+           style=None, marker=()) -> Scheme:
     rule = None
     weights: tuple = ()
     if kind == "stencil":
@@ -250,7 +281,8 @@ def _build(name, *, derivative, offsets=(), kind="stencil", ends="one-sided", pa
         periodic_only=kind == "spectral", description=description or f"{len(offsets)}-point stencil {stencil}",
         kind=kind, offsets=tuple(offsets), weights=tuple(weights), partner=partner, family=family,
         ends={"spectral": "periodic only", "complex_step": "none (it evaluates a function, not samples)"}.get(kind, ends),
-        rule=rule,
+        rule=rule, label=label, style=tuple(dict(style or {}).items()),
+        marker=tuple(marker),
     )
 
 
@@ -266,7 +298,8 @@ def _default_partner(derivative: int, rule: Rule) -> str | None:
 
 
 def register(name: str, offsets, derivative: int, *, partner: str | None = None, family: str | None = None,
-             ends: str = "one-sided", description: str | None = None, replace: bool = False) -> Scheme:
+             ends: str = "one-sided", description: str | None = None, replace: bool = False, label: str = "",
+             style=None, marker=()) -> Scheme:
     """Add a finite-difference scheme declared by its stencil offsets.
 
     After this call :func:`numkin.derivatives.differentiate`,
@@ -294,6 +327,14 @@ def register(name: str, offsets, derivative: int, *, partner: str | None = None,
     description : str, optional
     replace : bool, default False
         Allow replacing a scheme registered earlier at run time (never a built-in one).
+    label : str, optional
+        Its name in tables (default: the name). A label names one scheme only.
+    style : mapping, optional
+        Matplotlib keywords of its curves; with a ``color`` they are its
+        whole style, without one they amend the derived style
+        (:func:`numkin.figures.style.source_style`).
+    marker : tuple, optional
+        ``(marker, size, filled)`` on the error figures.
 
     Returns
     -------
@@ -303,9 +344,9 @@ def register(name: str, offsets, derivative: int, *, partner: str | None = None,
     Raises
     ------
     ValueError
-        For a taken or malformed name, offsets that cannot give the
-        derivative, an unknown partner, or a partner of the wrong derivative
-        or order.
+        For a taken or malformed name or label, offsets that cannot give the
+        derivative, an unknown partner, a partner of the wrong derivative
+        or order, or a style that is not a mapping of keywords.
 
     Examples
     --------
@@ -322,6 +363,7 @@ def register(name: str, offsets, derivative: int, *, partner: str | None = None,
         raise InputError(f"scheme {name!r} is already registered" + ("" if name in BUILT_IN else "; pass replace=True"))
     if derivative not in (1, 2) or isinstance(derivative, bool):
         raise InputError(f"derivative must be 1 or 2, got {derivative!r}")
+    shown = _shown(name, label, style, marker)
     scheme = _build(name, derivative=derivative, offsets=tuple(offsets), ends=ends, family=family,
                     description=description)
     if partner is None:
@@ -338,9 +380,25 @@ def register(name: str, offsets, derivative: int, *, partner: str | None = None,
         raise InputError(f"{name}: no first-derivative scheme of order {scheme.order} on the same offsets is "
                          "registered; register one first or give partner=")
     scheme = _build(name, derivative=derivative, offsets=tuple(offsets), ends=ends, family=family,
-                    description=description, partner=partner)
+                    description=description, partner=partner, **shown)
     registry[name] = scheme
     return scheme
+
+
+def _shown(name, label, style, marker) -> dict:
+    """The checked arguments of :func:`register` on how a scheme is shown."""
+    label = label or name
+    if not isinstance(label, str) or not label.strip():
+        raise InputError(f"{name}: label must be text, got {label!r}")
+    taken = [s.name for s in _load().values() if s.name != name and label in (s.name, s.label)]
+    if taken:
+        raise InputError(f"{name}: label {label!r} names scheme {taken[0]!r} already; give another")
+    if style is not None and not (isinstance(style, Mapping) and all(isinstance(k, str) for k in style)):
+        raise InputError(f"{name}: style must be a mapping of matplotlib keywords, got {style!r}")
+    marker = tuple(marker or ())
+    if marker and not (len(marker) == 3 and isinstance(marker[0], str) and isinstance(marker[2], bool)):
+        raise InputError(f"{name}: marker must be (marker, size, filled), got {marker!r}")
+    return dict(label=label, style=style, marker=marker)
 
 
 def unregister(name: str) -> None:
@@ -386,6 +444,25 @@ def lookup(name: str) -> Scheme:
             f"unknown finite-difference method {name!r}; valid names: "
             f"{', '.join(SCHEMES)} (aliases: {', '.join(ALIASES)})"
         ) from None
+
+
+def by_label(text) -> Scheme | None:
+    """The scheme a table's row or a figure's source names: by its label or registry name; None for none.
+
+    Tables write a scheme's ``label`` (``"complex step"``); figures drawn
+    from them, and from frames keyed by registry name, find the
+    :class:`Scheme` again here. No aliases; ``"analytic"`` is no scheme.
+
+    Examples
+    --------
+    >>> by_label("complex step").name, by_label("complex_step").label, by_label("analytic")
+    ('complex_step', 'complex step', None)
+    """
+    registry = _load()
+    key = str(text)
+    if key in registry:
+        return registry[key]
+    return next((s for s in registry.values() if s.label == key), None)
 
 
 def get_scheme(name: str) -> Scheme:

@@ -8,6 +8,7 @@ import re
 import numpy as np
 
 from ..errors import InputError
+from ..schemes import by_label
 from .arguments import need_names, need_table, need_tables
 from .labels import sym, table_column
 from .registries import is_second_derivative
@@ -411,7 +412,7 @@ def roundoff(table):
             # fine scan or the coarse curve)
             for h_col, e_col, kind in (("measured optimal h [rad]", "rel error measured at that h [-]", "*"),
                                        ("textbook optimal h [rad]", "rel error measured at textbook h [-]", "D")):
-                if h_col not in row.index or (kind == "D" and scheme in ("complex step", "complex_step")):
+                if h_col not in row.index or (kind == "D" and getattr(by_label(scheme), "kind", "") == "complex_step"):
                     continue
                 h_at = float(row[h_col])
                 e_at = float(row[e_col]) if e_col in row.index else math.nan

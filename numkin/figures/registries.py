@@ -1,10 +1,11 @@
 """What figures know about schemes and linkages.
 
 :data:`SCHEME_FAMILY` maps a second-derivative scheme to the first-derivative
-scheme it is drawn like (same colour), read from :data:`numkin.schemes.FAMILY`;
-it agrees with :data:`numkin.kinematics.PARTNER`. The dimension lines drawn on a
-ready-made linkage are its spec's (:func:`dimensions_of`, from
-:func:`numkin.linkages.spec_of`).
+scheme it belongs with, read from :data:`numkin.schemes.FAMILY`; it agrees
+with :data:`numkin.kinematics.PARTNER`. How a scheme is drawn is read from
+the scheme itself (:func:`numkin.figures.style.source_style`). The dimension
+lines drawn on a ready-made linkage are its spec's (:func:`dimensions_of`,
+from :func:`numkin.linkages.spec_of`).
 
 Examples
 --------
@@ -17,47 +18,38 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from ..schemes import RegistryView
+from ..schemes import RegistryView, by_label
 
 __all__ = ["SCHEME_FAMILY", "dimensions_of", "family_of", "is_second_derivative"]
 
-#: Sources that are not schemes of sampled data, and the source each is drawn like.
-_OTHER_SOURCES = {"complex_step": "analytic", "complex step": "analytic"}
 
-
-#: Second-derivative scheme -> the first-derivative scheme it is coloured like: its family
-#: (:data:`numkin.schemes.FAMILY`), always current.
-SCHEME_FAMILY: Mapping = RegistryView(lambda s: s.derivative == 2 and s.kind != "complex_step", lambda s: s.family)
+#: Second-derivative scheme -> its family (:data:`numkin.schemes.FAMILY`), always current.
+SCHEME_FAMILY: Mapping = RegistryView(lambda s: s.derivative == 2, lambda s: s.family)
 
 
 def is_second_derivative(source: str) -> bool:
-    """Whether a source is a second-derivative scheme of :data:`numkin.schemes.REGISTRY`.
+    """Whether a source (a registry name or a table's label) is a second-derivative scheme.
 
     Examples
     --------
     >>> is_second_derivative("five_point_second"), is_second_derivative("centred"), is_second_derivative("analytic")
     (True, False, False)
     """
-    from ..schemes import REGISTRY
-
-    scheme = REGISTRY.get(str(source))
+    scheme = by_label(source)
     return scheme is not None and scheme.derivative == 2
 
 
 def family_of(source: str) -> str:
-    """The first-derivative scheme (or ``"analytic"``) a source is drawn like; itself if none.
+    """The family of a source (a registry name or a table's label): the first-derivative scheme it
+    belongs with; the source itself if it is no scheme.
 
     Examples
     --------
-    >>> family_of("forward_of_forward"), family_of("centred")
-    ('forward', 'centred')
+    >>> family_of("forward_of_forward"), family_of("centred"), family_of("complex step"), family_of("analytic")
+    ('forward', 'centred', 'complex_step', 'analytic')
     """
-    from ..schemes import FAMILY
-
-    key = str(source)
-    if key in _OTHER_SOURCES:
-        return _OTHER_SOURCES[key]
-    return FAMILY.get(key, key)
+    scheme = by_label(source)
+    return scheme.family if scheme is not None else str(source)
 
 
 def dimensions_of(mechanism):

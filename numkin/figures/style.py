@@ -1,4 +1,4 @@
-"""The figure style, the colours of the derivative sources, and deterministic saving.
+"""The figure style, the colours and markers of the derivative sources, and deterministic saving.
 
 Every numkin figure is drawn inside :func:`style` (matplotlib's defaults plus
 ``numkin/numkin.mplstyle``), on a :class:`~matplotlib.figure.Figure` with an
@@ -8,6 +8,11 @@ gives the same bytes. :func:`save` lays the figure out once, at the saving
 resolution (again when a title had to be broken into lines to fit the
 figure, :mod:`~numkin.figures.fitting`), and draws each format once from
 that layout.
+
+A scheme's colour, line style and marker are declared on the scheme
+(:mod:`numkin.schemes`); :func:`source_style` and :func:`marker_style` derive
+those of a scheme that declares none, so a scheme registered at run time is
+drawn without a change here.
 
 Examples
 --------
@@ -27,13 +32,14 @@ from typing import Sequence
 
 from ..errors import InputError
 from ..folders import made_folder
-from .registries import family_of
+from ..schemes import REGISTRY, RegistryView, by_label
 
 __all__ = [
     "DOC_PARTS",
     "shared_doc",
-    "CYCLE", "METADATA", "SAVE_OPTIONS", "SOURCE_CYCLE", "SOURCE_MARKERS", "SOURCE_STYLE", "STYLE", "close", "gc_paused", "new_figure", "save", "source_label",
-    "marker_style", "source_style", "style",
+    "ANALYTIC_STYLE", "CYCLE", "METADATA", "SAVE_OPTIONS", "SECOND_DASH", "SOURCE_CYCLE", "SOURCE_MARKERS",
+    "SOURCE_STYLE", "STYLE", "close", "gc_paused", "new_figure", "save", "source_label", "marker_style",
+    "source_style", "style",
 ]
 
 #: The package style file.
@@ -46,38 +52,19 @@ METADATA = {
     "pdf": {"CreationDate": None, "ModDate": None, "Producer": None, "Creator": None},
 }
 
-#: Fixed colours and line styles of the derivative sources (others take the colour cycle).
-#: Schemes that can give the same numbers (forward and backward on a symmetric curve,
-#: five-point and Richardson) have dash patterns that interleave, so both stay visible.
-SOURCE_STYLE = {
-    "analytic": {"color": "black", "linestyle": "-", "linewidth": 1.0, "zorder": 4},
-    "forward": {"color": "#D55E00", "linestyle": (0, (5, 5)), "linewidth": 1.8},
-    "backward": {"color": "#CC79A7", "linestyle": (5, (5, 5)), "linewidth": 1.8},
-    "centred": {"color": "#0072B2", "linestyle": "-", "linewidth": 2.6, "alpha": 0.55, "zorder": 1.9},
-    "five_point": {"color": "#009E73", "linestyle": (0, (1.2, 1.8)), "linewidth": 2.4},
-    "richardson": {"color": "#E69F00", "linestyle": (0, (6, 4)), "linewidth": 1.4},
-    "spectral": {"color": "#56B4E9", "linestyle": "-.", "linewidth": 1.6},
-    # a second derivative of the centred family, drawn beside the second difference: a colour of its own
-    "centred_of_centred": {"color": "#1B3A6B", "linestyle": (0, (7, 2, 1.5, 2)), "linewidth": 1.6},
-}
-
-#: Markers of the sources on the error figures: (marker, size, filled). Sources that give the
-#: same points (forward and backward, five-point and Richardson: the same errors on the same
-#: grids) stay visible one over the other: a large open marker around a small filled one.
-SOURCE_MARKERS = {
-    "analytic": ("o", 4.0, True), "complex step": ("s", 8.0, False), "complex_step": ("s", 8.0, False),
-    "forward": ("^", 8.5, False), "backward": ("v", 4.5, True), "centred": ("o", 4.5, True),
-    "five_point": ("D", 8.0, False), "richardson": ("o", 3.5, True), "spectral": ("*", 7.0, True),
-    "second_difference": ("o", 4.5, True), "forward_of_forward": ("^", 5.5, True),
-    "centred_of_centred": ("s", 8.0, False), "five_point_second": ("D", 8.0, False),
-    "spectral_second": ("*", 7.0, True),
-}
+#: Line style of the analytic solution, the reference every scheme is drawn against.
+ANALYTIC_STYLE = {"color": "black", "linestyle": "-", "linewidth": 1.0, "zorder": 4}
+#: Marker of the analytic solution, and of a source that declares none: (marker, size, filled).
+_ANALYTIC_MARKER, _MARKER = ("o", 4.0, True), ("o", 4.5, True)
+#: Dash pattern of the second-derivative schemes (unless a scheme's style names its own line style).
+SECOND_DASH = (0, (7, 2, 1.5, 2))
 
 #: Colour cycle of curves without a fixed style (unknowns, links, Jacobians).
 CYCLE = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000"]
 
 #: Colours of sources without a fixed style (a registered scheme): none of :data:`SOURCE_STYLE`'s, so
-#: that a scheme is never drawn in the colour of another (Paul Tol's muted palette).
+#: that a scheme is never drawn in the colour of another (Paul Tol's muted palette); with the line
+#: style ``"-."`` and width 1.5.
 SOURCE_CYCLE = ["#882255", "#44AA99", "#999933", "#AA4499", "#332288", "#DDCC77"]
 
 #: Further savefig arguments per format. PNG: zlib level 1 (lossless like every level; about a third
@@ -291,9 +278,28 @@ def source_label(key: str) -> str:
     return str(key).replace("_", " ")
 
 
+def _partner_of_family(scheme):
+    """The scheme's family (a first-derivative scheme) if the scheme is that family's partner, else None."""
+    family = REGISTRY.get(scheme.family)
+    return family if family is not None and family is not scheme and family.partner == scheme.name else None
+
+
+def _own_style(scheme, k: int) -> dict:
+    """The style a scheme declares; on colour `k` of :data:`SOURCE_CYCLE` if it names no colour."""
+    own = dict(scheme.style)
+    if "color" in own:
+        return own
+    return {"color": SOURCE_CYCLE[k % len(SOURCE_CYCLE)], "linestyle": "-.", "linewidth": 1.5, **own}
+
+
 def source_style(key: str, k: int) -> dict:
-    """Line style of a source (colour of its family for second-derivative schemes); else colour `k` of
-    :data:`SOURCE_CYCLE`, none of the fixed ones.
+    """Line style of a source: a scheme (by name or table label), ``"analytic"`` or any other curve.
+
+    A scheme whose style (``style`` of :class:`numkin.schemes.Scheme`) names a colour is drawn in it; a
+    second-derivative scheme that is its family's partner (the second difference of the centred
+    family) in its family's; any other in colour `k` of :data:`SOURCE_CYCLE`, none of the fixed
+    ones. A second-derivative scheme takes the dash :data:`SECOND_DASH`; then the keys its style
+    gives apply. Other sources than schemes also take colour `k` of the cycle.
 
     Examples
     --------
@@ -303,19 +309,46 @@ def source_style(key: str, k: int) -> dict:
     set()
     """
     key = str(key)
-    style_ = SOURCE_STYLE.get(key) or SOURCE_STYLE.get(family_of(key))
-    if key in ("complex_step", "complex step"):
-        style_ = {"color": "0.45", "linestyle": "-", "linewidth": 1.2}
-    if style_ is None:
-        style_ = {"color": SOURCE_CYCLE[k % len(SOURCE_CYCLE)], "linestyle": "-.", "linewidth": 1.5}
-    style_ = dict(style_)
-    if key != family_of(key) and key not in ("complex_step", "complex step"):
-        style_["linestyle"] = (0, (7, 2, 1.5, 2)) if key != "second_difference" else style_["linestyle"]
-    return style_
+    scheme = by_label(key)
+    if scheme is None:
+        return dict(ANALYTIC_STYLE) if key == "analytic" else {
+            "color": SOURCE_CYCLE[k % len(SOURCE_CYCLE)], "linestyle": "-.", "linewidth": 1.5}
+    own = dict(scheme.style)
+    family = None if "color" in own else _partner_of_family(scheme)
+    style_ = _own_style(family or scheme, k)
+    if scheme.derivative == 2:
+        style_["linestyle"] = SECOND_DASH
+    style_.update(own)
+    return {**{name: style_[name] for name in ("color", "linestyle", "linewidth") if name in style_}, **style_}
+
+
+def _marker(scheme) -> tuple:
+    """(marker, size, filled) of a scheme: its own, else its family's if it is the family's partner."""
+    family = _partner_of_family(scheme)
+    return scheme.marker or (family.marker if family is not None else ()) or _MARKER
+
+
+#: The fixed styles: the analytic solution's and each scheme's whose style names a colour, always current.
+SOURCE_STYLE = RegistryView(lambda s: "color" in dict(s.style), lambda s: source_style(s.name, 0),
+                            fixed={"analytic": ANALYTIC_STYLE})
+#: Markers of the sources on the error figures, (marker, size, filled): the analytic solution's and each
+#: scheme's (:func:`marker_style`), always current.
+SOURCE_MARKERS = RegistryView(lambda s: True, _marker, fixed={"analytic": _ANALYTIC_MARKER})
 
 
 def marker_style(key: str, color) -> dict:
-    """Keyword arguments of ``plot`` that draw a source's marker (:data:`SOURCE_MARKERS`) in `color`."""
-    marker, size, filled = SOURCE_MARKERS.get(str(key), ("o", 4.5, True))
+    """Keyword arguments of ``plot`` that draw a source's marker (:data:`SOURCE_MARKERS`) in `color`.
+
+    A scheme's marker is its own (``marker`` of :class:`numkin.schemes.Scheme`), else its family's if it is the
+    family's partner; a source without one has a small filled circle.
+
+    Examples
+    --------
+    >>> marker_style("complex step", "k")["marker"], marker_style("second_difference", "k")["marker"]
+    ('s', 'o')
+    """
+    key = str(key)
+    scheme = by_label(key)
+    marker, size, filled = _ANALYTIC_MARKER if key == "analytic" else _marker(scheme) if scheme else _MARKER
     return {"marker": marker, "markersize": size, "markerfacecolor": color if filled else "none",
             "markeredgecolor": color, "markeredgewidth": 1.0}

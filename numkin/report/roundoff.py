@@ -7,9 +7,8 @@ from typing import Sequence
 
 import numpy as np
 
-from ..derivatives import get_scheme
 from ..errors import InputError
-from ..schemes import point_stencil
+from ..schemes import lookup, point_stencil
 from .study import (
     EPS, UNIT, at_angle, branch_point, deg_text, exact_derivatives, order_text, position_record, relative_text,
     set_caption, set_views, solve_points,
@@ -336,10 +335,10 @@ def roundoff_table(
     if not steps or not all(math.isfinite(h) and 0 < h < 1 for h in steps):
         raise InputError(f"steps must be positive and below 1 rad, got {steps!r}")
     names = [schemes] if isinstance(schemes, str) else list(schemes)
-    sch = [None if n == "complex_step" else get_scheme(n) for n in names]
-    if any(s is not None and s.periodic_only for s in sch):
+    sch = [lookup(n) for n in names]
+    if any(s.periodic_only for s in sch):
         raise InputError("spectral schemes need a full periodic sweep; they have no step h at one angle")
-    stencils = {s.name: stencil(s) for s in sch if s is not None}
+    stencils = {s.name: stencil(s) for s in sch if not _complex(s)}
     theta = float(check_angle)
     base = branch_point(mechanism, theta, guess, start)
     x0 = base.values[:, 0]
@@ -370,37 +369,37 @@ def roundoff_table(
     no_complex = ""
     scan_errors = {}
     shown = {h: k for k, h in enumerate(scan)}
-    for name, scheme in zip(names, sch):
-        if scheme is None:
-            deriv, order, exact = 1, 2, q1
+    for scheme in sch:
+        deriv, order = scheme.derivative, scheme.order
+        exact = q1 if deriv == 1 else q2
+        if _complex(scheme):
             est = quantity_complex_step(studied, base, eff)
             if isinstance(est, str):  # not analytic: no complex step of the quantity
                 no_complex = est
                 est = np.full(S, math.nan)
         else:
-            deriv, order = scheme.derivative, scheme.order
-            exact = q1 if deriv == 1 else q2
             ks, ws = stencils[scheme.name]
             est = sum(w * samples[int(k)] for k, w in zip(ks, ws)) / eff**deriv
         err = np.abs(est - exact)
         rel = err / abs(exact) if exact != 0 else err  # an exact zero: absolute errors
         row = {
-            "scheme": "complex step" if scheme is None else scheme.name,
-            "formal order": "2" if scheme is None else order_text(scheme),
+            "scheme": scheme.label,
+            "formal order": order_text(scheme),
             "quantity": lab["d1"] if deriv == 1 else lab["d2"],
             f"exact value {UNIT}": float(exact),
         }
         for h in steps:
             row[f"rel error at h = {h:.0e} rad [-]"] = float(rel[shown[h]])
         # the floor of the complex step is eps itself (no cancellation): derivative 0 in the rounding line
-        hstar, estar = fitted_optimum(eff, rel, order, 0 if scheme is None else deriv)
+        floor = 0 if _complex(scheme) else deriv
+        hstar, estar = fitted_optimum(eff, rel, order, floor)
         row["measured optimal h [rad]"] = hstar
         row["rel error at measured optimal h [-]"] = estar
         row["rel error measured at that h [-]"] = (
             _error_at(studied, base, scheme, stencils, theta, hstar, exact) if math.isfinite(hstar) else math.nan
         )
         scan_errors[row["scheme"]] = [float(v) for v in rel]
-        if scheme is None:
+        if _complex(scheme):
             row["textbook rule"] = "any h <= sqrt(eps): no cancellation"
             row["textbook optimal h [rad]"] = math.sqrt(EPS)
         else:
@@ -408,8 +407,8 @@ def roundoff_table(
             row["textbook rule"] = _TEXTBOOK.get((n, p), f"eps^(1/{p + n})")
             row["textbook optimal h [rad]"] = EPS ** (1.0 / (p + n))
         h_tb = row["textbook optimal h [rad]"]
-        row[_ON_CURVE_TEXTBOOK] = _on_fitted_curve(eff, rel, order, 0 if scheme is None else deriv, h_tb)
-        row[_AT_TEXTBOOK] = math.nan if scheme is None and no_complex else _error_at(
+        row[_ON_CURVE_TEXTBOOK] = _on_fitted_curve(eff, rel, order, floor, h_tb)
+        row[_AT_TEXTBOOK] = math.nan if _complex(scheme) and no_complex else _error_at(
             studied, base, scheme, stencils, theta, h_tb, exact)
         rows.append(row)
     df = pd.DataFrame(rows)
@@ -455,6 +454,11 @@ def roundoff_table(
     return set_caption(df, caption, [position_record("check angle", mechanism, theta, x0)])
 
 
+def _complex(scheme) -> bool:
+    """Whether a scheme is the complex step (of a function, not of samples: solved at ``theta + i h``)."""
+    return scheme.kind == "complex_step"
+
+
 def _samples(mechanism, base, tt) -> np.ndarray:
     """The positions (n, M) at the inputs `tt` near the one-point sweep `base`, solved by Newton.
 
@@ -468,9 +472,9 @@ def _samples(mechanism, base, tt) -> np.ndarray:
 
 
 def _error_at(studied, base, scheme, stencils, theta, h, exact) -> float:
-    """The relative error of one scheme (None: the complex step) measured at the step `h`."""
+    """The relative error of one scheme (the complex step too) measured at the step `h`."""
     h = (theta + h) - theta
-    if scheme is None:
+    if _complex(scheme):
         est = float(quantity_complex_step(studied, base, [h])[0])
     else:
         ks, ws = stencils[scheme.name]

@@ -9,7 +9,7 @@ import numpy as np
 
 from .. import analytic
 from ..errors import InputError
-from ..schemes import get_scheme, own_stencil_points
+from ..schemes import REGISTRY, own_stencil_points
 from .counting import count_evaluations, stencil_evaluations, sweep_evaluations
 from .study import (
     DEFAULT_GRIDS, EPS, PEAK, TURN, UNIT, VARIES, exact_derivatives, full_turn, grid_inputs, grid_positions,
@@ -187,39 +187,40 @@ def work_precision_table(
         d2q = silenced(analytic.complex_tangent, mechanism, x, s.inputs, h) if order == 2 else None
         return studied.rates(s.values, s.inputs, x.imag / h, d2q)[order - 1]
 
-    def method_fns(order):
+    def method_fns(order):  # (scheme, None for the analytic solution; its function; whether it differences samples)
         fns = [
             # counted (and timed): computed here, never taken from results shared with other tables
-            ("analytic", lambda s: analytic_rates(s, order), False),
-            ("complex step", lambda s: complex_rates(s, order), False),
+            (None, lambda s: analytic_rates(s, order), False),
+            (REGISTRY["complex_step"], lambda s: complex_rates(s, order), False),
         ]
         for scheme in scheme_list:
             if scheme.derivative == order:
-                fns.append((scheme.name, lambda s, sc=scheme: studied.differenced(s, sc, fresh=True, periodic=periodic),
+                fns.append((scheme, lambda s, sc=scheme: studied.differenced(s, sc, fresh=True, periodic=periodic),
                             True))
         return fns
 
     for order in (1, 2):
         scale = w if order == 1 else w * w
-        for name, fn, differences in method_fns(order):
+        for scheme, fn, differences in method_fns(order):
+            name = "analytic" if scheme is None else scheme.label
             for n in grid_list:
                 s, dq, d2q, cs1, cs2, t_sweep, sweep_work, stencils, done = per_grid[n]
                 exact = dq if order == 1 else d2q
-                if name == "complex step":
+                if scheme is not None and scheme.kind == "complex_step":
                     out, counted = done[order]
                 else:
                     with count_evaluations(mechanism) as count:
                         out = fn(s)
                     counted = count.total
                 derivative_work = counted + (stencils if differences else 0) + studied.work(s)
-                if name == "analytic":
+                if scheme is None:
                     est, ref = exact, (cs1 if order == 1 else cs2)
                 else:
                     est, ref = out, exact
                 err = abs(scale) * np.abs(est - ref)  # the input may turn either way: omega < 0
                 # one period; on an open grid the points where a scheme's own stencil applies (as the
                 # convergence table), the one-sided ends apart; every point for the exact methods
-                own = own_stencil_points([get_scheme(name)], err.size, periodic) if differences else (
+                own = own_stencil_points([scheme], err.size, periodic) if differences else (
                     slice(0, err.size - 1) if periodic else slice(None))
                 e_max = float(np.max(err[own]))
                 row = {
