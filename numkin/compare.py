@@ -56,18 +56,15 @@ from .expressions import derived_derivatives, point_derivatives
 from .errors import InputError
 from .kinematics import PARTNER, apply_scheme, prepare_rows, scheme_for, sweep_grid
 from .quantities import Quantity, catalogue, input_quantity
-from .schemes import own_stencil_points
+from .schemes import NameList, default_schemes, own_stencil_points
 from .units import input_degrees
 
 __all__ = ["Comparison", "compare", "quantities", "DEFAULT_SCHEMES"]
 
-#: Schemes compared by default: first-derivative quantities / second-derivative ones.
-#: The spectral schemes are added on a periodic (full-turn) sweep.
-DEFAULT_SCHEMES = {
-    1: ("forward", "centred", "five_point"),
-    2: ("forward_of_forward", "second_difference", "five_point_second"),
-}
-_SPECTRAL = {1: "spectral", 2: "spectral_second"}
+#: Schemes compared by default on an open sweep: first-derivative quantities / second-derivative ones
+#: (:func:`numkin.schemes.default_schemes`: the ``default`` first-derivative schemes and their partners;
+#: always current). The spectral ones are added on a periodic (full-turn) sweep.
+DEFAULT_SCHEMES = {d: NameList(lambda d=d: default_schemes(d, periodic=False)) for d in (1, 2)}
 
 
 @dataclass(frozen=True)
@@ -252,7 +249,7 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
     exact = w * d1 if order == 1 else w**2 * d2 + a * d1
 
     if schemes is None:
-        schemes = DEFAULT_SCHEMES[order] + ((_SPECTRAL[order],) if rows.periodic else ())
+        schemes = default_schemes(order, periodic=rows.periodic)
     elif isinstance(schemes, str) or not isinstance(schemes, Iterable):
         schemes = (schemes,)  # one scheme: scheme_for names it if it is none
     parameter = "schemes" + ("" if order == 1 else f" (for the acceleration {quantity})")

@@ -17,7 +17,8 @@ it estimates; its weights and order of accuracy are computed exactly
 * how it is **shown**: its ``label`` in tables, its line ``style`` and
   ``marker`` in figures (a second-derivative scheme that is its family's
   partner is drawn in the family's colours, see
-  :func:`numkin.figures.style.source_style`).
+  :func:`numkin.figures.style.source_style`), and whether it is among the
+  schemes a study shows by ``default`` (:func:`default_schemes`).
 
 Rule for partners (checked by the tests): a second-derivative scheme's
 partner is a first-derivative scheme of the same family and the same order,
@@ -47,7 +48,7 @@ True
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -55,8 +56,8 @@ from .errors import InputError
 from .stencils import Rule, Stencil
 
 __all__ = [
-    "Scheme", "SCHEMES", "REGISTRY", "RegistryView", "PARTNER", "FAMILY", "BUILT_IN", "ALIASES",
-    "register", "unregister", "get_scheme", "lookup", "by_label", "point_stencil",
+    "Scheme", "SCHEMES", "REGISTRY", "RegistryView", "NameList", "PARTNER", "FAMILY", "BUILT_IN", "ALIASES",
+    "register", "unregister", "get_scheme", "lookup", "by_label", "default_schemes", "point_stencil",
     "own_stencil_points",
 ]
 
@@ -100,6 +101,9 @@ class Scheme:
     label : str
         How tables name the scheme's rows: its name unless declared
         (``"complex step"``); :func:`by_label` finds the scheme again.
+    default : bool
+        Among the schemes a study shows when none are named
+        (:func:`default_schemes`, :data:`numkin.report.ROUNDOFF_SCHEMES`).
     style : tuple of (str, object)
         Matplotlib keywords of its curves (``color``, ``linestyle``,
         ``linewidth``, ...) as declared; empty or without a colour: drawn
@@ -133,6 +137,7 @@ class Scheme:
     ends: str = ""
     rule: Rule | None = field(default=None, compare=False, repr=False)
     label: str = ""
+    default: bool = False
     style: tuple = field(default=(), repr=False)
     marker: tuple = field(default=(), repr=False)
 
@@ -165,16 +170,16 @@ class Scheme:
 #: family's partner), has a colour of its own.
 BUILT_IN = {
     "forward": dict(offsets=(0, 1), derivative=1, ends="mirror", partner="forward_of_forward",
-                    description="forward difference",
+                    description="forward difference", default=True,
                     style=dict(color="#D55E00", linestyle=(0, (5, 5)), linewidth=1.8), marker=("^", 8.5, False)),
     "backward": dict(offsets=(-1, 0), derivative=1, ends="mirror", description="backward difference",
                      style=dict(color="#CC79A7", linestyle=(5, (5, 5)), linewidth=1.8), marker=("v", 4.5, True)),
     "centred": dict(offsets=(-1, 0, 1), derivative=1, partner="second_difference",
-                    description="centred difference",
+                    description="centred difference", default=True,
                     style=dict(color="#0072B2", linestyle="-", linewidth=2.6, alpha=0.55, zorder=1.9),
                     marker=("o", 4.5, True)),
     "five_point": dict(offsets=(-2, -1, 0, 1, 2), derivative=1, partner="five_point_second",
-                       description="five-point centred difference",
+                       description="five-point centred difference", default=True,
                        style=dict(color="#009E73", linestyle=(0, (1.2, 1.8)), linewidth=2.4),
                        marker=("D", 8.0, False)),
     "richardson": dict(kind="richardson", derivative=1, order=4, stencil="(4 D(h) - D(2h))/3",
@@ -182,10 +187,10 @@ BUILT_IN = {
                        description="Richardson extrapolation of centred differences with steps h and 2h",
                        style=dict(color="#E69F00", linestyle=(0, (6, 4)), linewidth=1.4), marker=("o", 3.5, True)),
     "spectral": dict(kind="spectral", derivative=1, order=0, stencil="ik Y_k (FFT)", partner="spectral_second",
-                     description="FFT differentiation of one full period",
+                     description="FFT differentiation of one full period", default=True,
                      style=dict(color="#56B4E9", linestyle="-.", linewidth=1.6), marker=("*", 7.0, True)),
     "second_difference": dict(offsets=(-1, 0, 1), derivative=2, partner="centred",
-                              description="centred second difference",
+                              description="centred second difference", default=True,
                               style=dict(linestyle="-")),
     "forward_of_forward": dict(offsets=(0, 1, 2), derivative=2, ends="mirror", partner="forward",
                                description="forward difference applied twice (centred on sample i+1)",
@@ -199,7 +204,7 @@ BUILT_IN = {
                             partner="spectral", description="FFT second derivative of one full period"),
     "complex_step": dict(kind="complex_step", derivative=1, order=2, stencil="Im f(x + ih)/h",
                          description="complex step of a function: no subtractive cancellation",
-                         label="complex step",
+                         label="complex step", default=True,
                          style=dict(color="0.45", linestyle="-", linewidth=1.2), marker=("s", 8.0, False)),
 }
 
@@ -259,7 +264,7 @@ FAMILY: Mapping = RegistryView(lambda s: True, lambda s: s.family)
 
 
 def _build(name, *, derivative, offsets=(), kind="stencil", ends="one-sided", partner=None, family=None,
-           description=None, order=None, stencil=None, function=None, label="",
+           description=None, order=None, stencil=None, function=None, label="", default=False,
            style=None, marker=()) -> Scheme:
     rule = None
     weights: tuple = ()
@@ -281,7 +286,7 @@ def _build(name, *, derivative, offsets=(), kind="stencil", ends="one-sided", pa
         periodic_only=kind == "spectral", description=description or f"{len(offsets)}-point stencil {stencil}",
         kind=kind, offsets=tuple(offsets), weights=tuple(weights), partner=partner, family=family,
         ends={"spectral": "periodic only", "complex_step": "none (it evaluates a function, not samples)"}.get(kind, ends),
-        rule=rule, label=label, style=tuple(dict(style or {}).items()),
+        rule=rule, label=label, default=bool(default), style=tuple(dict(style or {}).items()),
         marker=tuple(marker),
     )
 
@@ -299,7 +304,7 @@ def _default_partner(derivative: int, rule: Rule) -> str | None:
 
 def register(name: str, offsets, derivative: int, *, partner: str | None = None, family: str | None = None,
              ends: str = "one-sided", description: str | None = None, replace: bool = False, label: str = "",
-             style=None, marker=()) -> Scheme:
+             default: bool = False, style=None, marker=()) -> Scheme:
     """Add a finite-difference scheme declared by its stencil offsets.
 
     After this call :func:`numkin.derivatives.differentiate`,
@@ -329,6 +334,8 @@ def register(name: str, offsets, derivative: int, *, partner: str | None = None,
         Allow replacing a scheme registered earlier at run time (never a built-in one).
     label : str, optional
         Its name in tables (default: the name). A label names one scheme only.
+    default : bool, default False
+        Whether studies show it when no schemes are named (:func:`default_schemes`).
     style : mapping, optional
         Matplotlib keywords of its curves; with a ``color`` they are its
         whole style, without one they amend the derived style
@@ -363,7 +370,7 @@ def register(name: str, offsets, derivative: int, *, partner: str | None = None,
         raise InputError(f"scheme {name!r} is already registered" + ("" if name in BUILT_IN else "; pass replace=True"))
     if derivative not in (1, 2) or isinstance(derivative, bool):
         raise InputError(f"derivative must be 1 or 2, got {derivative!r}")
-    shown = _shown(name, label, style, marker)
+    shown = _shown(name, label, default, style, marker)
     scheme = _build(name, derivative=derivative, offsets=tuple(offsets), ends=ends, family=family,
                     description=description)
     if partner is None:
@@ -385,7 +392,7 @@ def register(name: str, offsets, derivative: int, *, partner: str | None = None,
     return scheme
 
 
-def _shown(name, label, style, marker) -> dict:
+def _shown(name, label, default, style, marker) -> dict:
     """The checked arguments of :func:`register` on how a scheme is shown."""
     label = label or name
     if not isinstance(label, str) or not label.strip():
@@ -398,7 +405,7 @@ def _shown(name, label, style, marker) -> dict:
     marker = tuple(marker or ())
     if marker and not (len(marker) == 3 and isinstance(marker[0], str) and isinstance(marker[2], bool)):
         raise InputError(f"{name}: marker must be (marker, size, filled), got {marker!r}")
-    return dict(label=label, style=style, marker=marker)
+    return dict(label=label, default=bool(default), style=style, marker=marker)
 
 
 def unregister(name: str) -> None:
@@ -463,6 +470,57 @@ def by_label(text) -> Scheme | None:
     if key in registry:
         return registry[key]
     return next((s for s in registry.values() if s.label == key), None)
+
+
+def default_schemes(derivative: int, *, periodic: bool) -> tuple[str, ...]:
+    """The schemes a comparison of one derivative shows when none are named.
+
+    The ``default`` first-derivative schemes of sampled data, in registry
+    order; for the second derivative their partners, in the same order. The
+    periodic-only ones (spectral) come last, and only if `periodic`.
+
+    Examples
+    --------
+    >>> default_schemes(1, periodic=True)
+    ('forward', 'centred', 'five_point', 'spectral')
+    >>> default_schemes(2, periodic=False)
+    ('forward_of_forward', 'second_difference', 'five_point_second')
+    """
+    if derivative not in (1, 2) or isinstance(derivative, bool):
+        raise InputError(f"derivative must be 1 or 2, got {derivative!r}")
+    first = [s for s in SCHEMES.values() if s.default and s.derivative == 1 and (periodic or not s.periodic_only)]
+    first.sort(key=lambda s: s.periodic_only)  # stable: registry order within each
+    if derivative == 1:
+        return tuple(s.name for s in first)
+    return tuple(s.partner for s in first if s.partner is not None)
+
+
+class NameList(Sequence):
+    """A read-only, always current sequence of scheme names: ``names()``, computed at each use.
+
+    Examples
+    --------
+    >>> firsts = NameList(lambda: tuple(n for n, s in SCHEMES.items() if s.derivative == 1))
+    >>> firsts[:2], "centred" in firsts
+    (('forward', 'backward'), True)
+    """
+
+    def __init__(self, names: Callable[[], tuple]):
+        self._names = names
+
+    def __getitem__(self, index):
+        return self._names()[index]
+
+    def __len__(self):
+        return len(self._names())
+
+    def __eq__(self, other):
+        return tuple(self) == (tuple(other) if isinstance(other, NameList) else other)
+
+    __hash__ = None
+
+    def __repr__(self):
+        return repr(self._names())
 
 
 def get_scheme(name: str) -> Scheme:

@@ -1,8 +1,8 @@
-"""How a scheme is shown -- its table label, figure style and marker -- is read from its Scheme, so a scheme
-registered at run time is shown by the same rules as a built-in one.
+"""How a scheme is shown -- its table label, figure style and marker, default membership -- is read from its
+Scheme, so a scheme registered at run time is shown by the same rules as a built-in one.
 
-Independent references: the styles and markers the figures wrote out by hand before these facts were put on
-the schemes.
+Independent references: the lists that numkin.compare, the round-off table and the figures wrote out by hand
+before these facts were put on the schemes.
 """
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ import math
 
 import pytest
 
-from numkin import linkages, report, schemes
+from numkin import compare, linkages, report, schemes
 from numkin.derivatives import SCHEMES
 
 style = importlib.import_module("numkin.figures.style")
@@ -26,6 +26,41 @@ def registered():
     yield names
     for name in sorted(names, key=lambda n: -schemes.REGISTRY[n].derivative):
         schemes.unregister(name)
+
+
+# ------------------------------------------------------------------ the defaults, derived from `default` and partners
+def test_the_derived_defaults_are_the_lists_written_out_before():
+    assert compare.DEFAULT_SCHEMES[1] == ("forward", "centred", "five_point")
+    assert compare.DEFAULT_SCHEMES[2] == ("forward_of_forward", "second_difference", "five_point_second")
+    assert schemes.default_schemes(1, periodic=True)[-1] == "spectral"
+    assert schemes.default_schemes(2, periodic=True)[-1] == "spectral_second"
+    assert report.ROUNDOFF_SCHEMES == ("forward", "centred", "five_point", "second_difference", "complex_step")
+    assert report.ROUNDOFF_SCHEMES[:4] == ("forward", "centred", "five_point", "second_difference")
+
+
+def test_a_default_scheme_joins_every_default_list_until_it_is_unregistered(registered):
+    registered.append(schemes.register("seven_point", range(-3, 4), 1, default=True).name)
+    assert compare.DEFAULT_SCHEMES[1][-1] == "seven_point"
+    assert schemes.default_schemes(1, periodic=True)[-2:] == ("seven_point", "spectral")  # periodic-only last
+    assert report.ROUNDOFF_SCHEMES[-2:] == ("complex_step", "seven_point")
+    schemes.unregister(registered.pop())
+    assert "seven_point" not in compare.DEFAULT_SCHEMES[1] and "seven_point" not in report.ROUNDOFF_SCHEMES
+
+
+def test_a_registered_first_derivative_after_its_second_pairs_them_in_the_defaults(registered):
+    """A first-derivative scheme registered after a second-derivative one of its span and order takes it as
+    partner, and so brings it into the defaults of an acceleration."""
+    second = schemes.register("wide_second", (-3, 0, 3), 2, partner="centred")
+    registered.append(second.name)
+    first = schemes.register("wide_first", (-3, 0, 3), 1, default=True)
+    registered.append(first.name)
+    assert first.partner == "wide_second"
+    assert compare.DEFAULT_SCHEMES[2][-1] == "wide_second"
+
+
+def test_a_scheme_not_marked_default_is_in_no_default_list(registered):
+    registered.append(schemes.register("seven_point", range(-3, 4), 1).name)
+    assert "seven_point" not in compare.DEFAULT_SCHEMES[1] and "seven_point" not in report.ROUNDOFF_SCHEMES
 
 
 # ------------------------------------------------------------------ labels: tables write them, figures read them back

@@ -8,7 +8,7 @@ from typing import Sequence
 import numpy as np
 
 from ..errors import InputError
-from ..schemes import lookup, point_stencil
+from ..schemes import NameList, REGISTRY, lookup, point_stencil
 from .study import (
     EPS, UNIT, at_angle, branch_point, deg_text, exact_derivatives, order_text, position_record, relative_text,
     set_caption, set_views, solve_points,
@@ -25,8 +25,9 @@ __all__ = [
     "quantity_complex_step",
 ]
 
-#: Default schemes of :func:`roundoff_table` (``"complex_step"`` is not a finite difference).
-ROUNDOFF_SCHEMES = ("forward", "centred", "five_point", "second_difference", "complex_step")
+#: Default schemes of :func:`roundoff_table`: every ``default`` scheme of the registry that has a step h (not
+#: the periodic-only ones), in registry order; always current. ``"complex_step"`` is not a finite difference.
+ROUNDOFF_SCHEMES = NameList(lambda: tuple(n for n, s in REGISTRY.items() if s.default and not s.periodic_only))
 #: Steps shown as columns of :func:`roundoff_table`, rad.
 ROUNDOFF_STEPS = tuple(10.0 ** -k for k in range(1, 13))
 #: Columns of :func:`roundoff_table`: the error at the textbook step on the fitted curve, and measured there.
