@@ -14,9 +14,9 @@ it estimates; its weights and order of accuracy are computed exactly
 * its **ends**: how the samples of an open grid where the interior stencil
   does not fit are handled (``"one-sided"``: the smallest one-sided window
   of at least the interior's order; ``"mirror"``: the interior reflected);
-* how it is **shown**: its ``label`` in tables, its line ``style`` and
-  ``marker`` in figures (a second-derivative scheme that is its family's
-  partner is drawn in the family's colours, see
+* how it is **shown**: its ``label`` in tables, its name in a caption's
+  prose, its line ``style`` and ``marker`` in figures (a second-derivative
+  scheme that is its family's partner is drawn in the family's colours, see
   :func:`numkin.figures.style.source_style`), and whether it is among the
   schemes a study shows by ``default`` (:func:`default_schemes`).
 
@@ -101,6 +101,9 @@ class Scheme:
     label : str
         How tables name the scheme's rows: its name unless declared
         (``"complex step"``); :func:`by_label` finds the scheme again.
+    prose : str
+        How a caption's sentence names it (default: the label with spaces,
+        ``"centred of centred"``; ``"the second difference"``).
     default : bool
         Among the schemes a study shows when none are named
         (:func:`default_schemes`, :data:`numkin.report.ROUNDOFF_SCHEMES`).
@@ -137,6 +140,7 @@ class Scheme:
     ends: str = ""
     rule: Rule | None = field(default=None, compare=False, repr=False)
     label: str = ""
+    prose: str = ""
     default: bool = False
     style: tuple = field(default=(), repr=False)
     marker: tuple = field(default=(), repr=False)
@@ -144,6 +148,8 @@ class Scheme:
     def __post_init__(self):
         if not self.label:
             object.__setattr__(self, "label", self.name)
+        if not self.prose:
+            object.__setattr__(self, "prose", self.label.replace("_", " "))
 
     @property
     def reach(self) -> tuple[int, int]:
@@ -191,7 +197,7 @@ BUILT_IN = {
                      style=dict(color="#56B4E9", linestyle="-.", linewidth=1.6), marker=("*", 7.0, True)),
     "second_difference": dict(offsets=(-1, 0, 1), derivative=2, partner="centred",
                               description="centred second difference", default=True,
-                              style=dict(linestyle="-")),
+                              prose="the second difference", style=dict(linestyle="-")),
     "forward_of_forward": dict(offsets=(0, 1, 2), derivative=2, ends="mirror", partner="forward",
                                description="forward difference applied twice (centred on sample i+1)",
                                marker=("^", 5.5, True)),
@@ -264,7 +270,7 @@ FAMILY: Mapping = RegistryView(lambda s: True, lambda s: s.family)
 
 
 def _build(name, *, derivative, offsets=(), kind="stencil", ends="one-sided", partner=None, family=None,
-           description=None, order=None, stencil=None, function=None, label="", default=False,
+           description=None, order=None, stencil=None, function=None, label="", prose="", default=False,
            style=None, marker=()) -> Scheme:
     rule = None
     weights: tuple = ()
@@ -286,7 +292,7 @@ def _build(name, *, derivative, offsets=(), kind="stencil", ends="one-sided", pa
         periodic_only=kind == "spectral", description=description or f"{len(offsets)}-point stencil {stencil}",
         kind=kind, offsets=tuple(offsets), weights=tuple(weights), partner=partner, family=family,
         ends={"spectral": "periodic only", "complex_step": "none (it evaluates a function, not samples)"}.get(kind, ends),
-        rule=rule, label=label, default=bool(default), style=tuple(dict(style or {}).items()),
+        rule=rule, label=label, prose=prose, default=bool(default), style=tuple(dict(style or {}).items()),
         marker=tuple(marker),
     )
 
@@ -304,7 +310,7 @@ def _default_partner(derivative: int, rule: Rule) -> str | None:
 
 def register(name: str, offsets, derivative: int, *, partner: str | None = None, family: str | None = None,
              ends: str = "one-sided", description: str | None = None, replace: bool = False, label: str = "",
-             default: bool = False, style=None, marker=()) -> Scheme:
+             prose: str = "", default: bool = False, style=None, marker=()) -> Scheme:
     """Add a finite-difference scheme declared by its stencil offsets.
 
     After this call :func:`numkin.derivatives.differentiate`,
@@ -332,8 +338,9 @@ def register(name: str, offsets, derivative: int, *, partner: str | None = None,
     description : str, optional
     replace : bool, default False
         Allow replacing a scheme registered earlier at run time (never a built-in one).
-    label : str, optional
-        Its name in tables (default: the name). A label names one scheme only.
+    label, prose : str, optional
+        Its name in tables and in captions' sentences (default: the name;
+        the label with spaces). A label names one scheme only.
     default : bool, default False
         Whether studies show it when no schemes are named (:func:`default_schemes`).
     style : mapping, optional
@@ -370,7 +377,7 @@ def register(name: str, offsets, derivative: int, *, partner: str | None = None,
         raise InputError(f"scheme {name!r} is already registered" + ("" if name in BUILT_IN else "; pass replace=True"))
     if derivative not in (1, 2) or isinstance(derivative, bool):
         raise InputError(f"derivative must be 1 or 2, got {derivative!r}")
-    shown = _shown(name, label, default, style, marker)
+    shown = _shown(name, label, prose, default, style, marker)
     scheme = _build(name, derivative=derivative, offsets=tuple(offsets), ends=ends, family=family,
                     description=description)
     if partner is None:
@@ -392,11 +399,11 @@ def register(name: str, offsets, derivative: int, *, partner: str | None = None,
     return scheme
 
 
-def _shown(name, label, default, style, marker) -> dict:
+def _shown(name, label, prose, default, style, marker) -> dict:
     """The checked arguments of :func:`register` on how a scheme is shown."""
     label = label or name
-    if not isinstance(label, str) or not label.strip():
-        raise InputError(f"{name}: label must be text, got {label!r}")
+    if not isinstance(label, str) or not label.strip() or not isinstance(prose, str):
+        raise InputError(f"{name}: label and prose must be text, got {label!r} and {prose!r}")
     taken = [s.name for s in _load().values() if s.name != name and label in (s.name, s.label)]
     if taken:
         raise InputError(f"{name}: label {label!r} names scheme {taken[0]!r} already; give another")
@@ -405,7 +412,7 @@ def _shown(name, label, default, style, marker) -> dict:
     marker = tuple(marker or ())
     if marker and not (len(marker) == 3 and isinstance(marker[0], str) and isinstance(marker[2], bool)):
         raise InputError(f"{name}: marker must be (marker, size, filled), got {marker!r}")
-    return dict(label=label, default=bool(default), style=style, marker=marker)
+    return dict(label=label, prose=prose, default=bool(default), style=style, marker=marker)
 
 
 def unregister(name: str) -> None:

@@ -436,10 +436,9 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
         "Stability suite: each case through the solver and every finite-difference scheme; expected errors are "
         "outcomes. A scheme's max rel error is its largest error of dq/dtheta (d2q/dtheta2) over the points where "
         "its own stencil applies: one period of a full turn; on an open sweep all but the points near either end "
-        "that its stencil reaches past (the first and last for centred and the second difference, two at each end "
-        "for the five-point schemes, richardson and centred of centred, the last for forward, the first for backward, "
-        "the last two for forward of forward), which take one-sided end stencils and whose largest error is the scheme's ends rel error (blank "
-        "on a full turn)." + relative_text({"max rel error": PEAK, "ends rel error": PEAK})
+        f"that its stencil reaches past{_ends_text(scheme_list)}, which take one-sided end stencils and whose largest "
+        "error is the scheme's ends rel error (blank on a full turn)."
+        + relative_text({"max rel error": PEAK, "ends rel error": PEAK})
         + " Max cond: the largest 2-norm condition "
         "number of a loop's own block of the scaled Jacobian over the sweep. Sharpest turn: the input range over "
         "which the output turns (jump of dq/dtheta over max |d2q/dtheta2|), blank where wider than 3 grid steps. "
@@ -463,6 +462,45 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
         ("errors and warnings raised", ["case", "error or warning raised"]),
     ], row_keys=["case"])
     return df
+
+
+_COUNT = {2: "two", 3: "three", 4: "four", 5: "five", 6: "six", 7: "seven", 8: "eight", 9: "nine"}
+
+
+def _ends_text(schemes) -> str:
+    """Which points of an open sweep each scheme leaves to its end stencils, in words, from its reach.
+
+    `` (the first and last for centred and the second difference, the last for forward)``: one
+    phrase per reach (``Scheme.reach``), symmetric reaches first, then the shorter
+    first, the end before the start; the schemes of one family that all share a reach (two or
+    more) are named together (``the five-point schemes``). Empty if no scheme has an end.
+    """
+    groups: dict = {}
+    for scheme in schemes:
+        if any(scheme.reach):
+            groups.setdefault(scheme.reach, []).append(scheme)
+
+    def count(n, end):
+        return f"the {end}" if n == 1 else f"the {end} {_COUNT.get(n, n)}"
+
+    def where(before, after):
+        if before == after:
+            return "the first and last" if before == 1 else f"{_COUNT.get(before, before)} at each end"
+        return " and ".join(count(n, end) for n, end in ((before, "first"), (after, "last")) if n)
+
+    def names(group):
+        out = []
+        for scheme in group:
+            family = [s for s in schemes if s.family == scheme.family]
+            if len(family) < 2 or not all(s in group for s in family):
+                out.append(scheme.prose)
+            elif scheme is family[0]:
+                out.append(f"the {scheme.family.replace('_', '-')} schemes")
+        return out[0] if len(out) == 1 else f"{', '.join(out[:-1])} and {out[-1]}"
+
+    order = sorted(groups, key=lambda r: (r[0] != r[1], max(r), r[0] > r[1]))
+    text = ", ".join(f"{where(*reach)} for {names(groups[reach])}" for reach in order)
+    return f" ({text})" if text else ""
 
 
 def report_tables(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | None = None) -> dict:

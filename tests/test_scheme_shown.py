@@ -1,8 +1,8 @@
-"""How a scheme is shown -- its table label, figure style and marker, default membership -- is read from its
-Scheme, so a scheme registered at run time is shown by the same rules as a built-in one.
+"""How a scheme is shown -- its table label, caption prose, figure style and marker, default membership -- is
+read from its Scheme, so a scheme registered at run time is shown by the same rules as a built-in one.
 
 Independent references: the lists that numkin.compare, the round-off table and the figures wrote out by hand
-before these facts were put on the schemes.
+before these facts were put on the schemes, and the end points of a stencil counted from its offsets.
 """
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ import math
 
 import pytest
 
-from numkin import compare, linkages, report, schemes
+from numkin import compare, linkages, report, schemes, stability
 from numkin.derivatives import SCHEMES
 
 style = importlib.import_module("numkin.figures.style")
@@ -146,3 +146,31 @@ def test_a_scheme_declared_in_built_in_alone_gets_a_style(monkeypatch):
 def test_the_cycle_has_none_of_the_declared_colours():
     declared = {dict(s.style)["color"] for s in schemes.REGISTRY.values() if "color" in dict(s.style)}
     assert declared and not declared & set(style.SOURCE_CYCLE)
+
+
+# ------------------------------------------------------------------ the stability caption's end points
+@pytest.mark.parametrize("offsets, words", [
+    ((-3, -2, -1, 0, 1, 2, 3), "three at each end for seven point"),
+    ((0, 1, 2, 3), "the last three for seven point"),
+    ((-1, 0, 1, 2), "the first and the last two for seven point"),
+    ((-2, -1, 0), "the first two for seven point"),
+])
+def test_the_stability_caption_counts_a_schemes_end_points_from_its_offsets(registered, offsets, words):
+    registered.append(schemes.register("seven_point", offsets, 1).name)
+    table = stability.run_suite(["cannot assemble (10, 6, 1, 1)"], schemes=["centred", "seven_point"])
+    caption = table.attrs["caption"]
+    assert "the first and last for centred" in caption and words in caption
+
+
+def test_the_stability_caption_names_a_family_together_only_where_it_shares_one_reach():
+    text = stability._ends_text([SCHEMES[n] for n in ("five_point", "five_point_second", "centred")])
+    assert text == " (the first and last for centred, two at each end for the five-point schemes)"
+    text = stability._ends_text([SCHEMES[n] for n in ("forward", "forward_of_forward", "spectral")])
+    assert text == " (the last for forward, the last two for forward of forward)"
+    assert stability._ends_text([SCHEMES["spectral"]]) == ""
+
+
+def test_the_stability_caption_names_a_scheme_by_its_prose(registered):
+    registered.append(schemes.register("seven_point", range(-3, 4), 1, prose="the seven-point difference").name)
+    text = stability._ends_text([SCHEMES["seven_point"]])
+    assert text == " (three at each end for the seven-point difference)"
