@@ -33,12 +33,14 @@ __all__ = [
     "Settings",
     "Table",
     "FOUR_BAR",
+    "GIVEN_DIMENSIONS",
     "OMEGA",
     "startup",
     "cli_workloads",
     "contenders",
     "sweep_scaling",
     "loop_scaling",
+    "predictor_linkages",
     "rebuild",
 ]
 
@@ -267,14 +269,46 @@ def sweep_scaling(settings: Settings, sizes=None, linkages=("four-bar", "chained
     return table
 
 
-#: The built-in linkages of the predictor table, by the names its rows give them.
-PREDICTOR_LINKAGES = {
-    "four-bar 4:1:3:3": lambda lk: lk.four_bar(*FOUR_BAR),
-    "slider-crank 80:200": lambda lk: lk.slider_crank(80, 200),
-    "six-bar": lambda lk: lk.six_bar(),
-    "quick-return": lambda lk: lk.quick_return(),
-    "chained homework": lambda lk: lk.chained_four_bars(),
-}
+#: The dimensions the benchmark gives a ready-made linkage whose spec has no default for them, in the spec's order
+#: (every other dimension is the spec's default): linkage name -> values.
+GIVEN_DIMENSIONS = {"four_bar": FOUR_BAR, "slider_crank": (80.0, 200.0)}
+
+
+def predictor_linkages() -> dict:
+    """The linkages of the predictor table: every ready-made linkage of ``numkin.linkages.SPECS``, in its order.
+
+    Each built with its spec's defaults, and :data:`GIVEN_DIMENSIONS` for the dimensions that have none;
+    named by its registry name, those given values after it (``"four-bar 4:1:3:3"``).
+
+    Returns
+    -------
+    dict
+        Row name -> a function of no arguments that builds the linkage.
+
+    Raises
+    ------
+    ValueError
+        For a linkage with a dimension that has no default and no value in :data:`GIVEN_DIMENSIONS`.
+
+    Examples
+    --------
+    >>> list(predictor_linkages())[:2]
+    ['four-bar 4:1:3:3', 'slider-crank 80:200']
+    """
+    import functools
+
+    from numkin import linkages
+
+    out = {}
+    for spec in linkages.SPECS.values():
+        required = [d.name for d in spec.dimensions if d.required]
+        given = tuple(GIVEN_DIMENSIONS.get(spec.name, ()))
+        if len(given) != len(required):
+            raise ValueError(f"the predictor table needs {spec.name}'s {', '.join(required)} (no defaults): give "
+                             f"them in GIVEN_DIMENSIONS, got {given}")
+        name = spec.name.replace("_", "-") + (" " + ":".join(f"{v:g}" for v in given) if given else "")
+        out[name] = functools.partial(spec.build, **spec.defaults(), **dict(zip(required, given)))
+    return out
 
 
 def predictors(settings: Settings, sizes=None) -> Table:
@@ -284,14 +318,13 @@ def predictors(settings: Settings, sizes=None) -> Table:
     with and without the fit; ``nfev`` counts the residual evaluations of one sweep of each.
     """
     from numkin import batch_fill
-    from numkin import linkages as lk
 
     table = Table("The batch's predictor round a whole turn, off and on (one process)",
                   ["linkage", "N", "off [ms]", "on [ms]", "on / off", "nfev off → on"])
     was = batch_fill.TURN
     try:
-        for name, build in PREDICTOR_LINKAGES.items():
-            mech = build(lk)
+        for name, build in predictor_linkages().items():
+            mech = build()
             for n in sizes or settings.sizes:
                 t = _angles(n)
 

@@ -60,9 +60,26 @@ def test_the_predictor_table_gives_both_sweeps_and_leaves_the_flag_as_it_was():
 
     table = suites.predictors(suites.Settings.quick(), sizes=(37,))
     rows = {row[0]: row for row in table.rows}
-    assert set(rows) == set(suites.PREDICTOR_LINKAGES) and batch_fill.TURN is True
+    assert set(rows) == set(suites.predictor_linkages()) and batch_fill.TURN is True
     assert rows["four-bar 4:1:3:3"][5] == "165 → 128"  # one batch step fewer per point with the fit
-    assert rows["chained homework"][5] == "244 → 244"  # the fit refused
+    assert rows["chained-four-bars"][5] == "244 → 244"  # the fit refused
+
+
+def test_the_predictor_table_takes_every_registered_linkage_with_its_defaults(monkeypatch):
+    import dataclasses
+
+    from numkin import linkages
+
+    built = suites.predictor_linkages()
+    assert [name.split(" ")[0].replace("-", "_") for name in built] == list(linkages.SPECS)
+    assert built["six-bar"]().title == linkages.six_bar().title
+    # a linkage without defaults for its dimensions, and none given: the table says what it needs
+    copy = dataclasses.replace(linkages.spec("slider_crank"), name="slider_copy")
+    monkeypatch.setitem(linkages.SPECS, "slider_copy", copy)
+    with pytest.raises(ValueError, match="needs slider_copy's crank, rod"):
+        suites.predictor_linkages()
+    monkeypatch.setitem(suites.GIVEN_DIMENSIONS, "slider_copy", (40.0, 100.0))
+    assert list(suites.predictor_linkages())[-1] == "slider-copy 40:100"
 
 
 def test_the_tables_say_no_verdict():
