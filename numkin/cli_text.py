@@ -98,12 +98,11 @@ def format_result(result) -> str:
             rows = []
             open_grid = any(not c.periodic for c in result.comparisons.values())
             for quantity, comparison in result.comparisons.items():
-                unit = comparison.unit
-                for scheme, row in comparison.summary.iterrows():
-                    ends = row.get(f"ends abs error [{unit}]", math.nan)
+                for scheme, row in comparison.summary_records().items():
+                    ends = row.get("ends_abs_error", math.nan)
                     rows.append((
-                        f"{quantity} [{unit}]", str(scheme), f"{row[f'max abs error [{unit}]']:.3g}",
-                        f"{100 * row['max rel error']:.3g}%", f"{row[f'max at {name} [deg]']:g}",
+                        f"{quantity} [{comparison.unit}]", scheme, f"{row['max_abs_error']:.3g}",
+                        f"{100 * row['max_rel_error']:.3g}%", f"{row['max_at_deg']:g}",
                         *([f"{ends:.3g}" if ends == ends else ""] if open_grid else []),
                     ))
             head = ("quantity", "scheme", "max abs error", "max rel error", f"at {name} [deg]",

@@ -59,12 +59,74 @@ from .quantities import Quantity, catalogue, input_quantity
 from .schemes import NameList, default_schemes, own_stencil_points
 from .units import input_degrees
 
-__all__ = ["Comparison", "compare", "quantities", "DEFAULT_SCHEMES"]
+__all__ = ["Comparison", "SummaryColumn", "compare", "quantities", "DEFAULT_SCHEMES"]
 
 #: Schemes compared by default on an open sweep: first-derivative quantities / second-derivative ones
 #: (:func:`numkin.schemes.default_schemes`: the ``default`` first-derivative schemes and their partners;
 #: always current). The spectral ones are added on a periodic (full-turn) sweep.
 DEFAULT_SCHEMES = {d: NameList(lambda d=d: default_schemes(d, periodic=False)) for d in (1, 2)}
+
+
+@dataclass(frozen=True)
+class SummaryColumn:
+    """What one column of a comparison's summary holds: its role, its label and the unit of its values.
+
+    ``Comparison.summary.attrs["columns"]`` maps each role (``key``) to
+    its column, in the summary's order; outputs read a value by its role,
+    never by taking a label apart.
+
+    Attributes
+    ----------
+    key : str
+        The column's role, also its key in JSON: ``"order"``,
+        ``"max_abs_error"``, ``"rms_abs_error"``, ``"max_rel_error"``,
+        ``"rms_rel_error"``, ``"max_at_deg"`` (the input angle of the largest
+        error) or ``"ends_abs_error"`` (open grids only).
+    name : str
+        Its label without the unit (``"max abs error"``, ``"max at theta"``).
+    unit : str or None
+        Unit of its values (``"rad/s"``, ``"deg"``); None for the relative
+        errors (dimensionless) and the order (text).
+    quantity_unit : bool
+        Whether the unit is the compared quantity's (the absolute errors):
+        a table of several quantities gives that unit once per row instead.
+
+    Examples
+    --------
+    >>> SummaryColumn("max_abs_error", "max abs error", "rad/s", True).header
+    'max abs error [rad/s]'
+    """
+
+    key: str
+    name: str
+    unit: str | None = None
+    quantity_unit: bool = False
+
+    @property
+    def header(self) -> str:
+        """The column's label in the summary: its name, and its unit in brackets if it has one."""
+        return f"{self.name} [{self.unit}]" if self.unit else self.name
+
+
+def _summary_columns(target: Quantity, input_name: str, periodic: bool) -> dict:
+    """The columns of a comparison's summary, role -> :class:`SummaryColumn`, in the summary's order."""
+    unit = target.unit
+    columns = [
+        SummaryColumn("order", "order"),
+        SummaryColumn("max_abs_error", "max abs error", unit, True),
+        SummaryColumn("rms_abs_error", "rms abs error", unit, True),
+        SummaryColumn("max_rel_error", "max rel error"),
+        SummaryColumn("rms_rel_error", "rms rel error"),
+        SummaryColumn("max_at_deg", f"max at {input_name}", "deg"),
+    ]
+    if not periodic:  # the one-sided end stencils, apart
+        columns.append(SummaryColumn("ends_abs_error", "ends abs error", unit, True))
+    return {c.key: c for c in columns}
+
+
+def _plain(value):
+    """A summary's cell as Python data: text as it is, a number as a float."""
+    return value if isinstance(value, str) else float(value)
 
 
 @dataclass(frozen=True)
@@ -90,6 +152,8 @@ class Comparison:
         ``ends abs error [unit]``, the largest error of the one-sided end
         stencils at the first and last points (``table.attrs["ends"]``:
         scheme -> how many points at the start and at the end take them).
+        ``summary.attrs["columns"]`` names each column's role and unit
+        (:class:`SummaryColumn`); :meth:`summary_records` gives the values by role.
     scale : float
         ``max|analytic|`` over the sweep, the denominator of ``rel error``.
     h : float
@@ -109,6 +173,29 @@ class Comparison:
     h: float
     periodic: bool
     target: Quantity | None = None
+
+    def summary_records(self) -> dict:
+        """The summary by role: scheme -> {key: value}, keys of :class:`SummaryColumn` in the summary's order.
+
+        The order is text (``"2"``, ``"spectral"``), every other value a float (NaN where undefined).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from numkin import linkages
+        >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0, 361)))
+        >>> c = compare(sweep, 1.0, "v_x", schemes=("centred",))
+        >>> record = c.summary_records()["centred"]
+        >>> list(record)
+        ['order', 'max_abs_error', 'rms_abs_error', 'max_rel_error', 'rms_rel_error', 'max_at_deg']
+        >>> bool(record["max_abs_error"] == c.summary.loc["centred", "max abs error [mm/s]"])
+        True
+        """
+        columns = self.summary.attrs["columns"]
+        return {
+            str(scheme): {key: _plain(row[column.header]) for key, column in columns.items()}
+            for scheme, row in self.summary.iterrows()
+        }
 
     def __repr__(self) -> str:
         return (
@@ -262,6 +349,7 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
     table = {in_col: input_degrees(t), analytic_q.source_label(): exact}
     columns = {analytic_q.source_label(): analytic_q}
     scale = float(np.nanmax(np.abs(exact))) if np.any(np.isfinite(exact)) else float("nan")
+    summary_columns = _summary_columns(target, input_quantity(mech).name, rows.periodic)
     summary = []
     ends_of = {}  # scheme -> rows at the start and at the end taken by one-sided end stencils
     for s in chosen:
@@ -295,25 +383,26 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
         table[f"{s.name} pointwise rel error"] = pointwise
         inner = np.where(keep, err, np.nan)
         worst = int(np.nanargmax(inner)) if np.any(np.isfinite(inner)) else 0
-        row = {
-            "scheme": s.name,
+        values = {
             "order": "spectral" if s.order == 0 else str(s.order),
-            target.with_source("max").source_label("abs error"): float(np.nanmax(inner)),
-            target.with_source("rms").source_label("abs error"): float(np.sqrt(np.nanmean(err[keep] ** 2))),
+            "max_abs_error": float(np.nanmax(inner)),
+            "rms_abs_error": float(np.sqrt(np.nanmean(err[keep] ** 2))),
             # (NaN where the analytic value is zero over the whole sweep: no error is relative to it)
-            "max rel error": float(np.nanmax(np.where(keep, rel, np.nan))) if scale > 0 else np.nan,
-            "rms rel error": float(np.sqrt(np.nanmean(rel[keep] ** 2))) if scale > 0 else np.nan,
-            f"max at {in_col}": float(input_degrees(t[worst])),
+            "max_rel_error": float(np.nanmax(np.where(keep, rel, np.nan))) if scale > 0 else np.nan,
+            "rms_rel_error": float(np.sqrt(np.nanmean(rel[keep] ** 2))) if scale > 0 else np.nan,
+            "max_at_deg": float(input_degrees(t[worst])),
         }
         if not rows.periodic:  # the one-sided end stencils, apart
             ends = ~keep
-            row[target.with_source("ends").source_label("abs error")] = float(np.nanmax(err[ends])) if ends.any() else np.nan
+            values["ends_abs_error"] = float(np.nanmax(err[ends])) if ends.any() else np.nan
+        row = {"scheme": s.name, **{summary_columns[key].header: value for key, value in values.items()}}
         summary.append(row)
     table_df = pd.DataFrame(table)
     summary_df = pd.DataFrame(summary).set_index("scheme")
     for df in (table_df, summary_df):
         df.attrs.update({"quantity": quantity, "unit": unit, "h": rows.h, "periodic": rows.periodic,
                          "descending": rows.reverse, "target": target})
+    summary_df.attrs["columns"] = summary_columns
     table_df.attrs["quantities"] = columns
     table_df.attrs["ends"] = ends_of
     return Comparison(quantity, unit, table_df, summary_df, scale, rows.h, rows.periodic, target)

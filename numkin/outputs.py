@@ -46,11 +46,12 @@ def jsonable(obj):
 
 
 def error_summary(comparisons: dict) -> dict:
-    """``{quantity: {"unit": unit, scheme: {column: value}}}`` from :class:`~numkin.compare.Comparison` objects.
+    """``{quantity: {"unit": unit, scheme: {key: value}}}`` from :class:`~numkin.compare.Comparison` objects.
 
-    The columns of a comparison's summary lose their unit (``max abs error
-    [rad/s]`` -> ``max_abs_error``; the unit is given once per quantity) and
-    ``max at <input> [deg]`` becomes ``max_at_deg``.
+    The keys are the roles of the summary's columns
+    (:class:`~numkin.compare.SummaryColumn`: ``max_abs_error``,
+    ``max_at_deg``, ...), read from :meth:`~numkin.compare.Comparison.summary_records`;
+    the unit of the absolute errors is given once per quantity.
 
     Raises
     ------
@@ -70,18 +71,8 @@ def error_summary(comparisons: dict) -> dict:
                              f"{type(comparison).__name__} {comparison!r:.60}")
     out = {}
     for name, comparison in comparisons.items():
-        unit_suffix = f" [{comparison.unit}]"
         rows = {"unit": comparison.unit}
-        for scheme, row in comparison.summary.iterrows():
-            record = {}
-            for column, value in row.items():
-                column = str(column)
-                if column.startswith("max at "):
-                    key = "max_at_deg"
-                else:
-                    key = column.removesuffix(unit_suffix).replace(" ", "_")
-                record[key] = value if isinstance(value, str) else float(value)
-            rows[str(scheme)] = record
+        rows.update(comparison.summary_records())
         out[name] = rows
     return out
 
@@ -161,8 +152,9 @@ def tables(result) -> dict:
     if "summary" in wanted and result.comparisons:
         frames = []
         for name, comparison in result.comparisons.items():
-            s = comparison.summary.reset_index()
-            s.columns = [c.removesuffix(f" [{comparison.unit}]") for c in s.columns]
+            # the unit of the absolute errors is the row's own column: their labels go without it
+            bare = {c.header: c.name for c in comparison.summary.attrs["columns"].values() if c.quantity_unit}
+            s = comparison.summary.reset_index().rename(columns=bare)
             s.insert(0, "unit", comparison.unit)
             s.insert(0, "quantity", name)
             frames.append(s)

@@ -575,6 +575,7 @@ def written_tolerance(value: float) -> float:
 
 
 def _scheme_values(comparison, i: int) -> dict:
-    """Each scheme's value at grid index ``i`` from a Comparison's table."""
+    """Each scheme's value at grid index ``i`` from a Comparison's table (its columns by their Quantity's source)."""
     table = comparison.table
-    return {str(s): float(table[f"{s} [{comparison.unit}]"].iloc[i]) for s in comparison.summary.index}
+    column_of = {q.source: column for column, q in table.attrs["quantities"].items()}
+    return {str(s): float(table[column_of[s]].iloc[i]) for s in comparison.summary.index}

@@ -1,0 +1,74 @@
+"""What a number is travels with it as data, never as a header parsed back.
+
+The comparison's summary names each column's role and unit
+(:class:`numkin.compare.SummaryColumn`), and JSON, the CLI and the scene's
+summary table read them from there.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from numkin import outputs
+from numkin.cli_text import format_result
+from numkin.scene import run_scene
+
+
+@pytest.fixture(scope="module")
+def slider_crank():
+    """The slider-crank scene: an open grid (0 to 180 deg), so its summaries have the end stencils' column."""
+    return run_scene("slider-crank")
+
+
+def test_summary_columns_name_their_role_and_unit(slider_crank):
+    for comparison in slider_crank.comparisons.values():
+        columns = comparison.summary.attrs["columns"]
+        assert [c.header for c in columns.values()] == list(comparison.summary.columns)
+        assert list(columns) == ["order", "max_abs_error", "rms_abs_error", "max_rel_error", "rms_rel_error",
+                                 "max_at_deg", "ends_abs_error"]
+        units = {key: c.unit for key, c in columns.items()}
+        unit = comparison.target.unit
+        assert units == {"order": None, "max_abs_error": unit, "rms_abs_error": unit, "max_rel_error": None,
+                         "rms_rel_error": None, "max_at_deg": "deg", "ends_abs_error": unit}
+        assert {key for key, c in columns.items() if c.quantity_unit} == {"max_abs_error", "rms_abs_error",
+                                                                          "ends_abs_error"}
+
+
+def test_json_error_summary_is_the_comparisons_own_numbers(slider_crank):
+    errors = slider_crank.to_dict()["errors"]
+    assert list(errors) == list(slider_crank.comparisons) == ["v_x", "a_x"]
+    for name, comparison in slider_crank.comparisons.items():
+        unit, summary = comparison.unit, comparison.summary
+        assert list(errors[name]) == ["unit", *summary.index]
+        assert errors[name]["unit"] == unit
+        for scheme, row in summary.iterrows():
+            want = {
+                "order": row["order"],
+                "max_abs_error": float(row[f"max abs error [{unit}]"]),
+                "rms_abs_error": float(row[f"rms abs error [{unit}]"]),
+                "max_rel_error": float(row["max rel error"]),
+                "rms_rel_error": float(row["rms rel error"]),
+                "max_at_deg": float(row["max at theta [deg]"]),
+                "ends_abs_error": float(row[f"ends abs error [{unit}]"]),
+            }
+            assert errors[name][scheme] == outputs.jsonable(want)
+            record = comparison.summary_records()[scheme]
+            assert list(record) == list(want)
+            assert all(record[k] == v or (v != v and record[k] != record[k]) for k, v in want.items())
+
+
+def test_cli_and_summary_table_read_the_roles(slider_crank):
+    text = format_result(slider_crank).split("largest error over the sweep")[1]
+    for name, comparison in slider_crank.comparisons.items():
+        for scheme, record in comparison.summary_records().items():
+            cells = next(ln.split() for ln in text.splitlines() if ln.split()[:3] == [name, f"[{comparison.unit}]", scheme])
+            assert cells[3:] == [f"{record['max_abs_error']:.3g}", f"{100 * record['max_rel_error']:.3g}%",
+                                 f"{record['max_at_deg']:g}", f"{record['ends_abs_error']:.3g}"]
+    table = outputs.tables(slider_crank)["summary"]
+    assert list(table.columns) == ["quantity", "unit", "scheme", "order", "max abs error", "rms abs error",
+                                   "max rel error", "rms rel error", "max at theta [deg]", "ends abs error"]
+    first = slider_crank.comparisons["v_x"].summary_records()["centred"]
+    assert table.loc[0, "max abs error"] == first["max_abs_error"]
+    assert math.isclose(table.loc[0, "max at theta [deg]"], first["max_at_deg"])
