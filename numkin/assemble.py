@@ -516,14 +516,12 @@ def scene_key(quantity) -> str:
     >>> scene_key(Quantity("theta3", 0, "angle")), scene_key(Quantity("theta3", 1, "angle"))
     ('theta3_deg', 'omega_theta3')
     """
-    if quantity.order == 0 and quantity.dimension == "angle" and not quantity.is_point:
-        return f"{quantity.name}_deg"
-    return quantity.name
+    return f"{quantity.name}_deg" if quantity.in_degrees else quantity.name
 
 
 def scene_unit(quantity) -> str:
     """The unit of a quantity's values in a scene's output: degrees for an angle's position, else its own."""
-    return "deg" if scene_key(quantity).endswith("_deg") else quantity.unit
+    return "deg" if quantity.in_degrees else quantity.unit
 
 
 def scene_quantities(scene: Scene, mech, *, all_unknowns: bool = False, all_points: bool = False,

@@ -39,9 +39,10 @@ def fmt_value(value: float, expected: float | None = None, mismatch: bool = Fals
     return f"{value:#.6g}".rstrip(".")
 
 
-def _label(name: str, unit: str) -> str:
-    base = name[:-4] if name.endswith("_deg") else name
-    return f"{base} [{unit}]"
+def _label(check, key: str) -> str:
+    """A check value's label: its Quantity's name (``theta3``, whose scene key is ``theta3_deg``) and unit."""
+    q = check.quantities.get(key)
+    return f"{key if q is None else q.name} [{check.units[key]}]"
 
 
 def _check_lines(check, input_name: str, title: str) -> list[str]:
@@ -49,11 +50,11 @@ def _check_lines(check, input_name: str, title: str) -> list[str]:
     if not check.on_grid:
         head += " (between grid points: no finite differences)"
     lines = [head]
-    width = max((len(_label(k, check.units[k])) for k in check.values), default=10) + 2
+    width = max((len(_label(check, k)) for k in check.values), default=10) + 2
     for key, value in check.values.items():
         expected = check.expected.get(key)
         missed = expected is not None and not check.ok[key]
-        line = f"  {_label(key, check.units[key]):<{width}}{fmt_value(value, expected, mismatch=missed):>12}"
+        line = f"  {_label(check, key):<{width}}{fmt_value(value, expected, mismatch=missed):>12}"
         if expected is not None:
             mark = "ok" if check.ok[key] else f"MISMATCH (tolerance {check.tolerance[key]:.1g})"
             line += f"   expected {fmt_value(expected, expected)} {mark}"

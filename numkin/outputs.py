@@ -79,16 +79,17 @@ def error_summary(comparisons: dict) -> dict:
 
 def _columns(result, quantities, values_of) -> dict:
     """Label -> array for each quantity, by :attr:`Quantity.label`; positions of angles in degrees."""
-    from .assemble import scene_key, scene_unit
+    from .assemble import scene_unit
 
     cols = {}
     for q in quantities:
-        key = scene_key(q)
         values = values_of(q)
         if values is None:
             continue
-        label = f"{q.name} [{scene_unit(q)}]" if key != q.name else q.label
-        cols[label] = np.degrees(values) if key != q.name else values
+        if q.in_degrees:
+            cols[f"{q.name} [{scene_unit(q)}]"] = np.degrees(values)
+        else:
+            cols[q.label] = values
     return cols
 
 

@@ -63,6 +63,10 @@ class CheckResult:
         Quantity name -> whether the value agrees with the expected one.
     on_grid : bool
         True if the angle is a point of the sweep.
+    quantities : dict
+        Quantity name -> its :class:`~numkin.quantities.Quantity` (what the
+        value is: an angle's position is given in degrees, its name
+        ``theta3_deg`` that of the Quantity ``theta3``).
     """
 
     at_deg: float
@@ -74,6 +78,7 @@ class CheckResult:
     tolerance: dict = field(default_factory=dict)
     ok: dict = field(default_factory=dict)
     on_grid: bool = True
+    quantities: dict = field(default_factory=dict)
 
     @property
     def passed(self) -> bool:
@@ -508,7 +513,7 @@ def _evaluate(result: SceneResult, at_deg: float, check: dict | None = None, *, 
         values_at = result.derived_positions() if on_grid else derived_values(sub)
         derived = {name: v[j] for name, v in values_at.items()}
     xy = mech.point_coordinates(sub.values[:, j : j + 1], sub.inputs[j : j + 1]) if scene.points else {}
-    values, units = {}, {}
+    values, units, quantities = {}, {}, {}
     for key, q in scene_quantities(scene, mech, all_unknowns=every).items():
         if q.is_point:
             if q.order == 0:
@@ -531,14 +536,15 @@ def _evaluate(result: SceneResult, at_deg: float, check: dict | None = None, *, 
             value = kin[q.name].iloc[j]
         else:
             continue
-        values[key], units[key] = float(value), scene_unit(q)
+        values[key], units[key], quantities[key] = float(value), scene_unit(q), q
     if check is not None:  # also the checked quantities of unknowns not reported
         missing = [key for key in check["expected"] if key not in values]
         if missing:
             every_value = _evaluate(result, at_deg, None, every=True)
             for key in missing:
                 values[key], units[key] = every_value.values[key], every_value.units[key]
-    res = CheckResult(at_deg=at_deg, values=values, units=units, on_grid=on_grid)
+                quantities[key] = every_value.quantities[key]
+    res = CheckResult(at_deg=at_deg, values=values, units=units, on_grid=on_grid, quantities=quantities)
     if on_grid:
         for name, comparison in result.comparisons.items():
             if name not in values:
@@ -553,7 +559,7 @@ def _evaluate(result: SceneResult, at_deg: float, check: dict | None = None, *, 
         for key, expected in check["expected"].items():
             tol = check["tolerance"] if check["tolerance"] is not None else written_tolerance(expected)
             diff = values[key] - expected
-            if key.endswith("_deg"):
+            if quantities[key].in_degrees:  # an angle's position: the same angle a turn away agrees
                 diff = math.remainder(diff, 360.0)
             res.expected[key] = expected
             res.tolerance[key] = tol

@@ -129,6 +129,12 @@ class Quantity:
         return self.axis is not None
 
     @property
+    def in_degrees(self) -> bool:
+        """Whether its values are written in degrees at the edges (scene keys and tables, the CLI, figures):
+        the position of an angle (``theta3 [deg]``, scene key ``theta3_deg``), not its rates."""
+        return self.order == 0 and self.dimension == "angle" and not self.is_point
+
+    @property
     def name(self) -> str:
         """The quantity's name, without its source (``"omega_beta"``, ``"vx_P"``, ``"dbeta/dtheta"``)."""
         base = f"{self.axis}_{self.of}" if self.is_point else self.of

@@ -72,3 +72,41 @@ def test_cli_and_summary_table_read_the_roles(slider_crank):
     first = slider_crank.comparisons["v_x"].summary_records()["centred"]
     assert table.loc[0, "max abs error"] == first["max_abs_error"]
     assert math.isclose(table.loc[0, "max at theta [deg]"], first["max_at_deg"])
+
+
+# ------------------------------------------------------------------ a check's values keep their Quantity
+def test_in_degrees_is_an_angles_position():
+    from numkin.quantities import Quantity
+
+    assert Quantity("theta3", 0, "angle").in_degrees
+    assert not Quantity("theta3", 1, "angle").in_degrees
+    assert not Quantity("x", 0, "length").in_degrees
+    assert not Quantity("P", 0, "length", axis="x").in_degrees
+
+
+def _quick_return(tmp_path, **check):
+    """The quick-return scene with its check values replaced by `check`."""
+    from pathlib import Path
+
+    import numkin
+
+    text = (Path(numkin.__file__).parent / "scenes" / "quick-return.toml").read_text()
+    head, _, rest = text.partition("[[check]]")
+    lines = ["[[check]]", "at_deg = 30", *(f"{k} = {v!r}" for k, v in check.items())]
+    path = tmp_path / "quick-return.toml"
+    path.write_text(head + "\n".join(lines) + "\n\n[animation]" + rest.partition("[animation]")[2])
+    return run_scene(str(path))
+
+
+def test_a_check_keeps_the_quantity_of_each_value(tmp_path):
+    result = _quick_return(tmp_path, theta3_deg=66.587 + 360, r3=87.178 + 360)
+    check = result.checks[0]
+    q = check.quantities["theta3_deg"]
+    assert (q.name, q.dimension, q.order, q.in_degrees) == ("theta3", "angle", 0, True)
+    assert check.units["theta3_deg"] == "deg" and check.quantities["r3"].unit == "mm"
+    # an angle's position agrees a turn away (decided by its Quantity), a length does not
+    assert check.ok == {"theta3_deg": True, "r3": False}
+    lines = format_result(result).splitlines()
+    assert any(ln.split()[:3] == ["theta3", "[deg]", "66.587"] for ln in lines)
+    assert any(ln.split()[:2] == ["r3", "[mm]"] for ln in lines)
+    assert "theta3_deg" in check.to_dict()["values"] and "quantities" not in check.to_dict()
