@@ -110,3 +110,38 @@ def test_a_check_keeps_the_quantity_of_each_value(tmp_path):
     assert any(ln.split()[:3] == ["theta3", "[deg]", "66.587"] for ln in lines)
     assert any(ln.split()[:2] == ["r3", "[mm]"] for ln in lines)
     assert "theta3_deg" in check.to_dict()["values"] and "quantities" not in check.to_dict()
+
+
+# ------------------------------------------------------------------ figures: symbol and unit from the Quantity
+def test_kinematics_figures_take_symbol_and_unit_from_the_quantity():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    from numkin import figures, linkages
+    from numkin.analytic import kinematics
+    from numkin.figures.labels import axis_label, axis_unit, quantities_of
+    from numkin.kinematics import finite_difference
+
+    sweep = linkages.six_bar().sweep(np.radians(np.arange(0, 361)))  # lengths in cm
+    exact, fd = kinematics(sweep, "-10 rad/s"), {"centred": finite_difference(sweep, "-10 rad/s")}
+    position, velocity, acceleration = quantities_of(sweep, "x")
+    assert [axis_unit(q) for q in (position, velocity, acceleration)] == ["cm", "cm/s", "cm/s²"]
+    fig = figures.kinematics(sweep, "x", analytic=exact, finite=fd, check_angles=[np.radians(90)])
+    assert [ax.get_ylabel() for ax in fig.axes[:3]] == [axis_label(q) for q in (position, velocity, acceleration)]
+    text = "\n".join(t.get_text() for ax in fig.axes for t in ax.texts)
+    assert f"${acceleration.symbol}$ at $\\theta_{{2}}$ = 90°" in text
+    assert any(line.startswith("  analytic: ") and line.endswith(" cm/s²") for line in text.splitlines())
+    plt.close(fig)
+
+    fig = figures.acceleration_comparison(sweep, "x", exact, fd)
+    assert fig.axes[0].get_ylabel() == axis_label(acceleration) == "$a_{x}$ [cm/s²]"
+    assert fig.axes[1].get_ylabel() == "|numerical − analytic| [cm/s²]"
+    assert fig.axes[0].get_title().endswith(f": ${acceleration.symbol}$, numerical against analytic")
+    plt.close(fig)
+
+    angle = quantities_of(linkages.chained_four_bars().sweep(np.radians([0.0, 1.0])), "beta")
+    assert [axis_label(q) for q in angle] == ["$\\beta$ [deg]", "$\\omega_{\\beta}$ [rad/s]",
+                                              "$\\alpha_{\\beta}$ [rad/s²]"]

@@ -9,9 +9,9 @@ import numpy as np
 
 from ..errors import InputError
 from .labels import (
-    angle_text, check_points, check_unknown, deg_text, degree_ticks, derived_of, frame_column, frame_input, input_label,
-    input_name, is_angle, length_unit, mechanism_title, quantity_labels, rate_columns, sig5, sym, tex, uniform_step,
-    unit_of,
+    angle_text, axis_label, axis_unit, check_points, check_unknown, deg_text, degree_ticks, derived_of, frame_column,
+    frame_input, input_label, input_name, is_angle, length_unit, mechanism_title, quantities_of, rate_columns, sig5, sym,
+    tex, uniform_step,
 )
 from .arguments import need_angles, need_frame, need_frames, need_names, need_sweep
 from .ends import END_LABEL, end_mask, frame_ends, scheme_reach
@@ -347,12 +347,13 @@ def kinematics(
         raise InputError(
             f"kinematics of {name!r}: no analytic or finite-difference frame holds {vcol!r} or {acol!r}"
         )
-    labels = quantity_labels(sweep, name)
-    units = [unit_of(lab) for lab in labels]
+    quantities = quantities_of(sweep, name)  # position, velocity, acceleration: each panel's symbol and unit
+    labels = [axis_label(q) for q in quantities]
+    units = [axis_unit(q) for q in quantities]
     x = np.degrees(sweep.inputs)
     checks = check_points(check_angles, sweep.inputs)
     pos = sampled(sweep, name)
-    pos = np.degrees(pos) if is_angle(sweep, name) else pos
+    pos = np.degrees(pos) if quantities[0].in_degrees else pos
     box = {"boxstyle": "square,pad=0.3", "facecolor": "white", "edgecolor": "0.7", "alpha": 0.9}
     with style():
         fig, axes = new_figure(3, 1, sharex=True, size=(8.4, 7.6))
@@ -377,7 +378,7 @@ def kinematics(
                 panel.axvline(math.degrees(a), color="0.4", linestyle=":", linewidth=0.9)
             k = sweep.index(a)
             ax0.plot(x[k], pos[k], "o", color="black", markersize=5, zorder=5)
-            value = angle_text(math.radians(pos[k])) if units[0] == "deg" else f"{sig5(pos[k])} {units[0]}"
+            value = angle_text(math.radians(pos[k])) if quantities[0].in_degrees else f"{sig5(pos[k])} {units[0]}"
             texts[0].append(f"{sym(name)}({deg_text(sweep.inputs[k])}) = {value}")
             for j, (panel, col, src) in enumerate(zip(axes[1:, 0], (vcol, acol), panels), start=1):
                 if not src:
@@ -391,8 +392,7 @@ def kinematics(
                     panel.plot(math.degrees(xin[i]), v, "o", color=st["color"], markersize=5, zorder=5)
                     how = f" ({END_LABEL})" if end_mask(len(frame), frame_ends(key, frame, j))[i] else ""
                     lines.insert(0, f"  {source_label(key)}{how}: {sig5(v)} {units[j]}")
-                qsym = labels[j].split(" [")[0]
-                texts[j] += [f"{qsym} at {sym(input_name(sweep))} = {deg_text(a)}", *lines]
+                texts[j] += [f"${quantities[j].symbol}$ at {sym(input_name(sweep))} = {deg_text(a)}", *lines]
         # legends and check values beside the panels, nothing hiding the curves
         _side_columns(fig, axes[:, 0], [texts[j] for j in range(3)], box)
         axes[-1, 0].set_xlabel(input_label(sweep))
@@ -472,8 +472,8 @@ def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
         raise InputError(f"acceleration of {name!r}: needs both the analytic frame and finite-difference frames")
     analytic, finite = with_rates(sweep, name, analytic, finite, where="acceleration_comparison")
     _, acol = rate_columns(sweep, name)
-    _, _, alabel = quantity_labels(sweep, name)
-    unit = unit_of(alabel)
+    acceleration = quantities_of(sweep, name)[2]
+    alabel, unit = axis_label(acceleration), axis_unit(acceleration)
     xa_in = frame_input(analytic, sweep)
     ya = frame_column(analytic, acol, "analytic kinematics")
     x = np.degrees(xa_in)
@@ -503,5 +503,5 @@ def acceleration_comparison(sweep, name: str, analytic, finite: Mapping):
         axe.set_ylabel(f"|numerical − analytic| [{unit}]")
         axe.set_xlabel(input_label(sweep))
         degree_ticks(axe, x)
-        ax.set_title(f"{mechanism_title(sweep.mechanism)}: {alabel.split(' [')[0]}, numerical against analytic")
+        ax.set_title(f"{mechanism_title(sweep.mechanism)}: ${acceleration.symbol}$, numerical against analytic")
     return fig

@@ -20,9 +20,10 @@ from ..errors import InputError
 from ..quantities import GREEK, tex
 
 __all__ = [
-    "ANGLE_DECIMALS", "GREEK", "angle_text", "check_points", "check_unknown", "deg_text", "derived_of", "degree_ticks", "frame_column", "frame_input",
-    "input_label", "input_name", "is_angle", "length_text", "length_unit", "mechanism_title", "no_negative_zero", "quantity_labels", "rate_columns",
-    "sig5", "sym", "table_column", "tex", "uniform_step", "unit_of", "value_text",
+    "ANGLE_DECIMALS", "GREEK", "angle_text", "axis_label", "axis_unit", "check_points", "check_unknown", "deg_text", "derived_of",
+    "degree_ticks", "frame_column", "frame_input", "input_label", "input_name", "is_angle", "length_text", "length_unit",
+    "mechanism_title", "no_negative_zero", "quantities_of", "quantity_labels", "rate_columns", "sig5", "sym", "table_column",
+    "tex", "uniform_step", "value_text",
 ]
 
 def sym(name: str) -> str:
@@ -85,9 +86,18 @@ def length_unit(sweep) -> str:
     return sweep.mechanism.length_unit
 
 
-def _quantities(sweep, name: str):
+def quantities_of(sweep, name: str) -> list:
     """The position, velocity and acceleration :class:`~numkin.quantities.Quantity` of an unknown or
-    derived quantity."""
+    derived quantity of the sweep's mechanism.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numkin import linkages
+    >>> sweep = linkages.slider_crank(80, 200).sweep(np.radians([0.0, 1.0]))
+    >>> [q.name for q in quantities_of(sweep, "theta3")]
+    ['theta3', 'omega_theta3', 'alpha_theta3']
+    """
     from ..quantities import Quantity
 
     mech = sweep.mechanism
@@ -96,10 +106,35 @@ def _quantities(sweep, name: str):
             for order in (0, 1, 2)]
 
 
+def axis_unit(quantity) -> str:
+    """The unit a figure gives a quantity's values in: degrees for an angle's position (drawn in degrees),
+    else the Quantity's own unit, its squares written ``²``.
+
+    Examples
+    --------
+    >>> from numkin.quantities import Quantity
+    >>> axis_unit(Quantity("beta", 0, "angle")), axis_unit(Quantity("x", 2, "length", length_unit="cm"))
+    ('deg', 'cm/s²')
+    """
+    return "deg" if quantity.in_degrees else quantity.unit.replace("^2", "²")
+
+
+def axis_label(quantity) -> str:
+    """A figure's axis label of a quantity: its mathtext symbol and :func:`axis_unit` in brackets.
+
+    Examples
+    --------
+    >>> from numkin.quantities import Quantity
+    >>> print(axis_label(Quantity("beta", 1, "angle")))
+    $\\omega_{\\beta}$ [rad/s]
+    """
+    return f"${quantity.symbol}$ [{axis_unit(quantity)}]"
+
+
 def quantity_labels(sweep, name: str) -> tuple[str, str, str]:
     """Axis labels of position, velocity and acceleration of an unknown or derived quantity, with units.
 
-    Units from :class:`~numkin.quantities.Quantity`; angles drawn in degrees.
+    Symbols and units from :class:`~numkin.quantities.Quantity` (:func:`axis_label`); angles drawn in degrees.
 
     Examples
     --------
@@ -109,17 +144,13 @@ def quantity_labels(sweep, name: str) -> tuple[str, str, str]:
     >>> quantity_labels(sweep, "x")
     ('$x$ [mm]', '$v_{x}$ [mm/s]', '$a_{x}$ [mm/s²]')
     """
-    t = tex(name)
-    _, vel, acc = (q.unit.replace("^2", "²") for q in _quantities(sweep, name))
-    if is_angle(sweep, name):
-        return f"${t}$ [deg]", rf"$\omega_{{{t}}}$ [{vel}]", rf"$\alpha_{{{t}}}$ [{acc}]"
-    return f"${t}$ [{length_unit(sweep)}]", f"$v_{{{t}}}$ [{vel}]", f"$a_{{{t}}}$ [{acc}]"
+    return tuple(axis_label(q) for q in quantities_of(sweep, name))
 
 
 def rate_columns(sweep, name: str) -> tuple[str, str]:
     """Velocity and acceleration column names of an unknown or derived quantity in the kinematics frames
     (Quantity names: ``omega_mu``, ``alpha_mu`` of an angle, ``v_s``, ``a_s`` of a length)."""
-    _, vel, acc = _quantities(sweep, name)
+    _, vel, acc = quantities_of(sweep, name)
     return vel.name, acc.name
 
 
@@ -286,8 +317,3 @@ def table_column(table, prefix: str, what: str, required: bool = True):
     if required:
         raise InputError(f"{what}: no column starting with {prefix!r}; columns are {list(table.columns)}")
     return None
-
-
-def unit_of(label: str) -> str:
-    """``"$\\omega$ [rad/s]"`` -> ``"rad/s"``: the unit in the last brackets of an axis label."""
-    return label.rsplit("[", 1)[1].rstrip("]")
