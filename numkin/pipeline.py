@@ -436,9 +436,9 @@ def render_figures(result: SceneResult, out_dir, *, formats=("png", "svg"), prog
                         result.mechanism, omega=scene.speed, **common, **sweep_opts, repeat=None,
                     )
                 elif kind == "roundoff":
-                    table = report.roundoff_table(
+                    table = report.with_check_angle(report.roundoff_table(
                         result.mechanism, check_angle=options["check_angle"], start=options["start"], **common,
-                    )
+                    ), result.mechanism, options["check_angle"])
                 else:
                     for jacobian in ("symbolic", "forward", "central"):
                         result.report[f"newton_{jacobian}"] = report.newton_table(

@@ -145,3 +145,57 @@ def test_kinematics_figures_take_symbol_and_unit_from_the_quantity():
     angle = quantities_of(linkages.chained_four_bars().sweep(np.radians([0.0, 1.0])), "beta")
     assert [axis_label(q) for q in angle] == ["$\\beta$ [deg]", "$\\omega_{\\beta}$ [rad/s]",
                                               "$\\alpha_{\\beta}$ [rad/s²]"]
+
+
+# ------------------------------------------------------------------ report tables: the check angle and Jacobian as data
+def test_report_tables_carry_their_check_angle_and_figures_write_it_from_there():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from numkin import figures, linkages, report
+
+    mech = linkages.four_bar(4, 1, 3, 3)
+    tables = report.full_report(mech, omega=1.0, quantity="theta4", check_angle=math.radians(90), grids=(36, 72),
+                                schemes=("centred",), points_per_turn=36)
+    for name in ("convergence", "roundoff", "newton", "jacobian", "tolerance"):
+        assert tables[name].attrs["check"] == ("theta2", 90.0), name
+    roundoff = tables["roundoff"]
+    assert "theta2 = 90 deg" in roundoff.attrs["caption"].split(";")[0]
+    fig = figures.roundoff(roundoff)
+    assert "at $\\theta_{2}$ = 90° on the sweep's branch" in fig.axes[0].get_title()
+    plt.close(fig)
+    # the caption is only typeset: what it names is the table's attrs["check"], never parsed out of it
+    plain = roundoff.copy()
+    plain.attrs = {k: v for k, v in roundoff.attrs.items() if k != "check"}
+    fig = figures.roundoff(plain)
+    assert "at theta2 = 90 deg on the sweep's branch" in fig.axes[0].get_title()
+    plt.close(fig)
+
+
+def test_newton_figure_takes_each_tables_jacobian_from_its_attrs():
+    import types
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from numkin import linkages, report
+    from numkin.figures.dispatch import _build, _Data
+
+    mech = linkages.four_bar(4, 1, 3, 3)
+    forward = report.newton_table(mech, check_angle=math.radians(90), jacobian="forward")
+    hand_made = forward.copy()
+    hand_made.attrs = {}
+    result = types.SimpleNamespace(tables={"first solve": forward, "newton_central": hand_made})
+    fig, stem = _build("newton", None, _Data(result))
+    labels = [ln.get_label() for ln in fig.axes[0].get_lines()]
+    assert stem == "newton" and labels == ["forward Jacobian"]  # a table's key says nothing of its Jacobian
+    assert fig.axes[0].get_title() == "Newton: residual per iteration at $\\theta_{2}$ = 90°"
+    plt.close(fig)
+    result = types.SimpleNamespace(tables={"newton": hand_made})
+    fig, _ = _build("newton", None, _Data(result))
+    assert [ln.get_label() for ln in fig.axes[0].get_lines()] == ["symbolic Jacobian"]  # numkin's default
+    plt.close(fig)

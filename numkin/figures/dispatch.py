@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import re
 from pathlib import Path
 from typing import Sequence
 
@@ -336,7 +335,9 @@ def _build(kind: str, arg, d: _Data):
     if kind == "roundoff":
         return roundoff(d.table("roundoff")), "roundoff"
     if kind == "newton":
-        found = {jacobian_of(t, key): t for key, t in d.tables.items() if re.fullmatch(r"newton([_-]\w+)?", key)}
+        # the tables of numkin.report.newton_table, each naming its Jacobian (attrs["jacobian"]); or one named "newton"
+        found = {jacobian_of(t): t for key, t in d.tables.items()
+                 if getattr(t, "attrs", {}).get("jacobian") or key == "newton"}
         if not found:
             raise _Missing("no 'newton' table in the result (numkin.report.newton_table makes it)")
         return newton_residuals(found), "newton"
@@ -357,9 +358,11 @@ def render(result, names: Sequence[str] | None = None, out_dir=".", formats: Seq
         :func:`numkin.kinematics.finite_difference`; else taken from
         ``comparisons``, quantity -> :class:`numkin.compare.Comparison`),
         ``tables`` (name -> DataFrame, the names of
-        :func:`numkin.report.full_report`; Newton tables as ``newton`` or
-        ``newton_<jacobian>``), ``check_angles`` (rad; else the ``at_deg``
-        of ``checks``), ``figures`` (else ``scene.figures``) and
+        :func:`numkin.report.full_report`; the Newton tables are those of
+        :func:`numkin.report.newton_table`, each naming its Jacobian in
+        ``attrs["jacobian"]``, or one named ``newton``), ``check_angles``
+        (rad; else the ``at_deg`` of ``checks``), ``figures`` (else
+        ``scene.figures``) and
         ``scene.report["quantity"]`` / ``scene.unknowns`` for the default
         unknown.
     names : sequence of str, optional

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import re
 
 import numpy as np
 
@@ -102,18 +101,27 @@ def _plain_log_ticks(axis, values) -> None:
 
 
 def _title(table, default: str) -> str:
-    """A table's ``attrs["title"]`` if it has one; else the first clause of its caption; else `default`."""
+    """A table's ``attrs["title"]`` if it has one; else the first clause of its caption (:func:`_caption_title`);
+    else `default`."""
     attrs = getattr(table, "attrs", {})
     if attrs.get("title"):
         return str(attrs["title"])
     caption = table_caption(table)
-    return _caption_title(caption) if caption else default
+    return _caption_title(caption, attrs.get("check")) if caption else default
 
 
-def _caption_title(caption: str) -> str:
-    """The first clause of a report table's caption, ``theta = 100 deg`` written as ``θ = 100°``."""
+def _check_text(check, plain: bool = False) -> str:
+    """A check angle, ``attrs["check"]`` (the input's name and the angle in degrees), as a report's caption writes
+    it (`plain`: ``theta = 100 deg``, six significant digits) or as a figure does (``θ = 100°``)."""
+    name, degrees = check
+    return f"{name} = {degrees:.6g} deg" if plain else f"{sym(name)} = {degrees:.6g}°"
+
+
+def _caption_title(caption: str, check=None) -> str:
+    """The first clause of a report table's caption; the check angle it names, the table's ``attrs["check"]``
+    (``theta = 100 deg``), written with the input's symbol and a degree sign (``θ = 100°``)."""
     head = caption.split(";")[0]
-    return re.sub(r"\b(\w+) = ([-0-9.]+) deg\b", lambda m: f"{sym(m.group(1))} = {m.group(2)}°", head)
+    return head.replace(_check_text(check, plain=True), _check_text(check)) if check else head
 
 
 def _log_limits(values, pad: float = 3.0) -> tuple[float, float]:
@@ -469,7 +477,7 @@ def newton_residuals(tables):
         if "Jacobian" in tables.columns:
             tables = {str(j): sub for j, sub in _groups(tables, "Jacobian")}
         else:
-            tables = {jacobian_of(tables, "newton"): tables}
+            tables = {jacobian_of(tables): tables}
     if not tables:
         raise InputError("newton_residuals: no Newton table given")
     # overlapping curves stay visible: large open, medium open, small filled markers
@@ -496,17 +504,13 @@ def newton_residuals(tables):
         ax.set_ylabel("residual norm (scaled) [–]")
         first = next(iter(tables.values()))
         check = getattr(first, "attrs", {}).get("check")
-        at = f" at {sym(check[0])} = {check[1]:.6g}°" if check else ""
+        at = f" at {_check_text(check)}" if check else ""
         ax.set_title(f"Newton: residual per iteration{at}")
         ax.legend(loc="upper right")
     return fig
 
 
-def jacobian_of(table, key: str) -> str:
-    """Name of the Jacobian of a Newton table: the one it was solved with (``attrs["jacobian"]``, set by
-    :func:`numkin.report.newton_table`), else its key (``newton_forward``), else ``"symbolic"``."""
-    jacobian = getattr(table, "attrs", {}).get("jacobian")
-    if jacobian:
-        return str(jacobian)
-    m = re.fullmatch(r"newton[_-](\w+)", key)
-    return m.group(1) if m else "symbolic"
+def jacobian_of(table) -> str:
+    """Name of the Jacobian a Newton table was solved with: its ``attrs["jacobian"]``, set by
+    :func:`numkin.report.newton_table`; ``"symbolic"`` (numkin's default) for a table that does not say."""
+    return str(getattr(table, "attrs", {}).get("jacobian") or "symbolic")

@@ -59,7 +59,9 @@ Conventions
 -----------
 * Angles are in rad inside; tables show degrees only in labelled columns
   (``"h [deg]"``) and in the text of column names such as
-  ``"abs error at theta = 100 deg [unit of quantity]"``.
+  ``"abs error at theta = 100 deg [unit of quantity]"``. A table computed at
+  a check angle carries it as data, ``attrs["check"]``: the input's name and
+  the angle in degrees (figures write it from there).
 * A row's ``quantity`` names what was differentiated, with its unit:
   ``"omega_beta [rad/s]"`` (first-derivative schemes) or
   ``"alpha_beta [rad/s^2]"`` (second-derivative schemes); for a length
@@ -160,6 +162,7 @@ __all__ = [
     "STUDENT_RULES",
     "full_report",
     "scene_report",
+    "with_check_angle",
     "write_tables",
 ]
 
@@ -244,7 +247,9 @@ def _full_report(mechanism, *, omega, quantity, check_angle, grids, schemes, poi
         ),
         "work_precision": wp,
         "cheapest": cheapest_table(wp, by="time" if repeat else "work"),
-        "roundoff": roundoff_table(mechanism, quantity=quantity, check_angle=check_angle, guess=guess, start=start),
+        "roundoff": with_check_angle(
+            roundoff_table(mechanism, quantity=quantity, check_angle=check_angle, guess=guess, start=start),
+            mechanism, check_angle),
         "newton": newton_table(mechanism, check_angle=check_angle, guess=guess, start=start),
         "jacobian": jacobian_table(
             mechanism, check_angle=check_angle, points_per_turn=points_per_turn, repeat=repeat, start=start, guess=guess,
@@ -255,6 +260,18 @@ def _full_report(mechanism, *, omega, quantity, check_angle, grids, schemes, poi
             guess=guess, span=span,
         ),
     }
+
+
+def with_check_angle(table, mechanism, check_angle: float):
+    """`table`, its ``attrs["check"]`` set to the input's name and `check_angle` in degrees if it has none.
+
+    For a table computed at a check angle whose function does not record
+    it (the round-off table): figures write the angle from there.
+    """
+    import math
+
+    table.attrs.setdefault("check", (mechanism.input_name, math.degrees(check_angle)))
+    return table
 
 
 def scene_report(scene, *, repeat: int | None = None) -> dict:

@@ -172,6 +172,8 @@ def convergence_table(
     df = pd.DataFrame(rows)
     df.attrs["quantities"] = studied.quantities
     df.attrs["units"] = {"h [deg]": "deg"}  # what a figure writes on its axis
+    if check_angle is not None:
+        df.attrs["check"] = (mechanism.input_name, math.degrees(check_angle))  # the input's name and angle (deg)
     ends_col = None if periodic else f"ends abs error {UNIT}"
     set_views(df, [
         ("error over the sweep", ["scheme", "formal order", "points per turn", "h [deg]",

@@ -231,6 +231,7 @@ def jacobian_table(
             }
         )
     df = pd.DataFrame(rows)
+    df.attrs["check"] = (mechanism.input_name, math.degrees(check_angle))  # the input's name and angle (deg)
     set_views(df, [
         ("one solve", ["Jacobian", "iterations (one solve)", "order estimate, last (one solve) [-]",
                        "final residual (one solve) [-]", "final error (one solve) [-]"]),

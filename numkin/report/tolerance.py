@@ -374,6 +374,7 @@ def tolerance_table(
         )
     df = pd.DataFrame(rows)
     df.attrs["quantities"] = studied.quantities
+    df.attrs["check"] = (mechanism.input_name, math.degrees(check_angle))  # the input's name and angle (deg)
     set_views(df, [
         ("the stopping rules", ["rule", "stopping rule", "tol"]),
         ("what each leaves in the positions", ["rule", "Newton iterations per point (mean)", f"max |F| [{lu}]",
