@@ -52,6 +52,7 @@ import numpy as np
 
 from . import derivatives as _d
 from .analytic import check_sweep, derivatives, input_rates
+from .column_kinds import set_kinds
 from .expressions import derived_derivatives, point_derivatives
 from .errors import InputError
 from .kinematics import PARTNER, apply_scheme, prepare_rows, scheme_for, sweep_grid
@@ -65,68 +66,6 @@ __all__ = ["Comparison", "SummaryColumn", "compare", "quantities", "DEFAULT_SCHE
 #: (:func:`numkin.schemes.default_schemes`: the ``default`` first-derivative schemes and their partners;
 #: always current). The spectral ones are added on a periodic (full-turn) sweep.
 DEFAULT_SCHEMES = {d: NameList(lambda d=d: default_schemes(d, periodic=False)) for d in (1, 2)}
-
-
-@dataclass(frozen=True)
-class SummaryColumn:
-    """What one column of a comparison's summary holds: its role, its label and the unit of its values.
-
-    ``Comparison.summary.attrs["columns"]`` maps each role (``key``) to
-    its column, in the summary's order; outputs read a value by its role,
-    never by taking a label apart.
-
-    Attributes
-    ----------
-    key : str
-        The column's role, also its key in JSON: ``"order"``,
-        ``"max_abs_error"``, ``"rms_abs_error"``, ``"max_rel_error"``,
-        ``"rms_rel_error"``, ``"max_at_deg"`` (the input angle of the largest
-        error) or ``"ends_abs_error"`` (open grids only).
-    name : str
-        Its label without the unit (``"max abs error"``, ``"max at theta"``).
-    unit : str or None
-        Unit of its values (``"rad/s"``, ``"deg"``); None for the relative
-        errors (dimensionless) and the order (text).
-    quantity_unit : bool
-        Whether the unit is the compared quantity's (the absolute errors):
-        a table of several quantities gives that unit once per row instead.
-
-    Examples
-    --------
-    >>> SummaryColumn("max_abs_error", "max abs error", "rad/s", True).header
-    'max abs error [rad/s]'
-    """
-
-    key: str
-    name: str
-    unit: str | None = None
-    quantity_unit: bool = False
-
-    @property
-    def header(self) -> str:
-        """The column's label in the summary: its name, and its unit in brackets if it has one."""
-        return f"{self.name} [{self.unit}]" if self.unit else self.name
-
-
-def _summary_columns(target: Quantity, input_name: str, periodic: bool) -> dict:
-    """The columns of a comparison's summary, role -> :class:`SummaryColumn`, in the summary's order."""
-    unit = target.unit
-    columns = [
-        SummaryColumn("order", "order"),
-        SummaryColumn("max_abs_error", "max abs error", unit, True),
-        SummaryColumn("rms_abs_error", "rms abs error", unit, True),
-        SummaryColumn("max_rel_error", "max rel error"),
-        SummaryColumn("rms_rel_error", "rms rel error"),
-        SummaryColumn("max_at_deg", f"max at {input_name}", "deg"),
-    ]
-    if not periodic:  # the one-sided end stencils, apart
-        columns.append(SummaryColumn("ends_abs_error", "ends abs error", unit, True))
-    return {c.key: c for c in columns}
-
-
-def _plain(value):
-    """A summary's cell as Python data: text as it is, a number as a float."""
-    return value if isinstance(value, str) else float(value)
 
 
 @dataclass(frozen=True)
@@ -203,6 +142,72 @@ class Comparison:
             f"{'periodic' if self.periodic else 'open'} grid, {len(self.table)} points)\n"
             f"{self.summary.to_string()}"
         )
+
+
+@dataclass(frozen=True)
+class SummaryColumn:
+    """What one column of a comparison's summary holds: its role, its label and the unit of its values.
+
+    ``Comparison.summary.attrs["columns"]`` maps each role (``key``) to
+    its column, in the summary's order; outputs read a value by its role,
+    never by taking a label apart.
+
+    Attributes
+    ----------
+    key : str
+        The column's role, also its key in JSON: ``"order"``,
+        ``"max_abs_error"``, ``"rms_abs_error"``, ``"max_rel_error"``,
+        ``"rms_rel_error"``, ``"max_at_deg"`` (the input angle of the largest
+        error) or ``"ends_abs_error"`` (open grids only).
+    name : str
+        Its label without the unit (``"max abs error"``, ``"max at theta"``).
+    unit : str or None
+        Unit of its values (``"rad/s"``, ``"deg"``); None for the relative
+        errors (dimensionless) and the order (text).
+    quantity_unit : bool
+        Whether the unit is the compared quantity's (the absolute errors):
+        a table of several quantities gives that unit once per row instead.
+    kind : str or None
+        What its numbers are (:mod:`numkin.column_kinds`: ``"error"``, or
+        ``"input"`` for the angle of the largest error); None for the order (text).
+
+    Examples
+    --------
+    >>> SummaryColumn("max_abs_error", "max abs error", "rad/s", True).header
+    'max abs error [rad/s]'
+    """
+
+    key: str
+    name: str
+    unit: str | None = None
+    quantity_unit: bool = False
+    kind: str | None = None
+
+    @property
+    def header(self) -> str:
+        """The column's label in the summary: its name, and its unit in brackets if it has one."""
+        return f"{self.name} [{self.unit}]" if self.unit else self.name
+
+
+def _summary_columns(target: Quantity, input_name: str, periodic: bool) -> dict:
+    """The columns of a comparison's summary, role -> :class:`SummaryColumn`, in the summary's order."""
+    unit = target.unit
+    columns = [
+        SummaryColumn("order", "order"),
+        SummaryColumn("max_abs_error", "max abs error", unit, True, "error"),
+        SummaryColumn("rms_abs_error", "rms abs error", unit, True, "error"),
+        SummaryColumn("max_rel_error", "max rel error", kind="error"),
+        SummaryColumn("rms_rel_error", "rms rel error", kind="error"),
+        SummaryColumn("max_at_deg", f"max at {input_name}", "deg", kind="input"),
+    ]
+    if not periodic:  # the one-sided end stencils, apart
+        columns.append(SummaryColumn("ends_abs_error", "ends abs error", unit, True, "error"))
+    return {c.key: c for c in columns}
+
+
+def _plain(value):
+    """A summary's cell as Python data: text as it is, a number as a float."""
+    return value if isinstance(value, str) else float(value)
 
 
 # --------------------------------------------------------------------------- quantities
@@ -403,6 +408,9 @@ def compare(sweep, omega, quantity, schemes=None, alpha=0.0, periodic="auto") ->
         df.attrs.update({"quantity": quantity, "unit": unit, "h": rows.h, "periodic": rows.periodic,
                          "descending": rows.reverse, "target": target})
     summary_df.attrs["columns"] = summary_columns
+    set_kinds(summary_df, {c.header: c.kind for c in summary_columns.values() if c.kind})
+    # the input, the values (analytic and each scheme's: a Quantity each), and their errors
+    set_kinds(table_df, {c: "input" if c == in_col else "value" if c in columns else "error" for c in table_df.columns})
     table_df.attrs["quantities"] = columns
     table_df.attrs["ends"] = ends_of
     return Comparison(quantity, unit, table_df, summary_df, scale, rows.h, rows.periodic, target)

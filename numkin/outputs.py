@@ -104,6 +104,7 @@ def tables(result) -> dict:
     import pandas as pd
 
     from .assemble import scene_quantities
+    from .column_kinds import set_kinds
     from .pipeline import SceneResult
 
     if not isinstance(result, SceneResult) or result.sweep is None:
@@ -129,40 +130,51 @@ def tables(result) -> dict:
             return result.derived_kinematics[q.name].to_numpy()
         return result.kinematics[q.name].to_numpy()
 
+    def by_input(columns: dict):
+        """A table of the input and `columns` (label -> values of a quantity)."""
+        table = pd.DataFrame({input_col: input_degrees(sweep.inputs), **columns})
+        return set_kinds(table, {input_col: "input", **{label: "value" for label in columns}})
+
     if "positions" in wanted:
-        frame = sweep.to_frame()
+        frame = sweep.to_frame()  # (the input, the unknowns, Newton's diagnostics: their kinds said)
+        added = {}
         if mech.derived:
             derived = result.derived_positions()
             derived_positions = [q for q in quantities if q.of in derived and not q.is_point and q.order == 0]
-            for label, values in _columns(result, derived_positions, lambda q: derived[q.of]).items():
-                frame[label] = values
-        for label, values in _columns(result, [q for q in quantities if q.is_point and q.order == 0], point_value).items():
+            added.update(_columns(result, derived_positions, lambda q: derived[q.of]))
+        added.update(_columns(result, [q for q in quantities if q.is_point and q.order == 0], point_value))
+        for label, values in added.items():
             frame[label] = values
-        out["positions"] = frame
+        out["positions"] = set_kinds(frame, {label: "value" for label in added})
     if "kinematics" in wanted and result.kinematics is not None:
         rates = [q for q in quantities if not q.is_point and q.order > 0]
-        out["kinematics"] = pd.DataFrame({input_col: input_degrees(sweep.inputs), **_columns(result, rates, unknown_rate)})
+        out["kinematics"] = by_input(_columns(result, rates, unknown_rate))
     if "points" in wanted and scene.points:
         points = [q for q in quantities if q.is_point]
         # per point: x, y, then its velocity and acceleration components
         points.sort(key=lambda q: scene.points.index(q.of))
-        out["points"] = pd.DataFrame({input_col: input_degrees(sweep.inputs), **_columns(result, points, point_value)})
+        out["points"] = by_input(_columns(result, points, point_value))
     if "comparison" in wanted:
         for name, comparison in result.comparisons.items():
             out[f"comparison-{name}"] = comparison.table
     if "summary" in wanted and result.comparisons:
-        frames = []
+        frames, kinds = [], {}
         for name, comparison in result.comparisons.items():
+            columns = comparison.summary.attrs["columns"].values()
             # the unit of the absolute errors is the row's own column: their labels go without it
-            bare = {c.header: c.name for c in comparison.summary.attrs["columns"].values() if c.quantity_unit}
+            bare = {c.header: c.name for c in columns if c.quantity_unit}
+            kinds.update({bare.get(c.header, c.header): c.kind for c in columns if c.kind})
             s = comparison.summary.reset_index().rename(columns=bare)
             s.insert(0, "unit", comparison.unit)
             s.insert(0, "quantity", name)
             frames.append(s)
-        out["summary"] = pd.concat(frames, ignore_index=True)
+        summary = pd.concat(frames, ignore_index=True)
+        summary.attrs = {}  # (not one comparison's: every quantity's rows)
+        out["summary"] = set_kinds(summary, kinds)
     if "checks" in wanted and result.checks:
-        rows = []
+        rows, kinds = [], {input_col: "input", "value": "value", "expected": "value"}
         for c in result.checks:
+            kinds.update({scheme: "value" for scheme in c.schemes})
             for key, value in c.values.items():
                 row = {input_col: c.at_deg, "quantity": key, "unit": c.units[key], "value": value}
                 for scheme, vals in c.schemes.items():
@@ -173,7 +185,7 @@ def tables(result) -> dict:
                 row["expected"] = c.expected.get(key, np.nan)
                 row["ok"] = c.ok.get(key, "")
                 rows.append(row)
-        out["checks"] = pd.DataFrame(rows)
+        out["checks"] = set_kinds(pd.DataFrame(rows), kinds)
     return out
 
 

@@ -194,22 +194,27 @@ class Sweep:
 
         Angles are given in degrees (``"theta3 [deg]"``) when ``degrees`` is
         true, else in rad; lengths in the mechanism's unit; then the Newton
-        diagnostics ``iterations``, ``residual`` and ``cond``.
+        diagnostics ``iterations``, ``residual`` and ``cond``. What each
+        column holds is in ``attrs["kinds"]`` (:mod:`numkin.column_kinds`).
         """
         import pandas as pd
 
+        from .column_kinds import set_kinds
+
         angle_unit = "deg" if degrees else "rad"
         conv = np.degrees if degrees else (lambda a: a)
-        cols = {f"{self.mechanism.input_name} [{angle_unit}]": input_degrees(self.inputs) if degrees else self.inputs}
+        input_col = f"{self.mechanism.input_name} [{angle_unit}]"
+        cols = {input_col: input_degrees(self.inputs) if degrees else self.inputs}
         for name, vals in zip(self.unknowns, self.values):
             if name in self.mechanism.angles:
                 cols[f"{name} [{angle_unit}]"] = conv(vals)
             else:
                 cols[f"{name} [{self.mechanism.length_unit}]"] = vals
+        kinds = {input_col: "input", **{c: "value" for c in list(cols)[1:]}}
         cols["iterations"] = self.iterations
         cols["residual"] = self.residual
         cols["cond"] = self.cond
-        return pd.DataFrame(cols)
+        return set_kinds(pd.DataFrame(cols), {**kinds, "iterations": "count", "residual": "error", "cond": "error"})
 
     def __repr__(self) -> str:
         lo, hi = (deg_text(self.inputs[0]), deg_text(self.inputs[-1])) if self.inputs.size else ("", "")

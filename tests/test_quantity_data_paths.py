@@ -199,3 +199,58 @@ def test_newton_figure_takes_each_tables_jacobian_from_its_attrs():
     fig, _ = _build("newton", None, _Data(result))
     assert [ln.get_label() for ln in fig.axes[0].get_lines()] == ["symbolic Jacobian"]  # numkin's default
     plt.close(fig)
+
+
+# ------------------------------------------------------------------ number formats: by what a column holds
+def _numeric(table):
+    return [c for c in table.columns if table[c].dtype.kind in "iuf"]
+
+
+def test_every_number_column_numkin_makes_says_what_it_holds(slider_crank):
+    from numkin import linkages, report
+    from numkin.column_kinds import FORMATS
+
+    scene_tables = outputs.tables(run_scene("homework"))
+    scene_tables.update({f"slider-crank {k}": t for k, t in outputs.tables(slider_crank).items()})
+    mech = linkages.four_bar(4, 1, 3, 3)
+    angle = math.radians(90)
+    report_tables = {
+        "convergence": report.convergence_table(mech, omega=1.0, quantity="theta4", check_angle=angle, grids=(36, 72),
+                                                schemes=("centred",), span=math.radians(180)),
+        "newton": report.newton_table(mech, check_angle=angle),
+        "jacobian": report.jacobian_table(mech, check_angle=angle, points_per_turn=36),
+        "tolerance": report.tolerance_table(mech, omega=1.0, quantity="theta4", check_angle=angle, points_per_turn=36),
+    }
+    for name, table in {**scene_tables, **report_tables}.items():
+        kinds = table.attrs["kinds"]
+        assert set(_numeric(table)) <= set(kinds), name
+        assert set(kinds.values()) <= set(FORMATS), name
+    checks, comparison = scene_tables["checks"], scene_tables["comparison-alpha_beta"]
+    assert checks.attrs["kinds"]["second_difference"] == "value"  # an estimate, not a difference of two results
+    assert comparison.attrs["kinds"]["second_difference [rad/s^2]"] == "value"
+    assert comparison.attrs["kinds"]["second_difference abs error [rad/s^2]"] == "error"
+    assert scene_tables["positions"].attrs["kinds"]["beta [deg]"] == "value"  # solved, not given
+    assert scene_tables["positions"].attrs["kinds"]["theta [deg]"] == "input"
+    assert scene_tables["summary"].attrs["kinds"]["max at theta [deg]"] == "input"
+    assert report_tables["tolerance"].attrs["kinds"]["alpha_theta4 largest error at theta2 [deg]"] == "input"
+
+
+def test_writers_format_by_the_kind_a_table_names(tmp_path):
+    import pandas as pd
+
+    from numkin.column_kinds import set_kinds
+    from numkin.report import format_text, write_tables
+
+    made = set_kinds(pd.DataFrame({"theta [deg]": [100.0], "second_difference [rad/s^2]": [-28.376497],
+                                   "cond": [5.8712]}),
+                     {"theta [deg]": "input", "second_difference [rad/s^2]": "value", "cond": "error"})
+    by_hand = pd.DataFrame(made, copy=True)
+    by_hand.attrs = {}
+    write_tables({"made": made, "by_hand": by_hand}, tmp_path, formats=("md", "tex"))
+    assert (tmp_path / "made.md").read_text().splitlines()[-1] == "| 100 | -28.37650 | 5.87 |"
+    assert "100 & -28.37650 & 5.87" in (tmp_path / "made.tex").read_text()
+    assert "-28.37650" in format_text(made)
+    # a table built by hand: each column's format is guessed from its label, as before
+    assert (tmp_path / "by_hand.md").read_text().splitlines()[-1] == "| 100 | -28.4 | 5.87 |"
+    with pytest.raises(ValueError, match="unknown column kind"):
+        set_kinds(made, {"cond": "condition"})

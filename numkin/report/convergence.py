@@ -7,6 +7,7 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
+from ..column_kinds import set_kinds
 from ..errors import InputError
 from ..schemes import own_stencil_points
 from .study import (
@@ -174,6 +175,9 @@ def convergence_table(
     df.attrs["units"] = {"h [deg]": "deg"}  # what a figure writes on its axis
     if check_angle is not None:
         df.attrs["check"] = (mechanism.input_name, math.degrees(check_angle))  # the input's name and angle (deg)
+    errors = [f"max abs error {UNIT}", f"RMS abs error {UNIT}", "max rel error [-]", f"ends abs error {UNIT}", check_col]
+    set_kinds(df, {"points per turn": "count", "h [deg]": "input", **{c: "error" for c in errors if c},
+                   "observed order [-]": "order"})
     ends_col = None if periodic else f"ends abs error {UNIT}"
     set_views(df, [
         ("error over the sweep", ["scheme", "formal order", "points per turn", "h [deg]",

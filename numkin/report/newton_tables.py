@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from ..column_kinds import set_kinds
 from .study import (
     TURN, VARIES, branch_point, deg_text, grid_inputs, position_record, set_caption, set_views,
     solve_sweep,
@@ -134,6 +135,9 @@ def newton_table(
             "order estimate from steps [-]": _step_orders(steps[: k.size - 1]),
         }
     )
+    set_kinds(df, {"iteration": "count", "residual norm [-]": "error", "step norm [-]": "error",
+                   "error norm [-]": "error", "order estimate from errors [-]": "order",
+                   "order estimate from steps [-]": "order"})
     df.attrs["jacobian"] = jacobian
     df.attrs["check"] = (mechanism.input_name, math.degrees(check_angle))  # the input's name and angle (deg)
     return set_caption(
@@ -232,6 +236,12 @@ def jacobian_table(
         )
     df = pd.DataFrame(rows)
     df.attrs["check"] = (mechanism.input_name, math.degrees(check_angle))  # the input's name and angle (deg)
+    set_kinds(df, {
+        "iterations (one solve)": "count", "order estimate, last (one solve) [-]": "order",
+        "final residual (one solve) [-]": "error", "final error (one solve) [-]": "error",
+        f"sweep time [ms] {VARIES}": "error", "Newton iterations (sweep total)": "count",
+        "max difference from symbolic sweep [-]": "error",
+    })
     set_views(df, [
         ("one solve", ["Jacobian", "iterations (one solve)", "order estimate, last (one solve) [-]",
                        "final residual (one solve) [-]", "final error (one solve) [-]"]),

@@ -7,6 +7,7 @@ import warnings
 
 import numpy as np
 
+from ..column_kinds import set_kinds
 from ..derivatives import get_scheme
 from ..errors import InputError, NumkinError
 from ..newton_rules import check_tol
@@ -375,6 +376,11 @@ def tolerance_table(
     df = pd.DataFrame(rows)
     df.attrs["quantities"] = studied.quantities
     df.attrs["check"] = (mechanism.input_name, math.degrees(check_angle))  # the input's name and angle (deg)
+    set_kinds(df, {
+        "tol": "input", "Newton iterations per point (mean)": "mean", f"max |F| [{lu}]": "error", cols["est"]: "error",
+        cols["w"]: "value", cols["a"]: "value", **{cols[k]: "error" for k in ("we", "ae", "wm", "am")},
+        cols["where"]: "input",  # the input angle of the largest error
+    })
     set_views(df, [
         ("the stopping rules", ["rule", "stopping rule", "tol"]),
         ("what each leaves in the positions", ["rule", "Newton iterations per point (mean)", f"max |F| [{lu}]",

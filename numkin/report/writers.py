@@ -1,4 +1,9 @@
-"""Writing tables: Markdown, CSV and LaTeX (booktabs rules, without jinja2)."""
+"""Writing tables: Markdown, CSV and LaTeX (booktabs rules, without jinja2).
+
+Numbers are written by what their column holds, as the table says where it
+is made (``attrs["kinds"]``, :mod:`numkin.column_kinds`); a column the table
+does not name (a table built by hand) by its label (:func:`column_format`).
+"""
 
 from __future__ import annotations
 
@@ -7,6 +12,7 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
+from ..column_kinds import FORMATS
 from ..errors import InputError
 from ..folders import made_folder
 
@@ -15,12 +21,18 @@ __all__ = [
     "format_text",
     "format_cell",
     "column_format",
+    "column_formats",
     "table_views",
 ]
 
 
 def column_format(column: str) -> str:
-    """The number format of a column, chosen from its name (Python format spec, or ``"int"``).
+    """The number format of a column a table does not name a kind for, guessed from its label (Python format
+    spec, ``"int"`` or ``"exact"``; :func:`column_formats`).
+
+    For a table built by hand, and for the tables whose functions do not
+    yet say their columns' kinds (the round-off, work-precision,
+    cheapest-method and stability tables).
 
     Errors, residuals, norms, condition numbers, differences (``a vs b``),
     measured widths (``sharpest turn``) and times: 3 significant figures; orders: 2 decimals; counts (iterations, points, evaluations):
@@ -56,8 +68,27 @@ def column_format(column: str) -> str:
     return ".7g"
 
 
-def format_cell(value, column: str = "") -> str:
-    """One cell as text, by its column's format (:func:`column_format`); NaN and None are blank.
+def column_formats(df) -> dict:
+    """The number format of each column of `df`: by its kind (``attrs["kinds"]``, :data:`numkin.column_kinds.FORMATS`)
+    where the table names one, else by its label (:func:`column_format`).
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> df = pd.DataFrame({"second_difference [rad/s^2]": [-28.37646], "h [deg]": [1.0]})
+    >>> column_formats(df)                    # a table built by hand: guessed from the labels
+    {'second_difference [rad/s^2]': '.3g', 'h [deg]': '.6g'}
+    >>> df.attrs["kinds"] = {"second_difference [rad/s^2]": "value"}
+    >>> column_formats(df)["second_difference [rad/s^2]"]
+    '.7g'
+    """
+    kinds = df.attrs.get("kinds") or {}
+    return {c: FORMATS[kinds[c]] if c in kinds else column_format(c) for c in df.columns}
+
+
+def format_cell(value, column: str = "", *, fmt: str | None = None) -> str:
+    """One cell as text, by its column's format: `fmt` (one of :data:`numkin.column_kinds.FORMATS`) if given,
+    else guessed from the column's label (:func:`column_format`); NaN and None are blank.
 
     Examples
     --------
@@ -67,8 +98,8 @@ def format_cell(value, column: str = "") -> str:
     ('', 'yes', '0')
     >>> format_cell(10.632996, "omega_beta [rad/s]"), format_cell(10.631984, "omega_beta [rad/s]"), format_cell(3.0, "x")
     ('10.63300', '10.63198', '3')
-    >>> format_cell(1234567.5, "x [mm]"), format_cell(-0.5, "x [mm]")
-    ('1234568', '-0.5000000')
+    >>> format_cell(1234567.5, "x [mm]"), format_cell(-0.5, "x [mm]"), format_cell(-28.37646, fmt=".7g")
+    ('1234568', '-0.5000000', '-28.37646')
     """
     if value is None:
         return ""
@@ -80,7 +111,7 @@ def format_cell(value, column: str = "") -> str:
             return ""
         if math.isinf(v):
             return "inf" if v > 0 else "-inf"
-        fmt = column_format(column)
+        fmt = fmt or column_format(column)
         if fmt == "int":
             text = str(int(round(v)))
         elif fmt == "exact":
@@ -109,14 +140,15 @@ def _md_escape(text: str) -> str:
     return str(text).replace("\\", "\\\\").replace("|", "\\|").replace("\n", " ")
 
 
-def _markdown_table(df) -> str:
-    """A GitHub-flavoured Markdown table (pipe table) with per-column number formats."""
+def _markdown_table(df, formats: dict) -> str:
+    """A GitHub-flavoured Markdown table (pipe table), each column's numbers in its format of `formats`."""
     numeric = [df[c].dtype.kind in "iuf" for c in df.columns]
     header = "| " + " | ".join(_md_escape(c) for c in df.columns) + " |"
     rule = "|" + "|".join("---:" if isnum else ":---" for isnum in numeric) + "|"
     lines = [header, rule]
+    fmts = [formats[c] for c in df.columns]
     for row in df.itertuples(index=False):
-        lines.append("| " + " | ".join(_md_escape(format_cell(v, c)) for v, c in zip(row, df.columns)) + " |")
+        lines.append("| " + " | ".join(_md_escape(format_cell(v, fmt=f)) for v, f in zip(row, fmts)) + " |")
     return "\n".join(lines) + "\n"
 
 
@@ -153,6 +185,7 @@ def format_text(df, *, width: int = 100, max_width: int = 120) -> str:
     if caption:
         blocks.append(textwrap.fill(str(caption), width=width))
     keys = [c for c in df.attrs.get("row_keys") or [] if c in df.columns]
+    formats = column_formats(df)
     plain = pd.DataFrame(df, copy=False)
     plain.attrs = {}  # columns read without copying the table's attrs each time
     formatted = {}  # column -> (cells as text, right-aligned): each column formatted once for all its views
@@ -160,7 +193,7 @@ def format_text(df, *, width: int = 100, max_width: int = 120) -> str:
         for c in columns:
             if c not in formatted:
                 column = plain[c]
-                formatted[c] = ([format_cell(v, c) for v in column.tolist()], column.dtype.kind in "iuf")
+                formatted[c] = ([format_cell(v, fmt=formats[c]) for v in column.tolist()], column.dtype.kind in "iuf")
         whole = _text_table(columns, formatted)
         parts = _fitting_parts(columns, [k for k in keys if k in columns] or list(columns[:1]), max_width,
                                whole)
@@ -268,6 +301,7 @@ def _booktabs(df, name: str) -> str:
     if caption:
         lines.append("\\caption{" + _tex(caption) + "}")
     lines.append("\\label{tab:" + name.replace("_", "-") + "}")
+    formats = column_formats(df)
     for k, (title, view) in enumerate(table_views(df)):
         if k:
             lines.append("\\medskip")
@@ -277,7 +311,7 @@ def _booktabs(df, name: str) -> str:
         lines += ["\\begin{tabular}{" + spec + "}", "\\toprule",
                   " & ".join(_tex(str(c)) for c in view.columns) + " \\\\", "\\midrule"]
         for row in view.itertuples(index=False):
-            lines.append(" & ".join(_tex(format_cell(v, c)) for v, c in zip(row, view.columns)) + " \\\\")
+            lines.append(" & ".join(_tex(format_cell(v, fmt=formats[c])) for v, c in zip(row, view.columns)) + " \\\\")
         lines += ["\\bottomrule", "\\end{tabular}"]
     lines.append("\\end{table}")
     return "\n".join(lines) + "\n"
@@ -289,10 +323,11 @@ def _markdown(df) -> str:
     caption = df.attrs.get("caption")
     if caption:
         parts.append(_md_escape(caption))
+    formats = column_formats(df)
     for title, view in table_views(df):
         if title:
             parts.append(f"**{_md_escape(title)}**")
-        parts.append(_markdown_table(view))
+        parts.append(_markdown_table(view, formats))
     return "\n\n".join(p.rstrip("\n") for p in parts) + "\n"
 
 
