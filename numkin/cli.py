@@ -145,7 +145,8 @@ def _cmd_run(args) -> int:
             print(f"{PROG}: not as expected: " + "; ".join(bad), file=sys.stderr)
             return 1
     failed = [
-        f"{key} = {fmt_value(c.values[key])} at {c.at_deg:g}° (expected {fmt_value(c.expected[key], c.expected[key])})"
+        f"{key} = {fmt_value(c.values[key], c.expected[key], mismatch=True, written=c.written.get(key))} at "
+        f"{c.at_deg:g}° (expected {fmt_value(c.expected[key], c.expected[key], written=c.written.get(key))})"
         for c in result.checks for key, ok in c.ok.items() if not ok
     ]
     if failed:

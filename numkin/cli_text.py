@@ -15,18 +15,19 @@ import textwrap
 __all__ = ["format_result", "fmt_value"]
 
 
-def fmt_value(value: float, expected: float | None = None, mismatch: bool = False) -> str:
+def fmt_value(value: float, expected: float | None = None, mismatch: bool = False, written: str | None = None) -> str:
     """A value to the decimals of its expected value, else to 6 significant digits; a ``mismatch`` (a value that
     misses its expected one) to 6 significant digits or two decimals more than the expected value, whichever
-    shows more, so that it never reads as the expected value rounded."""
+    shows more, so that it never reads as the expected value rounded. ``written``: the expected value as the
+    scene file writes it (``"122.340"``), whose decimals count then."""
     if value is None or (isinstance(value, float) and not math.isfinite(value)):
         return "-"
     if value == 0:
         value = 0.0  # no "-0"
     if expected is not None:
-        text = repr(float(expected))
+        text = written.replace("_", "") if written is not None else repr(float(expected))
         if "e" not in text.lower():
-            decimals = 0 if text.endswith(".0") else len(text.split(".")[1])
+            decimals = 0 if written is None and text.endswith(".0") else len((text.split(".") + [""])[1])
             if not mismatch:
                 return f"{value:.{decimals}f}"
             shown = f"{expected:.{decimals}f}"
@@ -54,10 +55,11 @@ def _check_lines(check, input_name: str, title: str) -> list[str]:
     for key, value in check.values.items():
         expected = check.expected.get(key)
         missed = expected is not None and not check.ok[key]
-        line = f"  {_label(check, key):<{width}}{fmt_value(value, expected, mismatch=missed):>12}"
+        written = check.written.get(key)
+        line = f"  {_label(check, key):<{width}}{fmt_value(value, expected, mismatch=missed, written=written):>12}"
         if expected is not None:
             mark = "ok" if check.ok[key] else f"MISMATCH (tolerance {check.tolerance[key]:.1g})"
-            line += f"   expected {fmt_value(expected, expected)} {mark}"
+            line += f"   expected {fmt_value(expected, expected, written=written)} {mark}"
         schemes = [f"{s}{' (one-sided end stencil)' if key in check.end_stencil.get(s, ()) else ''} {fmt_value(vals[key])}"
                    for s, vals in check.schemes.items() if key in vals]
         if schemes:

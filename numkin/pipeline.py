@@ -59,6 +59,9 @@ class CheckResult:
         scheme's one-sided end stencil (the first or last points of an open grid).
     expected : dict
         Expected values from the scene file.
+    written : dict
+        Quantity name -> the expected value as the scene file writes it
+        (``"122.340"``: TOML reads it as 122.34), where known.
     ok : dict
         Quantity name -> whether the value agrees with the expected one.
     on_grid : bool
@@ -75,6 +78,7 @@ class CheckResult:
     schemes: dict = field(default_factory=dict)
     end_stencil: dict = field(default_factory=dict)
     expected: dict = field(default_factory=dict)
+    written: dict = field(default_factory=dict)
     tolerance: dict = field(default_factory=dict)
     ok: dict = field(default_factory=dict)
     on_grid: bool = True
@@ -436,9 +440,9 @@ def render_figures(result: SceneResult, out_dir, *, formats=("png", "svg"), prog
                         result.mechanism, omega=scene.speed, **common, **sweep_opts, repeat=None,
                     )
                 elif kind == "roundoff":
-                    table = report.with_check_angle(report.roundoff_table(
+                    table = report.roundoff_table(
                         result.mechanism, check_angle=options["check_angle"], start=options["start"], **common,
-                    ), result.mechanism, options["check_angle"])
+                    )
                 else:
                     for jacobian in ("symbolic", "forward", "central"):
                         result.report[f"newton_{jacobian}"] = report.newton_table(
@@ -556,8 +560,13 @@ def _evaluate(result: SceneResult, at_deg: float, check: dict | None = None, *, 
                 if i < before or i >= n - after:
                     res.end_stencil.setdefault(scheme, set()).add(name)
     if check is not None:
+        written = check.get("written", {})
         for key, expected in check["expected"].items():
-            tol = check["tolerance"] if check["tolerance"] is not None else written_tolerance(expected)
+            text = written.get(key)
+            tol = check["tolerance"] if check["tolerance"] is not None else written_tolerance(
+                text if text is not None else expected)
+            if text is not None:
+                res.written[key] = text
             diff = values[key] - expected
             if quantities[key].in_degrees:  # an angle's position: the same angle a turn away agrees
                 diff = math.remainder(diff, 360.0)
@@ -567,17 +576,23 @@ def _evaluate(result: SceneResult, at_deg: float, check: dict | None = None, *, 
     return res
 
 
-def written_tolerance(value: float) -> float:
-    """Half a unit of the last decimal written: 10.633 -> 5e-4 (plus a rounding allowance)."""
-    text = repr(float(value))
-    if "e" in text or "E" in text:
-        mantissa, exponent = text.lower().split("e")
-        decimals = len(mantissa.split(".")[1]) if "." in mantissa else 0
-        if mantissa.endswith(".0"):
-            decimals = 0
-        return 0.5 * 10.0 ** (int(exponent) - decimals) * (1 + 1e-9)
-    decimals = len(text.split(".")[1]) if not text.endswith(".0") else 0
-    return 0.5 * 10.0 ** (-decimals) * (1 + 1e-9)
+def written_tolerance(value) -> float:
+    """Half a unit of the last decimal written (plus a rounding allowance).
+
+    ``value`` is the number as the scene file writes it (a string: its
+    trailing zeros count) or a float (the decimals of its shortest repr).
+
+    Examples
+    --------
+    >>> [f"{written_tolerance(v):.1g}" for v in (10.633, "122.340", 122.340, "100", "1.50e2", "-44215.8")]
+    ['0.0005', '0.0005', '0.005', '0.5', '0.5', '0.05']
+    """
+    text = (value.strip().replace("_", "") if isinstance(value, str) else repr(float(value))).lower()
+    mantissa, _, exponent = text.partition("e")
+    decimals = len(mantissa.split(".")[1]) if "." in mantissa else 0
+    if not isinstance(value, str) and mantissa.endswith(".0"):
+        decimals = 0  # (a float's repr: 100.0 is 100 written)
+    return 0.5 * 10.0 ** (int(exponent or 0) - decimals) * (1 + 1e-9)
 
 
 def _scheme_values(comparison, i: int) -> dict:

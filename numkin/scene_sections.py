@@ -11,6 +11,7 @@ calls these.
 from __future__ import annotations
 
 import difflib
+import re
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # pragma: no cover - for annotations only
@@ -19,7 +20,7 @@ if TYPE_CHECKING:  # pragma: no cover - for annotations only
 __all__ = [
     "QUANTITIES", "TABLES", "TABLE_FORMATS", "ANIMATION_TURNS", "ANIMATION_ARROWS", "ANIMATION_DPI",
     "ANIMATION_WIDTH_IN", "nearest", "is_int", "input_rate", "in_range", "read_input", "read_output",
-    "read_figures", "read_compare", "read_checks", "read_animation",
+    "read_figures", "read_compare", "read_checks", "checks_as_written", "read_animation",
 ]
 
 #: What a scene may ask for (``[output] quantities``), the tables it may write and their formats.
@@ -210,11 +211,48 @@ def read_compare(r: SceneReader, scene: Scene, cmp: dict) -> None:
         r.fail("[output] tables", "'summary' needs [compare] schemes or second_schemes")
 
 
-def read_checks(r: SceneReader, scene: Scene, checks) -> None:
+_CHECK_HEADER = re.compile(r"\s*\[\[\s*check\s*\]\]\s*(#.*)?$")
+_NUMBER_LINE = re.compile(r'\s*("?)([A-Za-z0-9_-]+)\1\s*=\s*([-+]?[0-9][0-9_]*(\.[0-9_]*)?([eE][-+]?[0-9_]+)?)\s*(#.*)?$')
+
+
+def checks_as_written(text: str) -> list:
+    r"""The numbers of each ``[[check]]`` table as written in a scene's TOML text: ``[{key: "122.340"}, ...]``.
+
+    TOML reads ``122.340`` as the float 122.34; the text keeps the decimals
+    the author wrote, which the check's default tolerance is half a unit of.
+    A number this line-by-line reading does not find (an inline table, a
+    value over several lines) is left out: its tolerance is taken from the
+    float.
+
+    Examples
+    --------
+    >>> checks_as_written("[input]\nstart_deg = 0\n[[check]]\nat_deg = 100\ntheta4_deg = 122.340  # deg\n"
+    ...                   "[[check]]\nat_deg = 1_0\n")
+    [{'at_deg': '100', 'theta4_deg': '122.340'}, {'at_deg': '1_0'}]
+    """
+    found, current = [], None
+    for line in text.splitlines():
+        if _CHECK_HEADER.match(line):
+            current = {}
+            found.append(current)
+        elif line.lstrip().startswith("["):
+            current = None
+        elif current is not None:
+            number = _NUMBER_LINE.match(line)
+            if number:
+                current[number.group(2)] = number.group(3)
+    return found
+
+
+def read_checks(r: SceneReader, scene: Scene, checks, written=None) -> None:
+    """``[[check]]`` into ``scene.checks``; ``written``: :func:`checks_as_written` of the scene's text, if read
+    from a file (each expected value's tolerance is then half a unit of its last decimal as written)."""
     if isinstance(checks, dict):
         checks = [checks]
     if not isinstance(checks, list):
         r.fail("[[check]]", f"must be an array of tables, got {checks!r}")
+    if written is not None and len(written) != len(checks):
+        written = None  # (checks not all written as [[check]] tables: read from the floats)
     for k, check in enumerate(checks):
         where = f"[[check]] {k + 1}"
         r.table(check, where)
@@ -230,12 +268,15 @@ def read_checks(r: SceneReader, scene: Scene, checks) -> None:
             tol = r.number(check["tolerance"], f"{where} tolerance")
             if not tol > 0:
                 r.fail(f"{where} tolerance", f"must be positive, got {tol!r}")
-        expected = {}
+        expected, as_written = {}, {}
         for key, value in check.items():
             if key in ("at_deg", "tolerance"):
                 continue
             expected[key] = r.number(value, f"{where} {key}")
-        scene.checks.append({"at_deg": at, "expected": expected, "tolerance": tol})
+            text = written[k].get(key) if written is not None else None
+            if text is not None and float(text.replace("_", "")) == expected[key]:
+                as_written[key] = text.replace("_", "")
+        scene.checks.append({"at_deg": at, "expected": expected, "tolerance": tol, "written": as_written})
 
 
 def in_range(r: SceneReader, scene: Scene, at: float, where: str) -> None:

@@ -28,7 +28,7 @@ from typing import Mapping
 
 from .errors import InputError, NumkinError
 from .scene_sections import (QUANTITIES, TABLE_FORMATS, TABLES, in_range, input_rate, is_int, nearest, read_animation,
-                             read_checks, read_compare, read_figures, read_input, read_output)
+                             checks_as_written, read_checks, read_compare, read_figures, read_input, read_output)
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -191,7 +191,9 @@ class Scene:
     schemes, second_schemes : tuple of str
         Finite-difference schemes compared for velocity and acceleration.
     checks : list of dict
-        ``{"at_deg": float, "expected": {quantity: value}, "tolerance": float | None}``.
+        ``{"at_deg": float, "expected": {quantity: value}, "tolerance": float | None, "written": {quantity:
+        text}}``: ``written`` holds each expected value as the scene file writes it (``"122.340"``), whose
+        last decimal sets the default tolerance.
     tables, figures, table_formats : tuple of str
     report, animation : dict
     stability_cases : tuple of str or None
@@ -415,9 +417,11 @@ def load_scene(name_or_path, overrides: Mapping | None = None) -> Scene:
         raise SceneError(f"{source}: not a text file ({error.reason})") from None
     except OSError as error:
         raise SceneError(f"{source}: cannot read: {error.strerror}") from None
+    written = checks_as_written(raw.decode("utf-8-sig")) if not (overrides and "check" in overrides) else None
     if overrides:
         data = _merge(copy.deepcopy(data), overrides)
-    return _validate(data, name=path.stem, source=source if not builtin else f"{path.stem} (built-in {source})")
+    return _validate(data, name=path.stem, source=source if not builtin else f"{path.stem} (built-in {source})",
+                     written=written)
 
 
 def _merge(base: dict, extra: Mapping) -> dict:
@@ -429,7 +433,7 @@ def _merge(base: dict, extra: Mapping) -> dict:
     return base
 
 
-def _validate(data: dict, *, name: str, source: str) -> Scene:
+def _validate(data: dict, *, name: str, source: str, written=None) -> Scene:
     r = SceneReader(source)
     r.keys(data, _TOP, "")
     for section, allowed in _SECTIONS.items():
@@ -477,7 +481,7 @@ def _validate(data: dict, *, name: str, source: str) -> Scene:
     elif scene.custom is not None:
         r.fail("", "missing [guess] section: a mechanism written as loops needs values for its unknowns at start_deg")
     read_compare(r, scene, r.table(data.get("compare", {}), "[compare]"))
-    read_checks(r, scene, data.get("check", []))
+    read_checks(r, scene, data.get("check", []), written)
     if "report" in data:
         rep = data["report"]
         report = {}

@@ -145,7 +145,7 @@ def test_run_quick_return_json_without_speed(capsys):
 
 
 def test_failed_check_exits_1(capsys, tmp_path):
-    path = four_bar(tmp_path, extra="[[check]]\nat_deg = 90\ntheta4_deg = 100.0\n")
+    path = four_bar(tmp_path, extra="[[check]]\nat_deg = 90\ntheta4_deg = 100\n")
     code, out, err = run(capsys, "run", path)
     assert code == 1
     assert "MISMATCH" in out
@@ -153,6 +153,28 @@ def test_failed_check_exits_1(capsys, tmp_path):
     # the value that missed, to 6 figures (circle intersection: 119.3714°), not to the expected value's 0 decimals
     assert "119.371   expected 100 MISMATCH" in out
     assert len(err.strip().splitlines()) == 1
+
+
+def test_a_check_agrees_to_the_decimals_as_written_trailing_zeros_too(capsys, tmp_path):
+    """TOML reads 119.370 as 119.37; the check still takes the three decimals written (tolerance 5e-4), so
+    theta4 = 119.3714° (circle intersection of the 4:1:3:3 four-bar at 90°) misses it, where 119.37 (two
+    decimals, tolerance 5e-3) is met; the expected value is shown as written."""
+    t2 = math.radians(90.0)
+    ax, ay = math.cos(t2), math.sin(t2)  # crank 1 at 90°; ground 4; coupler and rocker 3
+    d = math.hypot(4 - ax, ay)
+    theta4 = math.degrees(math.atan2(-ay, 4 - ax) + math.pi - math.acos(d / 6))  # isosceles A-B-O4
+    assert round(theta4, 4) == 119.3714
+    for written, ok in (("119.370", False), ("119.37", True), ("1.1937e2", True), ("119.3714", True),
+                        ("119_370e-3", False)):
+        path = four_bar(tmp_path, extra=f"[[check]]\nat_deg = 90\ntheta4_deg = {written}  # deg\n")
+        code, out, err = run(capsys, "run", path)
+        assert code == (0 if ok else 1), (written, out)
+        shown = written.replace("_", "")
+        if "e" not in shown:
+            assert f"expected {shown} {'ok' if ok else 'MISMATCH'}" in out, out
+    path = four_bar(tmp_path, extra="[[check]]\nat_deg = 90\ntheta4_deg = 119.370\n")
+    code, out, err = run(capsys, "run", path)
+    assert "tolerance 0.0005" in out and "theta4_deg = 119.37139 at 90° (expected 119.370)" in err
 
 
 # -------------------------------------------------------------- error paths

@@ -162,7 +162,6 @@ __all__ = [
     "STUDENT_RULES",
     "full_report",
     "scene_report",
-    "with_check_angle",
     "write_tables",
 ]
 
@@ -247,9 +246,7 @@ def _full_report(mechanism, *, omega, quantity, check_angle, grids, schemes, poi
         ),
         "work_precision": wp,
         "cheapest": cheapest_table(wp, by="time" if repeat else "work"),
-        "roundoff": with_check_angle(
-            roundoff_table(mechanism, quantity=quantity, check_angle=check_angle, guess=guess, start=start),
-            mechanism, check_angle),
+        "roundoff": roundoff_table(mechanism, quantity=quantity, check_angle=check_angle, guess=guess, start=start),
         "newton": newton_table(mechanism, check_angle=check_angle, guess=guess, start=start),
         "jacobian": jacobian_table(
             mechanism, check_angle=check_angle, points_per_turn=points_per_turn, repeat=repeat, start=start, guess=guess,
@@ -260,18 +257,6 @@ def _full_report(mechanism, *, omega, quantity, check_angle, grids, schemes, poi
             guess=guess, span=span,
         ),
     }
-
-
-def with_check_angle(table, mechanism, check_angle: float):
-    """`table`, its ``attrs["check"]`` set to the input's name and `check_angle` in degrees if it has none.
-
-    For a table computed at a check angle whose function does not record
-    it (the round-off table): figures write the angle from there.
-    """
-    import math
-
-    table.attrs.setdefault("check", (mechanism.input_name, math.degrees(check_angle)))
-    return table
 
 
 def scene_report(scene, *, repeat: int | None = None) -> dict:

@@ -452,6 +452,7 @@ def roundoff_table(
     ], row_keys=["scheme"])
     df.attrs["scan"] = {"h [rad]": [float(h) for h in eff], **scan_errors}
     df.attrs["steps"] = {f"rel error at h = {h:.0e} rad [-]": float(h) for h in steps}
+    df.attrs["check"] = (mechanism.input_name, math.degrees(theta))  # the input's name and angle (deg)
     return set_caption(df, caption, [position_record("check angle", mechanism, theta, x0)])
 
 
