@@ -469,7 +469,7 @@ def _check_names(scene: Scene, mech) -> None:
         scene.fail("[report] quantity", f"'{quantity}' is neither an unknown nor a derived quantity"
                                         f"{nearest(quantity, named)}; {listed}")
     if scene.figures:
-        from .figures import parse_spec  # does not import matplotlib
+        from .figures.specs import parse_spec  # (not the modules that draw)
 
         for spec in scene.figures:
             kind, arg = parse_spec(spec)

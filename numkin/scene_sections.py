@@ -173,7 +173,7 @@ def read_output(r: SceneReader, scene: Scene, out: dict) -> None:
 def read_figures(r: SceneReader, out: dict) -> tuple:
     names = r.strings(out.get("figures", []), "[output] figures")
     if names:
-        from .figures import parse_spec  # does not import matplotlib
+        from .figures.specs import parse_spec  # (not the modules that draw)
 
         for name in names:
             try:

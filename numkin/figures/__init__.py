@@ -89,11 +89,27 @@ Examples
 
 from __future__ import annotations
 
-from .curves import acceleration_comparison, derivative, difference, kinematics, position, slider
-from .dispatch import CAPTIONS, FIGURES, FigureSkipped, caption, parse_spec, render
-from .drawing import mechanism
-from .error_plots import convergence, newton_residuals, roundoff, work_precision
-from .style import STYLE, save, style
+from .specs import CAPTIONS, FIGURES, FigureSkipped, caption, parse_spec
+from .style import STYLE, save, style  # (the function style, not the module of that name: bound after it)
+
+#: Where each function that draws lives: loaded on first use, so that reading a scene's figure names
+#: (:mod:`~numkin.figures.specs`) loads none of the modules that draw.
+_DRAWING = {
+    "acceleration_comparison": "curves", "derivative": "curves", "difference": "curves", "kinematics": "curves",
+    "position": "curves", "slider": "curves", "render": "dispatch", "mechanism": "drawing",
+    "convergence": "error_plots", "newton_residuals": "error_plots", "roundoff": "error_plots",
+    "work_precision": "error_plots",
+}
+
+
+def __getattr__(name):
+    if name in _DRAWING:
+        from importlib import import_module
+
+        value = getattr(import_module(f".{_DRAWING[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 __all__ = [
     "CAPTIONS",

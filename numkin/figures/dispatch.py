@@ -1,4 +1,4 @@
-"""Figures by name: the names a scene may ask for, and drawing and saving them from a result."""
+"""Figures by name: drawing and saving the figures a scene asks for (:mod:`~numkin.figures.specs`) from a result."""
 
 from __future__ import annotations
 
@@ -16,62 +16,10 @@ from .arguments import need_names, need_result
 from .labels import (check_points, check_unknown, derived_of, frame_input, input_name, is_angle, rate_columns,
                      table_column)
 from .series import with_rates
+from .specs import FigureSkipped, parse_spec
 from .style import METADATA, gc_paused, save
 
-__all__ = ["CAPTIONS", "FIGURES", "FigureSkipped", "caption", "parse_spec", "render"]
-
-#: Figure names a scene may ask for -> one-line description.
-FIGURES: dict[str, str] = {
-    "position": "unknowns against the input angle",
-    "derivative": "dq/dθ by forward and centred differences on one graph",
-    "difference": "Δ between the forward and centred dq/dθ, twin axes with d²q/dθ²",
-    "kinematics": "position, velocity and acceleration of one unknown: schemes, analytic, check points",
-    "slider": "x, v and a of a slider",
-    "acceleration": "numerical against analytic acceleration of one unknown, with the error",
-    "mechanism": "the linkage drawn at one input angle with its dimensions",
-    "convergence": "error against step h (log-log) with reference slopes 1, 2, 4",
-    "work-precision": "error against work (evaluations; or against run time)",
-    "roundoff": "error against h down to rounding: the V-curve",
-    "newton": "Newton's residual per iteration for each Jacobian",
-}
-
-#: Gallery caption of each figure: what it draws, exactly (``{q}``: the unknown's symbol; ``{at}``: the angle).
-#: Keys are those of :data:`FIGURES`; the second form, where given, is for a figure drawn without its argument.
-CAPTIONS: dict[str, tuple[str, ...]] = {
-    "position": ("{q} against the input angle",
-                 "The unknowns against the input angle, angles and lengths on separate panels"),
-    "derivative": ("First derivative of {q} with respect to the input angle by the forward and the centred "
-                   "difference; the values of their one-sided end stencils are markers of their own",),
-    "difference": ("The gap between the centred and the forward first derivatives of {q}, beside its second "
-                   "derivative by the second difference (twin axes, interior points); dotted lines where the "
-                   "second derivative is zero",),
-    "kinematics": ("{q}, its velocity and its acceleration against the input angle: finite differences and the "
-                   "analytic solution, with their values at the check angles; on an open grid the values of the "
-                   "one-sided end stencils are markers of their own",),
-    "slider": ("Slider position {q}, its velocity and its acceleration against the input angle: finite "
-               "differences and the analytic solution, with their values at the check angles; on an open grid "
-               "the values of the one-sided end stencils are markers of their own",),
-    "acceleration": ("Acceleration of {q} by finite differences against the analytic one, and |numerical − "
-                     "analytic| of each on a log scale; on an open grid the values of the one-sided end stencils "
-                     "are markers of their own",),
-    "mechanism": ("The linkage drawn at {at}, with its dimensions",
-                  "The linkage drawn at the first check angle, with its dimensions"),
-    "convergence": ("Largest error against grid step (log-log) of every scheme, each labelled with its formal "
-                    "order, beside reference slopes 1, 2 and 4",),
-    "work-precision": ("Largest error against work (evaluations of the loop equations and of the stencils) for "
-                       "every method, the analytic solution and the complex step included, from coarse to fine "
-                       "grid; the Pareto front ringed",),
-    "roundoff": ("Relative error against step at one angle, down to the rounding floor: the V-curves, the "
-                 "textbook optimal steps and the measured optimum",),
-    "newton": ("Newton's scaled residual per iteration, one curve per Jacobian",),
-}
-
-#: Figures that take an unknown or a derived quantity (``"name:unknown"``).
-_WITH_UNKNOWN = ("position", "derivative", "difference", "kinematics", "slider", "acceleration")
-
-class FigureSkipped(UserWarning):
-    """A figure a scene asked for could not be drawn from the data at hand."""
-
+__all__ = ["render"]
 
 class _Missing(Exception):
     """Data a figure needs is absent (render skips the figure)."""
@@ -79,89 +27,6 @@ class _Missing(Exception):
 
 
 # ============================================================================ render
-def parse_spec(spec: str) -> tuple[str, str | None]:
-    """Split a figure name of a scene: ``"kinematics:beta"`` -> ``("kinematics", "beta")``.
-
-    The name may be written with ``_`` for ``-`` (``work_precision``). The
-    part after ``:`` is an unknown or a derived quantity of the mechanism
-    (``kinematics:mu`` of a ``[mechanism.quantities]`` entry ``mu``) for
-    ``position``, ``derivative``, ``difference``, ``kinematics``, ``slider``
-    and ``acceleration``, or the input angle in degrees (``mechanism:30``);
-    the table figures take none. Whether the mechanism has that unknown is
-    checked when the figure is drawn. Does not import matplotlib.
-
-    Raises
-    ------
-    ValueError
-        For an unknown figure name or an argument a figure does not take.
-
-    Examples
-    --------
-    >>> parse_spec("kinematics:beta")
-    ('kinematics', 'beta')
-    >>> parse_spec("work_precision")
-    ('work-precision', None)
-    >>> parse_spec("mechanism:30")
-    ('mechanism', '30')
-    """
-    if not isinstance(spec, str) or not spec.strip():
-        raise InputError(f"figure name must be a non-empty string, got {spec!r}")
-    name, _, arg = spec.strip().partition(":")
-    kind = name.strip().lower().replace("_", "-")
-    arg = arg.strip() or None
-    if kind not in FIGURES:
-        import difflib
-
-        near = difflib.get_close_matches(kind, list(FIGURES), n=1)
-        hint = f" (did you mean '{near[0]}'?)" if near else ""
-        raise InputError(f"unknown figure {spec!r}{hint}; figures are: {', '.join(FIGURES)}")
-    if arg is not None and kind not in _WITH_UNKNOWN and kind != "mechanism":
-        raise InputError(f"figure {spec!r}: '{kind}' takes no ':' argument")
-    if arg is not None and kind == "mechanism":
-        try:
-            angle = float(arg)
-        except ValueError:
-            raise InputError(f"figure {spec!r}: 'mechanism:<angle in degrees>', got {arg!r}") from None
-        if not math.isfinite(angle) or abs(angle) > 1e6:
-            raise InputError(f"figure {spec!r}: the angle must be a finite number of degrees (at most 1e6), "
-                             f"got {arg!r}")
-    return kind, arg
-
-
-def caption(stem: str) -> str:
-    """What the figure of a file stem draws (``"derivative-phi"``, ``"mechanism-30deg"``), from :data:`CAPTIONS`.
-
-    The stem is a figure name of :data:`FIGURES`, then ``-<unknown>`` or
-    ``-<angle>deg`` as :func:`render` names its files. Symbols are written
-    as TeX between dollars. Does not import matplotlib.
-
-    Raises
-    ------
-    ValueError
-        For a stem that starts with no figure name.
-
-    Examples
-    --------
-    >>> print(caption("position-phi"))
-    $\\phi$ against the input angle
-    >>> caption("mechanism-30deg")
-    'The linkage drawn at 30°, with its dimensions'
-    >>> caption("newton")
-    "Newton's scaled residual per iteration, one curve per Jacobian"
-    """
-    from .labels import sym
-
-    for kind in sorted(CAPTIONS, key=len, reverse=True):
-        if stem == kind or stem.startswith(kind + "-"):
-            arg = stem[len(kind) + 1:]
-            forms = CAPTIONS[kind]
-            if not arg:
-                return forms[-1]
-            at = f"{arg.removesuffix('deg')}°" if kind == "mechanism" else ""
-            return forms[0].format(q=sym(arg), at=at)
-    raise InputError(f"figure file {stem!r}: no figure of that name; figures are: {', '.join(FIGURES)}")
-
-
 class _Data:
     """What a result holds for figures (duck-typed; see :func:`render`)."""
 
