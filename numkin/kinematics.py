@@ -62,7 +62,7 @@ from .errors import InputError, warn
 from .units import is_full_turn
 
 __all__ = ["finite_difference", "rounding_error", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "apply_scheme", "unwrap_angles", "PARTNER",
-           "CLOSURE_TOL"]
+           "CLOSURE_TOL", "closure_gap", "closes"]
 
 #: First-derivative scheme used with each second-derivative scheme (for the
 #: ``alpha_in * q'`` term of an accelerating input, and by :mod:`numkin.compare`):
@@ -221,12 +221,36 @@ def unwrap_angles(y: np.ndarray, angle, names, inputs, tangent=None, purpose: st
 CLOSURE_TOL = 1e-7
 
 
+def closure_gap(offset, angle):
+    """How far a quantity's end misses its start after one turn: ``offset`` (end - start), less the whole turns
+    nearest to it where the quantity is an `angle` (arrays broadcast; floats give a float).
+
+    Examples
+    --------
+    >>> closure_gap(4 * np.pi + 0.25, True), closure_gap(3.0, False)
+    (0.25, 3.0)
+    """
+    gap = np.where(angle, offset - _TURN * np.round(np.divide(offset, _TURN)), offset)
+    return float(gap) if np.ndim(gap) == 0 else gap
+
+
+def closes(offset, angle, length_scale: float):
+    """Whether a quantity returns to its start after one turn: its :func:`closure_gap` at most
+    :data:`CLOSURE_TOL` (rad for an angle, times `length_scale` for a length).
+
+    Examples
+    --------
+    >>> closes(np.array([2 * np.pi, 0.5, 1e-6]), np.array([True, True, False]), 100.0).tolist()
+    [True, False, True]
+    """
+    ok = np.abs(closure_gap(offset, angle)) <= CLOSURE_TOL * np.where(angle, 1.0, length_scale)
+    return bool(ok) if np.ndim(ok) == 0 else ok
+
+
 def _closure(y: np.ndarray, angle: np.ndarray, length_scale: float) -> tuple[np.ndarray, np.ndarray]:
     """Period offsets ``y[:, -1] - y[:, 0]`` and whether each row closes after one turn."""
     offset = y[:, -1] - y[:, 0]
-    turns = np.round(offset / _TURN)
-    ok = np.where(angle, np.abs(offset - _TURN * turns) <= CLOSURE_TOL, np.abs(offset) <= CLOSURE_TOL * length_scale)
-    return offset, ok
+    return offset, closes(offset, angle, length_scale)
 
 
 @dataclass

@@ -268,7 +268,7 @@ class Scene:
             check_deg = self.checks[0]["at_deg"]
         elif check_deg is None:  # the start; on less than a turn, the coarsest report grid's point nearest the
             # middle (on the finer grids too where they are its multiples)
-            from .report.study import DEFAULT_GRIDS
+            from .report.grids import DEFAULT_GRIDS
 
             coarse = 360.0 / min(options.get("grids", DEFAULT_GRIDS))
             check_deg = self.start_deg if span >= 360.0 else self.start_deg + coarse * round(0.5 * span / coarse)

@@ -406,7 +406,7 @@ def run_suite(cases: Iterable[str] | None = None, *, schemes: Iterable[str] | No
     import pandas as pd
 
     from .derivatives import get_scheme
-    from .report.study import PEAK, relative_text, set_views
+    from .report.captions import PEAK, relative_text, set_views
 
     names = list(CASES) if cases is None else ([cases] if isinstance(cases, str) else list(cases))
     unknown = [n for n in names if n not in CASES]

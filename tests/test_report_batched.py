@@ -152,7 +152,8 @@ def test_tables_of_one_report_equal_the_tables_computed_alone():
 
 
 def test_shared_sweeps_are_one_object_inside_the_block_and_fresh_outside():
-    from numkin.report.study import TURN, grid_inputs, shared_results, solve_sweep
+    from numkin.report.grids import TURN, grid_inputs
+    from numkin.report.study import shared_results, solve_sweep
 
     mech = linkages.slider_crank(R, L)
     inputs = grid_inputs(36, 0.0, TURN)

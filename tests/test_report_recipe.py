@@ -21,7 +21,7 @@ MODULE = '''
 import numpy as np
 import pandas as pd
 
-from numkin.report.study import set_caption
+from numkin.report.captions import set_caption
 
 __all__ = ["rocker_table"]
 

@@ -140,12 +140,12 @@ def _analytic_rates(sweep, name: str, frame, idx):
 def _closes(sweep, name: str, y: np.ndarray):
     """``(closes, text of value[-1] - value[0])``: whether `y` returns to its start after one turn (whole turns
     for an angle), by the tolerance :func:`numkin.kinematics.prepare_rows` applies to an unknown."""
-    from ..kinematics import CLOSURE_TOL
+    from ..kinematics import closes
 
     off = float(y[-1] - y[0])
-    if is_angle(sweep, name):
-        return abs(off - 2 * math.pi * round(off / (2 * math.pi))) <= CLOSURE_TOL, f"{math.degrees(off):.6g}°"
-    return abs(off) <= CLOSURE_TOL * sweep.mechanism.length_scale, f"{off:.6g} {length_unit(sweep)}"
+    angle = is_angle(sweep, name)
+    text = f"{math.degrees(off):.6g}°" if angle else f"{off:.6g} {length_unit(sweep)}"
+    return closes(off, angle, sweep.mechanism.length_scale), text
 
 
 def _runs_rates(y: np.ndarray, grid, s1, s2) -> tuple[np.ndarray, np.ndarray]:

@@ -74,7 +74,7 @@ Conventions
   angle (every error of the round-off table, the tolerance table's errors at
   the check angle), divided by the exact value there. Every caption names
   the denominator of each relative-error column
-  (:func:`~numkin.report.study.relative_text`).
+  (:func:`~numkin.report.captions.relative_text`).
 * Grids are given in points per turn N; a full-turn grid is
   ``np.linspace(start, start + 2 pi, N + 1)`` (the last sample repeats the
   first), differenced as periodic by :mod:`numkin.kinematics`; errors
@@ -104,9 +104,11 @@ Modules, one table family each, in the order :func:`full_report` runs them:
 :mod:`~numkin.report.convergence`, :mod:`~numkin.report.workprecision`
 (with :mod:`~numkin.report.counting`, the work measure),
 :mod:`~numkin.report.roundoff`, :mod:`~numkin.report.newton_tables`,
-:mod:`~numkin.report.tolerance`; what they share (settings, grids, labels,
-points on the sweep's branch, captions) is :mod:`~numkin.report.study`, the
-quantity studied over a sweep :mod:`~numkin.report.studied`, and
+:mod:`~numkin.report.tolerance`; what they share is :mod:`~numkin.report.study`
+(the input speed, the quantity's labels, sweeps and points on the sweep's
+branch), :mod:`~numkin.report.grids` (the grids in points per turn and the
+schemes they hold) and :mod:`~numkin.report.captions` (captions, views,
+relative errors), the quantity studied over a sweep :mod:`~numkin.report.studied`, and
 :mod:`~numkin.report.writers` writes the tables. Every name above is
 importable from :mod:`numkin.report` itself.
 
@@ -132,7 +134,8 @@ from .convergence import convergence_table
 from .counting import COUNTED_FUNCTIONS, EvaluationCounter, count_evaluations
 from .newton_tables import jacobian_table, newton_table
 from .roundoff import ROUNDOFF_SCHEMES, ROUNDOFF_STEPS, fitted_optimum, roundoff_table, stencil
-from .study import DEFAULT_GRIDS, TURN, input_speed, shared_results
+from .grids import DEFAULT_GRIDS, TURN
+from .study import input_speed, shared_results
 from .tolerance import STUDENT_RULES, student_sweep, tolerance_table
 from .workprecision import cheapest_table, work_precision_table
 from .writers import format_cell, format_text, table_views, write_tables
@@ -345,7 +348,7 @@ def _coarse_defaults_left_out(scene, options: dict) -> str:
     fewer points over it than a scheme studied needs; what was left out, for the captions ("" if nothing)."""
     import math
 
-    from .study import scheme_list, too_coarse
+    from .grids import scheme_list, too_coarse
 
     if "grids" in (scene.report or {}) or "span" not in options:
         return ""

@@ -10,10 +10,9 @@ import numpy as np
 from ..column_kinds import set_kinds
 from ..errors import InputError
 from ..schemes import own_stencil_points
-from .study import (
-    DEFAULT_GRIDS, EPS, TURN, UNIT, check_index, deg_text, full_turn, grid_inputs, grid_positions, grid_study,
-    PEAK, order_text, relative, relative_text, set_caption, set_views, solve_sweep, warned_once, zero_text,
-)
+from .captions import UNIT, deg_text, PEAK, order_text, relative, relative_text, set_caption, set_views, zero_text
+from .grids import DEFAULT_GRIDS, TURN, check_index, full_turn, grid_inputs, grid_positions, grid_study
+from .study import EPS, solve_sweep, warned_once
 
 __all__ = [
     "convergence_table",

@@ -7,10 +7,9 @@ import math
 import numpy as np
 
 from ..column_kinds import set_kinds
-from .study import (
-    TURN, VARIES, branch_point, deg_text, grid_inputs, position_record, set_caption, set_views,
-    solve_sweep,
-)
+from .captions import VARIES, deg_text, set_caption, set_views
+from .grids import TURN, grid_inputs
+from .study import branch_point, position_record, solve_sweep
 from .timing import median_time, timing_repeats
 
 __all__ = [

@@ -9,10 +9,8 @@ import numpy as np
 
 from ..errors import InputError
 from ..schemes import NameList, REGISTRY, lookup, point_stencil
-from .study import (
-    EPS, UNIT, at_angle, branch_point, deg_text, exact_derivatives, order_text, position_record, relative_text,
-    set_caption, set_views, solve_points,
-)
+from .captions import UNIT, at_angle, deg_text, order_text, relative_text, set_caption, set_views
+from .study import EPS, branch_point, exact_derivatives, position_record, solve_points
 from .studied import studied_quantity
 
 __all__ = [

@@ -34,12 +34,11 @@ import numpy as np
 
 from .. import kinematics
 from ..errors import InputError
-from ..kinematics import CLOSURE_TOL
-from .study import (
-    TURN, check_quantity, differenced, exact_derivatives, quantity_labels, shared_result, table_quantities,
-)
+from .study import check_quantity, differenced, exact_derivatives, quantity_labels, shared_result, table_quantities
 
 __all__ = ["StudiedQuantity", "studied_quantity"]
+
+TURN = 2.0 * math.pi
 
 
 
@@ -260,8 +259,7 @@ class StudiedQuantity:
             return 0.0
         t = np.asarray(sweep.inputs, dtype=float)
         ends = self.at(np.asarray(sweep.values)[:, [0, -1]], t[[0, -1]])
-        gap = float(ends[1] - ends[0])
-        return gap - TURN * round(gap / TURN) if self.is_angle else gap
+        return kinematics.closure_gap(float(ends[1] - ends[0]), self.is_angle)
 
     def closes(self, sweep) -> bool:
         """Whether the quantity returns to its start after the full turn `sweep` (:meth:`closure_gap`).
@@ -273,7 +271,7 @@ class StudiedQuantity:
         Examples
         --------
         >>> from numkin import linkages
-        >>> from numkin.report.study import TURN, grid_inputs
+        >>> from numkin.report.grids import TURN, grid_inputs
         >>> m = linkages.four_bar(4, 1, 3, 3).add_quantities({"half": ("theta2/2 + theta3", "angle")})
         >>> s = m.sweep(grid_inputs(36, 0.0, TURN))
         >>> studied_quantity(m, "theta3").closes(s), studied_quantity(m, "half").closes(s)
@@ -281,8 +279,7 @@ class StudiedQuantity:
         >>> round(abs(studied_quantity(m, "half").closure_gap(s)), 6)   # half a turn
         3.141593
         """
-        scale = 1.0 if self.is_angle else float(self.mechanism.length_scale)
-        return abs(self.closure_gap(sweep)) <= CLOSURE_TOL * scale
+        return kinematics.closes(self.closure_gap(sweep), self.is_angle, float(self.mechanism.length_scale))
 
     def closure_text(self, sweep) -> str:
         """A caption's sentence on a full turn differenced as an open grid because the quantity does not close."""

@@ -1,15 +1,17 @@
-"""What every error-analysis table shares: settings, grids, labels, branch points, captions.
+"""What every error-analysis table computes alike: the input speed, the quantity studied, sweeps and points.
 
 The table modules of :mod:`numkin.report` (:mod:`~numkin.report.convergence`,
 :mod:`~numkin.report.workprecision`, :mod:`~numkin.report.roundoff`,
 :mod:`~numkin.report.newton_tables`, :mod:`~numkin.report.tolerance`) build on
 these: the input speed and the quantity studied (an unknown or a derived
 quantity of :mod:`numkin.derived`, checked once; over a sweep it is a
-:class:`~numkin.report.studied.StudiedQuantity`); the grids in points per
-turn; the names and units of the quantities; sweeps and one-point
-solves on the branch of the sweep from the starting guess (:func:`branch_point`),
-by numkin's Newton (:func:`solve_points`); the caption and the solved positions a table
-carries in ``DataFrame.attrs``.
+:class:`~numkin.report.studied.StudiedQuantity`); the names and units of the
+quantities; sweeps and one-point solves on the branch of the sweep from the
+starting guess (:func:`branch_point`), by numkin's Newton
+(:func:`solve_points`), shared by the tables of one report
+(:func:`shared_results`); the solved positions a table carries in
+``DataFrame.attrs``. The grids are in :mod:`~numkin.report.grids`, the
+captions in :mod:`~numkin.report.captions`.
 
 Examples
 --------
@@ -18,8 +20,6 @@ Examples
 >>> mech = linkages.chained_four_bars()
 >>> quantity_labels(mech, "beta")[1], unknown_index(mech, "beta")
 ('omega_beta [rad/s]', 2)
->>> grid_inputs(36, 0.0, TURN).size                 # a full turn: N + 1 samples
-37
 >>> point = branch_point(mech, math.radians(100))   # continued from the guess at 0 deg
 >>> round(math.degrees(float(point["beta"][0])) % 360, 4)
 214.727
@@ -31,34 +31,21 @@ import math
 import warnings
 from contextlib import contextmanager
 from contextvars import ContextVar
-from typing import Callable, Mapping, Sequence
+from typing import Callable, Mapping
 
 import numpy as np
 
 from .. import analytic, kinematics, units
-from ..derivatives import SCHEMES, get_scheme
 from ..errors import InputError
 from ..sweep import Sweep
 
 __all__ = [
     "EPS",
-    "TURN",
-    "DEFAULT_GRIDS",
-    "UNIT",
-    "VARIES",
     "input_speed",
     "unknown_index",
     "check_quantity",
     "quantity_labels",
     "table_quantities",
-    "deg_text",
-    "scheme_list",
-    "too_coarse",
-    "full_turn",
-    "grid_inputs",
-    "grid_list",
-    "grid_study",
-    "check_index",
     "silenced",
     "shared_results",
     "shared_result",
@@ -68,26 +55,10 @@ __all__ = [
     "position_record",
     "differenced",
     "exact_derivatives",
-    "order_text",
-    "set_caption",
-    "set_views",
-    "grid_positions",
-    "relative",
-    "PEAK",
-    "at_angle",
-    "relative_text",
-    "zero_text",
     "warned_once",
 ]
 
 EPS = float(np.finfo(float).eps)
-TURN = 2.0 * math.pi
-#: Default grids, in points per turn of the input.
-DEFAULT_GRIDS = (36, 72, 180, 360, 720, 1440, 3600)
-#: Column names of absolute errors say this unit.
-UNIT = "[unit of quantity]"
-#: Column names of timings (and of what is chosen by them) say this: they vary between runs.
-VARIES = "(varies)"
 
 
 def input_speed(omega) -> float:
@@ -160,139 +131,6 @@ def table_quantities(mechanism, quantity: str) -> dict:
     return {q.label: q for q in _rates(mechanism, quantity).values()}
 
 
-def deg_text(angle: float) -> str:
-    return f"{math.degrees(angle):.6g}"
-
-
-def scheme_list(names, periodic: bool | None = None, why: str | None = None) -> list:
-    """Scheme objects for `names` (default: every registered scheme, the spectral ones only if periodic).
-
-    A spectral scheme named on a grid that is not periodic is refused: ``why`` says what it needs
-    (default: a grid over one full turn).
-    """
-    if names is None:
-        return [s for s in SCHEMES.values() if periodic or not s.periodic_only]
-    if isinstance(names, str):
-        names = [names]
-    out = [get_scheme(n) for n in names]
-    if not out:
-        raise InputError("schemes is empty: name at least one scheme, or pass None for all")
-    if periodic is False:
-        bad = [s.name for s in out if s.periodic_only]
-        if bad:
-            raise InputError(f"scheme(s) {bad} need {why or 'a grid over one full turn (span = 2 pi)'}")
-    return out
-
-
-def full_turn(span: float) -> bool:
-    """Whether an input range of `span` rad is one full turn (a periodic grid)."""
-    return abs(span - TURN) <= 1e-12 * TURN
-
-
-def grid_inputs(points: int, start: float, span: float) -> np.ndarray:
-    """Inputs of a grid with `points` per turn: a full turn (N + 1 samples) or `span` rad."""
-    if isinstance(points, bool) or int(points) != points or points < 4:
-        raise InputError(f"points per turn must be an integer >= 4, got {points!r}")
-    points = int(points)
-    h = TURN / points
-    if full_turn(span):
-        return start + h * np.arange(points + 1)
-    if not (0 < span < TURN):
-        raise InputError(f"span must be in (0, 2 pi] rad, got {span!r}")
-    count = int(math.floor(span / h + 1e-9)) + 1
-    if count < 5:
-        raise InputError(f"span {math.degrees(span):.4g} deg holds fewer than 5 points of a {points}-point grid")
-    return start + h * np.arange(count)
-
-
-def grid_list(grids) -> list:
-    if isinstance(grids, (int, np.integer)):
-        grids = [grids]
-    if isinstance(grids, str):
-        raise InputError(f"grids must be points per turn (integers), got {grids!r}")
-    out = []
-    for g in grids:
-        if isinstance(g, bool) or not isinstance(g, (int, np.integer, float)) or not math.isfinite(g) or g != int(g) \
-                or g < 4:
-            raise InputError(f"grids must be points per turn (integers >= 4), got {g!r} in {list(grids)!r}")
-        out.append(int(g))
-    if not out:
-        raise InputError("grids must name at least one grid (points per turn)")
-    if len(set(out)) != len(out):
-        raise InputError(f"grids names a grid twice ({out}): the observed order needs distinct steps")
-    return out
-
-
-def grid_study(mechanism, omega, quantity: str, grids, span: float, schemes, start: float = 0.0,
-               guess=None) -> tuple:
-    """The checked arguments of a study over grids: ``(w, studied, grids, periodic, schemes)``.
-
-    `w` is the input speed in rad/s, `studied` the :class:`StudiedQuantity`
-    of `quantity` (an unknown or a derived quantity), `periodic` whether
-    `span` is a full turn and the quantity returns to its start over it
-    (:meth:`StudiedQuantity.closes`, decided on the tight sweep of the
-    coarsest grid): a derived quantity that does not is studied on an open
-    grid, as a part of a turn is.
-    """
-    from .studied import studied_quantity
-
-    w = input_speed(omega)
-    studied = studied_quantity(mechanism, quantity)
-    grids = grid_list(grids)
-    periodic, why = full_turn(span), None
-    if periodic and studied.derived:
-        coarse = solve_sweep(mechanism, grid_inputs(min(grids), start, span), guess)
-        periodic = studied.closes(coarse)
-        if not periodic:
-            why = (f"a quantity that returns to its start after the turn; {studied.name} misses it by "
-                   f"{studied.gap_text(coarse)}: leave the spectral schemes out")
-    chosen = scheme_list(schemes, periodic, why)
-    _grids_hold(chosen, grids, start, span, periodic)
-    return w, studied, grids, periodic, chosen
-
-
-def too_coarse(schemes, grids, start: float, span: float, periodic: bool) -> list:
-    """The grids (points per turn) that hold fewer points over `span` than one of `schemes` needs, each as
-    ``(grid, points, scheme name, points needed, "an open" or "a periodic")``, coarsest first."""
-    out = []
-    for n in sorted(grids):
-        try:
-            count = grid_inputs(n, start, span).size - (1 if periodic else 0)
-        except InputError:  # fewer than 5 points over the span: too coarse for any table
-            out.append((n, None, None, 5, "an open"))
-            continue
-        for s in schemes:
-            try:
-                s.function(np.zeros((1, count)), 1.0, periodic=periodic)
-            except InputError as error:
-                if error.cause != "too few samples":
-                    raise
-                out.append((n, count, s.name, error.minimum, error.grid))
-                break
-    return out
-
-
-def _grids_hold(schemes, grids, start: float, span: float, periodic: bool) -> None:
-    """An InputError naming ``grids`` where a grid over `span` holds fewer points than a scheme needs (before any
-    sweep: a scheme on a grid too coarse for it has no value to tabulate)."""
-    short = too_coarse(schemes, [min(grids)], start, span, periodic)
-    if short and short[0][2] is not None:  # (fewer than 5 points: the table's own grid_inputs says so)
-        n, count, name, minimum, grid = short[0]
-        raise InputError(
-            f"grids: the {n}-point grid holds {count} points over {math.degrees(span):.4g} deg, and scheme "
-            f"'{name}' needs at least {minimum} on {grid} grid: give grids of more points per turn "
-            "(or leave the scheme out)", cause="too few samples")
-
-
-def check_index(inputs: np.ndarray, angle: float | None) -> int | None:
-    """Index of the grid point at `angle` (mod 2 pi), or None if the grid does not hold it."""
-    if angle is None:
-        return None
-    d = np.abs(np.remainder(inputs - angle + math.pi, TURN) - math.pi)
-    k = int(np.argmin(d))
-    return k if d[k] <= 1e-9 else None
-
-
 def silenced(fn, *args, **kwargs):
     """Call fn with numkin's warnings silenced (callers report what matters in the tables)."""
     with warnings.catch_warnings():
@@ -360,10 +198,11 @@ def shared_results():
     >>> import numpy as np
     >>> from numkin import linkages
     >>> mech = linkages.slider_crank(80, 200)
+    >>> inputs = np.radians(np.arange(0.0, 361.0, 10.0))
     >>> with shared_results():
-    ...     a = solve_sweep(mech, grid_inputs(36, 0.0, TURN))
-    ...     b = solve_sweep(mech, grid_inputs(36, 0.0, TURN))
-    >>> a is b, solve_sweep(mech, grid_inputs(36, 0.0, TURN)) is a
+    ...     a = solve_sweep(mech, inputs)
+    ...     b = solve_sweep(mech, inputs)
+    >>> a is b, solve_sweep(mech, inputs) is a
     (True, False)
     """
     token = _SHARED.set({}) if _SHARED.get() is None else None
@@ -468,119 +307,6 @@ def exact_derivatives(sweep: Sweep, quiet: bool = True, *, fresh: bool = False) 
     evaluations are counted or timed) computed anew, and kept.
     """
     return shared_result(("exact", id(sweep)), lambda: analytic.derivatives(sweep), quiet, keep=(sweep,), fresh=fresh)
-
-
-def order_text(scheme) -> str:
-    return "spectral" if scheme.order == 0 else str(scheme.order)
-
-
-def set_caption(df, text: str, positions: Sequence[dict] | None = None):
-    """Set a table's caption and, if given, the positions it was computed at (``attrs["positions"]``)."""
-    df.attrs["caption"] = text
-    if positions is not None:
-        df.attrs["positions"] = list(positions)
-    return df
-
-
-def set_views(df, views: Sequence, row_keys: Sequence | None = None) -> object:
-    """Say how a wide table is read: ``attrs["views"]``, a list of ``[title, [columns]]``.
-
-    Each view is one idea of the table, a few columns wide, and becomes a
-    table of its own in Markdown, LaTeX and on the terminal
-    (:mod:`~numkin.report.writers`; columns no view names make a last
-    part); CSV keeps every column in one table. Columns not in `df` are
-    dropped from a view; a view left with nothing but the columns that name
-    a row (a table of run times, not timed) is left out. `row_keys`
-    (``attrs["row_keys"]``) are the columns that name a row; the terminal
-    repeats them in each part of a view too wide for one screen.
-    """
-    keys = [str(c) for c in (row_keys or ()) if c in df.columns]
-    if row_keys is not None:
-        df.attrs["row_keys"] = keys
-    out = []
-    for title, cols in views:
-        cols = [c for c in cols if c in df.columns]
-        if any(str(c) not in keys for c in cols):
-            out.append([str(title), list(cols)])
-    df.attrs["views"] = out
-    return df
-
-
-def grid_positions(mechanism, sweeps: Mapping, angle: float | None) -> list:
-    """``attrs["positions"]`` of a table of sweeps: each sweep at `angle` (or its middle sample, if None)."""
-    out = []
-    for n, s in sweeps.items():
-        k = s.inputs.size // 2 if angle is None else check_index(s.inputs, angle)
-        if k is not None:
-            out.append(position_record(f"{n} points per turn", mechanism, s.inputs[k], s.values[:, k]))
-    return out
-
-
-def relative(error: float, exact) -> float:
-    """``error / max|exact|``; NaN where the exact values are all 0 (a relative error is undefined there).
-
-    The exact derivative of a quantity linear in the input (``r2*theta2``) is 0 to the last bit: the
-    chain rule of :mod:`numkin.expressions` gives it so; then say so in the caption (:func:`zero_text`).
-
-    Examples
-    --------
-    >>> relative(0.5, [1.0, -2.0]), relative(0.5, [0.0, 0.0])
-    (0.25, nan)
-    """
-    peak = float(np.max(np.abs(np.asarray(exact, dtype=float))))
-    return error / peak if peak > 0 else math.nan
-
-
-#: Denominator of a relative error taken over the sweep (:func:`relative`), as :func:`relative_text` names it.
-PEAK = "the largest |exact value| over the sweep"
-
-
-def at_angle(where: str) -> str:
-    """Denominator of a relative error taken at one input angle, ``"theta = 100 deg"``, for :func:`relative_text`."""
-    return f"|exact value| at {where}"
-
-
-def relative_text(columns: Mapping[str, str]) -> str:
-    """A caption's sentence naming the denominator of each relative-error column.
-
-    Parameters
-    ----------
-    columns : mapping
-        Column (or its name as the caption calls it) -> denominator
-        (:data:`PEAK`, :func:`at_angle` or a phrase of the same kind).
-        Columns of one denominator are named together, in the given order.
-
-    Returns
-    -------
-    str
-        A sentence with a leading space, to append to a caption ("" for no column).
-
-    Examples
-    --------
-    >>> relative_text({"max rel error [-]": PEAK})
-    ' Relative errors: max rel error [-] is divided by the largest |exact value| over the sweep.'
-    >>> text = relative_text({"max rel error": PEAK, "rel error at 5 deg": at_angle("5 deg")})
-    >>> print(text.strip())  # doctest: +NORMALIZE_WHITESPACE
-    Relative errors: max rel error is divided by the largest |exact value| over the sweep; rel error at 5 deg by
-    |exact value| at 5 deg.
-    """
-    groups: dict = {}
-    for column, denominator in columns.items():
-        groups.setdefault(denominator, []).append(str(column))
-    parts = []
-    for k, (denominator, names) in enumerate(groups.items()):
-        verb = ("is" if len(names) == 1 else "are") + " divided by" if k == 0 else "by"
-        listed = names[0] if len(names) == 1 else f"{', '.join(names[:-1])} and {names[-1]}"
-        parts.append(f"{listed} {verb} {denominator}")
-    return " Relative errors: " + "; ".join(parts) + "." if parts else ""
-
-
-def zero_text(names) -> str:
-    """A caption's sentence on the quantities whose exact value is 0 over the whole sweep (relative errors blank)."""
-    if not names:
-        return ""
-    return (f" The exact {' and '.join(sorted(names))} is 0 over the whole sweep: its relative error is undefined and "
-            "left blank (its absolute errors stand).")
 
 
 def warned_once(seen: set, fn, *args, **kwargs):

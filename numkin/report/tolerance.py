@@ -13,10 +13,9 @@ from ..errors import InputError, NumkinError
 from ..newton_rules import check_tol
 from ..schemes import own_stencil_points
 from ..sweep import Sweep
-from .study import (
-    PEAK, TURN, at_angle, check_index, deg_text, full_turn, grid_inputs, input_speed, position_record, relative,
-    relative_text, set_caption, set_views, solve_sweep, zero_text,
-)
+from .captions import PEAK, at_angle, deg_text, relative, relative_text, set_caption, set_views, zero_text
+from .grids import TURN, check_index, full_turn, grid_inputs
+from .study import input_speed, position_record, solve_sweep
 from .studied import studied_quantity
 
 __all__ = [

@@ -11,11 +11,9 @@ from .. import analytic
 from ..errors import InputError
 from ..schemes import REGISTRY, own_stencil_points
 from .counting import count_evaluations, stencil_evaluations, sweep_evaluations
-from .study import (
-    DEFAULT_GRIDS, EPS, PEAK, TURN, UNIT, VARIES, exact_derivatives, full_turn, grid_inputs, grid_positions,
-    grid_study, relative, relative_text, set_caption, set_views, silenced, solve_sweep,
-    zero_text,
-)
+from .captions import PEAK, UNIT, VARIES, relative, relative_text, set_caption, set_views, zero_text
+from .grids import DEFAULT_GRIDS, TURN, full_turn, grid_inputs, grid_positions, grid_study
+from .study import EPS, exact_derivatives, silenced, solve_sweep
 from .timing import median_time, timing_repeats
 
 __all__ = [
