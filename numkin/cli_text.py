@@ -25,6 +25,8 @@ def fmt_value(value: float, expected: float | None = None, mismatch: bool = Fals
     if value == 0:
         value = 0.0  # no "-0"
     if expected is not None:
+        if written is not None and "e" in written.lower() and value == expected:
+            return written.replace("_", "")  # (the expected value itself, as written: 1.50e2)
         text = written.replace("_", "") if written is not None else repr(float(expected))
         if "e" not in text.lower():
             decimals = 0 if written is None and text.endswith(".0") else len((text.split(".") + [""])[1])
@@ -70,6 +72,8 @@ def _check_lines(check, input_name: str, title: str) -> list[str]:
 
 def format_result(result) -> str:
     """The text summary printed by ``numkin run``: sweep, check points, largest errors, files."""
+    from .units import deg_text  # (numpy, which --help does not load)
+
     scene = result.scene
     lines = [f"{scene.name}: {scene.title or scene.description}"]
     if scene.kind == "stability":
@@ -91,7 +95,7 @@ def format_result(result) -> str:
             f"{float(sweep.residual.max()):.1e}, largest condition number of a loop's block {float(sweep.cond.max()):.3g}"
         )
         for event in sweep.events:
-            lines.append(f"  {event.kind} at {name} = {math.degrees(event.input_value):.3f}°: {event.message}")
+            lines.append(f"  {event.kind} at {name} = {deg_text(event.input_value)}: {event.message}")
         for check in result.checks:
             lines += [""] + _check_lines(check, name, "check at")
         if result.at is not None:

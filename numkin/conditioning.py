@@ -15,7 +15,6 @@ Examples
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 
@@ -246,9 +245,9 @@ def warn_rounding(sweep, mech, t, rows, scheme, d, rtol) -> None:
         reach = _reach(_bounding_stencil(scheme))
         lo = max(0, k - reach)
         m = lo + int(np.nanargmax(np.nan_to_num(cond[lo : k + reach + 1], nan=1.0)))  # the condition number used
-        at = "" if m == k else f" at {math.degrees(t[m]):.3f}°, within the stencil's reach"
+        at = "" if m == k else f" at {deg_text(t[m])}, within the stencil's reach"
         warn(
-            f"{mech.name}: {scheme.name} loses digits to rounding: at input {math.degrees(t[k]):.3f}° "
+            f"{mech.name}: {scheme.name} loses digits to rounding: at input {deg_text(t[k])} "
             f"(step h = {rows.h:.3g} rad, condition number {cond[m]:.3g}{at}) the estimated rounding error of "
             f"d{'' if scheme.derivative == 1 else '2'}{mech.unknowns[j]} is {rel[j, k]:.1e} of its largest value (or of 1 unit per rad), "
             f"above the tolerance {rtol:.0e}",

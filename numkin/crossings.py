@@ -29,8 +29,8 @@ AT_END = 1e-10
 
 class Crossings:
     """The change points of one sweep (a part of :class:`numkin.march.Continuation`, whose state it reads:
-    ``crossings``, ``pending``, ``approach``, ``before_sweep``, ``events``, ``on_singular``, the mechanism and
-    its one-point kernels)."""
+    ``crossings``, ``pending``, ``approach``, ``before_sweep``, ``passed_on_way``, ``events``, ``on_singular``, the
+    mechanism and its one-point kernels)."""
 
     def record(self, kind, t, loop, message, *, raise_kind=None, cond=None, **extra):
         """Raise (``on_singular="raise"``) or record an event once and warn."""
@@ -64,23 +64,23 @@ class Crossings:
         tc = 0.5 * (t + t_new) if tc is None else tc
         if self.on_singular == "raise":
             self.pending = (tc, loop)
-        met = [(c, lp) for c, lp in self.crossings if abs(c - tc) <= 1e-6 * max(1.0, abs(tc)) and lp == loop]
-        if not met:
+        met = _same(self.crossings, tc, loop)
+        if met is None:
             self.crossings.append((tc, loop))
         if self.approach is not None:
             self.before_sweep.append((tc, loop))
-        elif met and met[0] in self.before_sweep:  # passed again by the sweep itself
-            self.before_sweep.remove(met[0])
+            self.passed_on_way.append((tc, loop))
+        elif met is not None and met in self.before_sweep:  # passed again by the sweep itself
+            self.before_sweep.remove(met)
 
     def where_passed(self, tc, loop) -> str:
         """``" on the way from the default guess at ... to the sweep's first input ..."`` for a change point
         passed before the sweep (marching from the default guess's input to the sweep's start), else ``""``."""
-        for c, lp in self.before_sweep:
-            if lp == loop and abs(c - tc) <= 1e-6 * max(1.0, abs(tc)):
-                tg, t0 = self.approach_inputs
-                return (f" on the way from the default guess at {deg_text(tg, 3)} to the sweep's first input "
-                        f"{deg_text(t0, 3)}, before the sweep")
-        return ""
+        if _same(self.before_sweep, tc, loop) is None:
+            return ""
+        tg, t0 = self.approach_inputs
+        return (f" on the way from the default guess at {deg_text(tg, 3)} to the sweep's first input "
+                f"{deg_text(t0, 3)}, before the sweep")
 
     def unpassed_crossings(self, t_end, o):
         """Forget the change points found at ``t_end``, where a march stops: no step went past them (a
@@ -97,6 +97,17 @@ class Crossings:
                 if o is not None:
                     k = self.loop_names.index(loop)
                     o[k] = -o[k]
+                on_way = _same(self.passed_on_way, tc, loop)
+                if self.approach is None and on_way is not None:
+                    # passed on the way from the guess; the sweep only came back to it: passed, before the sweep
+                    kept.append((tc, loop))
+                    if _same(self.before_sweep, tc, loop) is None:
+                        self.before_sweep.append(on_way)
+                    continue
+                for forgotten in (self.before_sweep, self.passed_on_way):
+                    met = _same(forgotten, tc, loop)
+                    if met is not None:
+                        forgotten.remove(met)
             else:
                 kept.append((tc, loop))
         self.crossings = kept
@@ -129,6 +140,7 @@ class Crossings:
         such grid point or the march fails.
         """
         on_side = np.flatnonzero((np.sign(t - tc) == side) & (cond < 1e6))
+        state = (list(self.crossings), list(self.before_sweep), self.pending)  # (the tangent's marches pass nothing)
         if on_side.size == 0:
             return None
         j = int(on_side[np.argmin(np.abs(t[on_side] - tc))])
@@ -141,6 +153,8 @@ class Crossings:
             _, d2, _, _ = self.march(tc + 2 * side * h, x1, d1, o1, tc + side * h)
         except (BranchError, ConvergenceError):
             return None
+        finally:
+            self.crossings, self.before_sweep, self.pending = state
         if d1 is None or d2 is None:
             return None
         return [2.0 * b - a for a, b in zip(d1, d2)]
@@ -153,7 +167,7 @@ class Crossings:
         kept = f"the {branch} branch" if branch and self.started_on_default else "the branch the sweep was on"
         span = float(abs(t[-1] - t[0])) if t.size > 1 else 1.0
         h = min(1e-3, 0.25 * span)
-        for tc, loop in self.crossings:
+        for tc, loop in list(self.crossings):
             sides = [self.one_sided_tangent(t, X, O, cond, tc, side, h) for side in (-1.0, 1.0)]
             if t.size > 1 and t[-1] < t[0]:
                 sides.reverse()  # before and after in the sweep's direction
@@ -168,12 +182,17 @@ class Crossings:
             how = {True: "its tangent is continuous", False: "its tangent jumps here",
                    None: "its tangent from one side"}[continuous]
             way = self.where_passed(tc, loop)
+            branch = "the branch the guess was on" if way else kept
             message = (
                 f"{mech.name}: loop '{loop}' passes a singular position at input {deg_text(tc, 4)}{way} (its "
-                f"Jacobian changes sign): a change point, where the branches meet; kept "
-                f"{'the branch the guess was on' if way else kept} ({how}: {rates})"
+                f"Jacobian changes sign): a change point, where the branches meet; kept {branch} ({how}: {rates})"
             )
             self.record(
-                "change point", tc, loop, message, branch=kept, tangent=tuple(tangent),
+                "change point", tc, loop, message, branch=branch, tangent=tuple(tangent),
                 tangent_before=tuple(before), tangent_after=tuple(after), tangent_continuous=continuous,
             )
+
+
+def _same(points, tc, loop):
+    """The entry ``(input, loop)`` of `points` that is the change point at `tc` of `loop` (to 1e-6), or None."""
+    return next(((c, lp) for c, lp in points if lp == loop and abs(c - tc) <= 1e-6 * max(1.0, abs(tc))), None)

@@ -159,9 +159,9 @@ def solve_start(ctx: Continuation, t0: float, guess, maxiter: int):
         ctx.approach = ctx.approach_inputs = (tg, t0)
         try:
             x, d_t0, o_t0, iters = ctx.march(tg, x_g, d, o, t0)
+            o_t0 = ctx.unpassed_crossings(t0, o_t0)  # a singular position at t0: passed (or not) by the sweep
         finally:
             ctx.approach = None
-        o_t0 = ctx.unpassed_crossings(t0, o_t0)  # a singular position at t0: passed (or not) by the sweep
         if d_t0 is None or o_t0 is None:
             d_t0, o_t0 = ctx.local1(ctx.eval1(x, t0))
         return x, iters, d_t0, o_t0

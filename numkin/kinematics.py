@@ -59,7 +59,7 @@ from .analytic import check_sweep, input_rates, kinematics_frame
 from .analytic import tangent as sweep_tangent
 from .conditioning import DIGITS_RTOL, rounding_error, warn_rounding
 from .errors import InputError, warn
-from .units import is_full_turn
+from .units import deg_text, is_full_turn
 
 __all__ = ["finite_difference", "rounding_error", "sweep_derivative", "sweep_grid", "SweepGrid", "prepare_rows", "Rows", "scheme_for", "apply_scheme", "unwrap_angles", "PARTNER",
            "CLOSURE_TOL", "closure_gap", "closes"]
@@ -196,8 +196,8 @@ def unwrap_angles(y: np.ndarray, angle, names, inputs, tangent=None, purpose: st
         k = int(np.flatnonzero(turns[np.flatnonzero(wrapped)[0]] != 0)[0])
         warn(
             f"angle(s) {[names[i] for i in rows[wrapped]]} jump by more than 180° between neighbouring samples "
-            f"(first {names[r]} between inputs {math.degrees(inputs[k]):.3f}° and "
-            f"{math.degrees(inputs[k + 1]):.3f}°): wrapped data; unwrapped before {purpose}",
+            f"(first {names[r]} between inputs {deg_text(inputs[k])} and "
+            f"{deg_text(inputs[k + 1])}): wrapped data; unwrapped before {purpose}",
             UserWarning,
         )
         y[rows] -= _TURN * np.concatenate([np.zeros((rows.size, 1)), np.cumsum(turns, axis=-1)], axis=-1)
@@ -208,7 +208,7 @@ def unwrap_angles(y: np.ndarray, angle, names, inputs, tangent=None, purpose: st
         warn(
             f"angle(s) {[names[j] for j in rows[real.any(axis=-1)]]} turn by more than 180° between neighbouring "
             f"samples (first {names[r]}, by {math.degrees(abs(steps[i, k])):.1f}° between inputs "
-            f"{math.degrees(inputs[k]):.3f}° and {math.degrees(inputs[k + 1]):.3f}°): the grid is too coarse for "
+            f"{deg_text(inputs[k])} and {deg_text(inputs[k + 1])}): the grid is too coarse for "
             "difference quotients; sample the sweep more finely",
             UserWarning,
         )
@@ -339,7 +339,7 @@ def prepare_rows(y, angle, names, inputs, grid: SweepGrid, length_scale: float, 
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
         row = names[int(np.flatnonzero(~np.isfinite(y[:, k]))[0])]
-        raise InputError(f"{row} is not finite at input {math.degrees(inputs[k]):.3f}°: cannot difference it")
+        raise InputError(f"{row} is not finite at input {deg_text(inputs[k])}: cannot difference it")
     y = unwrap_angles(y, angle, names, inputs, tangent)
     if grid.reverse:
         y = y[:, ::-1]

@@ -287,8 +287,10 @@ def describe(loops, input_symbol, parameters, points) -> dict:
     mechanism can be checked and solved without sympy. ``lengths`` are the parameters in the loop's
     vector lengths, ``links`` those in the lengths of vectors that turn (whose angle holds the input or
     an unknown): a vector of fixed direction is an offset, which may have either sign. ``numbers`` is
-    the largest length written as a number (0 if none), ``angle_parameters`` the parameters in the
-    vectors' angles (a ground's tilt): both for :func:`default_length_scale`.
+    the largest length written as a number (a vector's, or a term of an equation that is a number times
+    sines and cosines; 0 if none), ``scales`` the parameters that scale the
+    loop (in its vectors' lengths; in a loop written as equations, those outside every sine, cosine and
+    tangent): both for :func:`default_length_scale`.
 
     Examples
     --------
@@ -309,9 +311,8 @@ def describe(loops, input_symbol, parameters, points) -> dict:
                    "lengths": sorted(str(s) for s in lp.length_symbols),
                    "links": sorted({str(s) for length, angle in lp.vector_symbols if angle & moving
                                     for s in length - set(lp.unknowns)}),
-                   "numbers": max([abs(float(length)) for length, _ in lp.vectors if not length.free_symbols] + [0.0]),
-                   "angle_parameters": sorted({str(s) for _, angle in lp.vectors for s in angle.free_symbols}
-                                              - {str(s) for s in moving})} for lp in loops],
+                   "numbers": _largest_number(lp),
+                   "scales": sorted(str(s) for s in _scale_symbols(lp) - moving)} for lp in loops],
         "points": [str(k) for k in (points or {})],
         "point_symbols": {str(k): sorted({s.name for c in xy for s in getattr(c, "free_symbols", ())})
                           for k, xy in (points or {}).items()},
@@ -467,12 +468,13 @@ def check_lengths(model: dict, value_of: dict, every_link: bool = False) -> None
 
 
 def default_length_scale(model: dict, value_of: dict) -> float:
-    """The characteristic length of a mechanism: its largest vector length.
+    """The characteristic length of a mechanism: the largest of its lengths.
 
-    That is the largest value of a parameter in a vector's length or of a
-    length written as a number; where the loops have neither (loops written
-    as equations), the largest parameter that is not in a vector's angle;
-    else 1.
+    That is the largest value of a parameter that scales a loop (a
+    parameter in a vector's length; in a loop written as equations, one
+    outside every sine, cosine and tangent) or of a vector length written as
+    a number; a parameter only in angles (a ground's tilt) is none. Where
+    there is no such length, the largest parameter; else 1.
 
     Examples
     --------
@@ -482,13 +484,44 @@ def default_length_scale(model: dict, value_of: dict) -> float:
     >>> default_length_scale(describe([loop], t2, {tilt: 1e-6}, None), {"tilt": 1e-6})
     4000000.0
     """
-    lengths = {s for lp in model["loops"] for s in lp["lengths"]}
-    values = [abs(v) for s, v in value_of.items() if s in lengths]
+    scales = {s for lp in model["loops"] for s in lp.get("scales", lp["lengths"])}
+    values = [abs(v) for s, v in value_of.items() if s in scales]
     values += [lp.get("numbers", 0.0) for lp in model["loops"]]
     if not any(values):
-        angles = {s for lp in model["loops"] for s in lp.get("angle_parameters", ())}
-        values = [abs(v) for s, v in value_of.items() if s not in angles]
+        values = [abs(v) for v in value_of.values()]
     return max(values) if values and max(values) > 0 else 1.0
+
+
+def _largest_number(lp) -> float:
+    """The largest length of a loop written as a number: a vector's; in a loop written as equations, the
+    largest number a term of a residual is, times sines, cosines and tangents only (0 if none)."""
+    if lp.vectors:
+        return max([abs(float(length)) for length, _ in lp.vectors if not length.free_symbols] + [0.0])
+    import sympy as sp
+
+    out = 0.0
+    for r in lp.residuals:
+        for term in sp.Add.make_args(sp.expand(r)):
+            plain = term.xreplace({f: sp.Dummy() for f in term.atoms(sp.sin, sp.cos, sp.tan)})
+            if all(isinstance(s, sp.Dummy) for s in plain.free_symbols):
+                coefficient = plain.as_coeff_Mul()[0]
+                if coefficient.is_number and coefficient.is_finite:
+                    out = max(out, abs(float(coefficient)))
+    return out
+
+
+def _scale_symbols(lp) -> set:
+    """The symbols that scale a loop: those of its vectors' lengths; of a loop written as equations, those
+    outside every sine, cosine and tangent of its residuals."""
+    if lp.vectors:
+        return set(lp.length_symbols)
+    import sympy as sp
+
+    out = set()
+    for r in lp.residuals:
+        trig = {f: sp.Dummy() for f in r.atoms(sp.sin, sp.cos, sp.tan)}
+        out |= r.xreplace(trig).free_symbols if trig else r.free_symbols
+    return {s for s in out if not isinstance(s, sp.Dummy)} - set(lp.unknowns)
 
 
 def check_symbols(loops, input_symbol, parameters) -> None:

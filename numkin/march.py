@@ -113,6 +113,7 @@ class Continuation(Crossings):
         #: (input of the default guess, the sweep's first input) while the march goes from one to the other
         self.approach = None
         self.before_sweep: list = []  # change points passed on that way only: (input, loop)
+        self.passed_on_way: list = []  # every change point passed on that way, passed again by the sweep or not
         self.floor = 0.0  # round-off floor of the batch's residuals (set before the batch)
         #: Point evaluations of the residuals and of the Jacobian so far (a fused evaluation counts
         #: in both; a finite-difference Jacobian is one Jacobian and its n or 2n residuals).

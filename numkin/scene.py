@@ -68,7 +68,7 @@ are optional. ::
 
     [[check]]                # a check point; expected values are optional
     at_deg = 100
-    theta4_deg = 122.343     # agrees to the decimals written (trailing zeros count), or give
+    theta4_deg = 122.343     # agrees to the last digit written (122.340: 5e-4; 1.50e2: 0.5), or give
     omega_theta4 = 2.3329    # [rad/s]
     tolerance = 1e-3         # an absolute tolerance
 

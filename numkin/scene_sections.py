@@ -211,8 +211,8 @@ def read_compare(r: SceneReader, scene: Scene, cmp: dict) -> None:
         r.fail("[output] tables", "'summary' needs [compare] schemes or second_schemes")
 
 
-_CHECK_HEADER = re.compile(r"\s*\[\[\s*check\s*\]\]\s*(#.*)?$")
-_NUMBER_LINE = re.compile(r'\s*("?)([A-Za-z0-9_-]+)\1\s*=\s*([-+]?[0-9][0-9_]*(\.[0-9_]*)?([eE][-+]?[0-9_]+)?)\s*(#.*)?$')
+_CHECK_HEADER = re.compile(r"""\s*(\[\[\s*(["']?)check\2\s*\]\]|\[\s*(["']?)check\3\s*\])\s*(#.*)?$""")
+_NUMBER_LINE = re.compile(r"""\s*(["']?)([A-Za-z0-9_-]+)\1\s*=\s*([-+]?[0-9][0-9_]*(\.[0-9_]*)?([eE][-+]?[0-9_]+)?)\s*(#.*)?$""")
 
 
 def checks_as_written(text: str) -> list:
@@ -220,9 +220,9 @@ def checks_as_written(text: str) -> list:
 
     TOML reads ``122.340`` as the float 122.34; the text keeps the decimals
     the author wrote, which the check's default tolerance is half a unit of.
-    A number this line-by-line reading does not find (an inline table, a
-    value over several lines) is left out: its tolerance is taken from the
-    float.
+    A number this line-by-line reading does not find (in an inline table, or
+    a value over several lines) is left out: its tolerance is taken from the
+    float (the decimals of its shortest form).
 
     Examples
     --------

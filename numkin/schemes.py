@@ -483,7 +483,8 @@ def default_schemes(derivative: int, *, periodic: bool) -> tuple[str, ...]:
     """The schemes a comparison of one derivative shows when none are named.
 
     The ``default`` first-derivative schemes of sampled data, in registry
-    order; for the second derivative their partners, in the same order. The
+    order; for the second derivative their partners, in the same order, then
+    the other ``default`` second-derivative schemes, each named once. The
     periodic-only ones (spectral) come last, and only if `periodic`.
 
     Examples
@@ -495,11 +496,13 @@ def default_schemes(derivative: int, *, periodic: bool) -> tuple[str, ...]:
     """
     if derivative not in (1, 2) or isinstance(derivative, bool):
         raise InputError(f"derivative must be 1 or 2, got {derivative!r}")
-    first = [s for s in SCHEMES.values() if s.default and s.derivative == 1 and (periodic or not s.periodic_only)]
-    first.sort(key=lambda s: s.periodic_only)  # stable: registry order within each
+    shown = [s for s in SCHEMES.values() if s.default and (periodic or not s.periodic_only)]
+    shown.sort(key=lambda s: s.periodic_only)  # stable: registry order within each
     if derivative == 1:
-        return tuple(s.name for s in first)
-    return tuple(s.partner for s in first if s.partner is not None)
+        return tuple(s.name for s in shown if s.derivative == 1)
+    names = [s.partner for s in shown if s.derivative == 1 and s.partner is not None]
+    names += [s.name for s in shown if s.derivative == 2]
+    return tuple(dict.fromkeys(n for n in names if periodic or not SCHEMES[n].periodic_only))
 
 
 class NameList(Sequence):
@@ -523,6 +526,15 @@ class NameList(Sequence):
 
     def __eq__(self, other):
         return tuple(self) == (tuple(other) if isinstance(other, NameList) else other)
+
+    def __add__(self, other):
+        return tuple(self) + tuple(other)
+
+    def __radd__(self, other):
+        return tuple(other) + tuple(self)
+
+    def __reduce__(self):  # (pickled as the names it holds now)
+        return tuple, (tuple(self),)
 
     __hash__ = None
 

@@ -150,3 +150,12 @@ def test_a_narrow_animation_keeps_its_axis_labels_inside(tmp_path, monkeypatch):
     assert moved3 and not moved_default
     assert box3.x0 < ylabel3.x0 and box3.x0 < tight3.x0 and box3.y0 < tight3.y0
     assert box.x0 < tight.x0 and box.y0 < tight.y0
+
+
+@pytest.mark.parametrize("width, dpi, arrows", [(1.0, 30, None), (3.0, 10, "acceleration"), (1.25, 30, "velocity")])
+def test_the_smallest_frames_allowed_are_drawn(tmp_path, width, dpi, arrows):
+    """Width 1 to 40 inches and 10 to 600 dpi are allowed: a title or scale line set smaller to fit keeps a
+    font of at least two pixels (FreeType refused one of less than a pixel, and the animation was lost)."""
+    sweep = linkages.slider_crank(80, 200).sweep(np.radians(np.arange(0, 361, 10)))
+    path = animate(sweep, tmp_path / "small.gif", frames=2, width=width, dpi=dpi, arrows=arrows, omega=10.0)
+    assert abs(Image.open(path).size[0] - width * dpi) <= 1

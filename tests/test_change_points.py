@@ -168,6 +168,31 @@ def test_a_change_point_passed_before_the_sweep_is_said_to_be_there():
     assert max(_wrap(sweep["theta3"] - crossed[0]).max(), _wrap(sweep["theta4"] - crossed[1]).max()) < 1e-9
 
 
+@pytest.mark.parametrize("dims, guess_input, inputs, expected", [
+    # two change points on the way (the tangent's marches at the first pass the second: still on the way)
+    ((5.0, 2.0, 5.0, 2.0), 1.0, np.arange(370.0, 401.0), [(180.0, True), (360.0, True)]),
+    # the way ends on a change point, which the sweep then passes: the sweep's
+    ((5.0, 2.0, 5.0, 2.0), 1.0, np.arange(-180.0, -250.0, -1.0), [(0.0, True), (-180.0, False)]),
+    # the sweep comes back to the change point passed on the way, and ends on it: still passed, on the way
+    ((4.0, 2.0, 3.0, 3.0), 0.0, np.arange(300.0, 179.0, -1.0), [(180.0, True)]),
+    # the sweep goes back across it: the sweep's
+    ((4.0, 2.0, 3.0, 3.0), 0.0, np.arange(200.0, 99.0, -1.0), [(180.0, False)]),
+])
+def test_each_change_point_is_placed_on_the_way_or_in_the_sweep(dims, guess_input, inputs, expected):
+    """Every change point passed is reported once (report mode), said to lie on the way from the default
+    guess to the sweep's start where only that march passes it, with the event's branch in the same words."""
+    guess = {"theta3": 0.3, "theta4": 1.0 if guess_input else 1.5}
+    mech = _four_bar_loop(dims, guess, guess_input)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sweep = mech.sweep(np.radians(inputs), on_singular="report")
+    events = [e for e in sweep.events if e.kind == "change point"]
+    got = [(round(float(np.degrees(e.input_value)), 4), "before the sweep" in e.message) for e in events]
+    assert got == expected
+    for e, (_, before) in zip(events, expected):
+        assert (e.branch == "the branch the guess was on") == before
+
+
 # The non-Grashof four-bar 4/3/2/2.5: its crank reaches a limit where coupler and rocker line up,
 # |A - O4| = r3 + r4, at cos t = (16 + 9 - 20.25) / 24.
 TOGGLE_DIMS = (4.0, 3.0, 2.0, 2.5)

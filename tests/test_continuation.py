@@ -202,6 +202,29 @@ def test_lengths_written_as_numbers_set_the_default_length_scale(scale, tilt):
     assert sweep.cond.max() < 10
 
 
+def test_equation_loops_give_their_lengths_to_the_length_scale():
+    """Loops written as equations: a parameter outside every sine and cosine (L of a slider's equation
+    beside a four-bar of numbers, L = 1e9: it was left out and the sweep made no progress) and a number
+    times sines and cosines (4 of the four-bar's equations, whose ground is tilted by gamma = 1e-8 inside a
+    cosine: gamma was the length scale and the sweep failed at 90°) are lengths; the tilt is none."""
+    t2, t3, t4, x, length, gamma = sp.symbols("theta2 theta3 theta4 x L gamma")
+    inputs = np.radians(np.arange(0.0, 361.0))
+    four_bar = Loop.from_vectors([(1, t2), (3, t3), (-3, t4), (-4, 0)], [t3, t4])
+    slider = Loop([x - length * sp.cos(t4) - length], [x])
+    mech = Mechanism([four_bar, slider], t2, {length: 1e9}, guess={"theta3": 0.5, "theta4": 1.5, "x": 2e9})
+    assert mech.length_scale == 1e9
+    sweep = mech.sweep(inputs)
+    np.testing.assert_allclose(sweep["x"], 1e9 * (np.cos(sweep["theta4"]) + 1), rtol=1e-14, atol=1e-5)
+    equations = Loop([sp.cos(t2) + 3 * sp.cos(t3) - 3 * sp.cos(t4 + gamma) - 4,
+                      sp.sin(t2) + 3 * sp.sin(t3) - 3 * sp.sin(t4 + gamma)], [t3, t4])
+    tilted = Mechanism([equations], t2, {gamma: 1e-8}, guess={"theta3": 0.5, "theta4": 1.5})
+    assert tilted.length_scale == 4.0
+    sweep = tilted.sweep(inputs)
+    ref, _ = four_bar_on_branch(inputs, (4, 1, 3, 3), side_of(sweep, (4, 1, 3, 3)))
+    np.testing.assert_allclose(sweep["theta4"] + 1e-8, ref[1] + TWO_PI * np.round((sweep["theta4"][0] - ref[1][0]) / TWO_PI),
+                               atol=1e-9)
+
+
 def test_a_slider_offset_far_smaller_than_the_crank_is_no_length_scale():
     """An offset slider-crank 80/200 with the offset e = 1e-9 a parameter: the length scale is the rod,
     200 (it was e, and the regular linkage was called a toggle at 5.73°); the piston at 0.1 rad from

@@ -174,3 +174,24 @@ def test_the_stability_caption_names_a_scheme_by_its_prose(registered):
     registered.append(schemes.register("seven_point", range(-3, 4), 1, prose="the seven-point difference").name)
     text = stability._ends_text([SCHEMES["seven_point"]])
     assert text == " (three at each end for the seven-point difference)"
+
+
+def test_default_second_derivative_schemes_are_shown_once():
+    """A default first-derivative scheme whose partner is already shown adds no second entry, and a
+    second-derivative scheme registered as a default is shown; the lists add to tuples and pickle."""
+    import pickle
+
+    from numkin import schemes
+    from numkin.compare import DEFAULT_SCHEMES
+
+    before = tuple(DEFAULT_SCHEMES[2])
+    schemes.register("wide_centred_test", offsets=(-1, 0, 1), derivative=1, default=True, partner="second_difference")
+    schemes.register("wide_second_test", offsets=(-2, 0, 2), derivative=2, default=True, partner="centred")
+    try:
+        assert tuple(DEFAULT_SCHEMES[2]) == before + ("wide_second_test",)
+        assert DEFAULT_SCHEMES[1] + ("spectral",) == tuple(DEFAULT_SCHEMES[1]) + ("spectral",)
+        assert pickle.loads(pickle.dumps(DEFAULT_SCHEMES[2])) == tuple(DEFAULT_SCHEMES[2])
+    finally:
+        schemes.unregister("wide_centred_test")
+        schemes.unregister("wide_second_test")
+    assert tuple(DEFAULT_SCHEMES[2]) == before

@@ -111,6 +111,10 @@ def __getattr__(name):
         return value
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
+
+def __dir__():
+    return sorted(set(globals()) | set(_DRAWING))
+
 __all__ = [
     "CAPTIONS",
     "FIGURES",

@@ -164,11 +164,13 @@ def fit_text(text, renderer, room: float, top: float | None = None) -> bool:
     if top is not None and text.get_window_extent(renderer).y1 > top:
         now = width(original)
     if now > room:
+        # never below two pixels a character (a font of less than a pixel is refused by FreeType)
+        smallest = max(_FONT_STEP, math.ceil(2.0 * 72.0 / renderer.dpi / _FONT_STEP) * _FONT_STEP)
         size = text.get_fontsize()
-        size = math.floor(size * room / now / _FONT_STEP) * _FONT_STEP
-        while size > _FONT_STEP:
+        size = max(smallest, math.floor(size * room / now / _FONT_STEP) * _FONT_STEP)
+        while True:
             text.set_fontsize(round(size, 1))
-            if text.get_window_extent(renderer).width <= room:
+            if size - _FONT_STEP < smallest or text.get_window_extent(renderer).width <= room:
                 break
             size -= _FONT_STEP
     return True
