@@ -6,8 +6,8 @@ file: a ready-made linkage's dimensions are read from its
 mechanism written as loops from its expressions. :func:`build_mechanism`
 then builds the :class:`~numkin.Mechanism` (sympy is imported here, on
 first use) and checks the unknowns, points, guesses and check quantities
-the scene names against it. Quantity names and units come from
-:mod:`numkin.quantities`.
+the scene names against it (what a scene calls its quantities is
+:mod:`numkin.scene_quantities`).
 
 Examples
 --------
@@ -27,17 +27,13 @@ from typing import Mapping
 
 from .errors import InputError, NumkinError
 from .schema import Scene, SceneError, SceneReader, nearest
+from .scene_quantities import quantity_names, scene_quantity
 from .units import UnitError, convert_length
 
 __all__ = [
     "read_mechanism",
     "build_mechanism",
     "guess_values",
-    "quantity_names",
-    "scene_quantity",
-    "scene_quantities",
-    "scene_key",
-    "scene_unit",
     "parse_expression",
     "parse_equation",
     "FUNCTIONS",
@@ -506,58 +502,6 @@ def guess_values(scene: Scene, mech) -> dict | None:
                else "give every unknown, or leave out [guess] for the linkage's default")
         scene.fail("[guess]", f"lacks {', '.join(missing)} ({how})")
     return out
-
-def scene_key(quantity) -> str:
-    """A :class:`~numkin.quantities.Quantity`'s name in a scene: an angle's position is ``<u>_deg``.
-
-    Examples
-    --------
-    >>> from numkin.quantities import Quantity
-    >>> scene_key(Quantity("theta3", 0, "angle")), scene_key(Quantity("theta3", 1, "angle"))
-    ('theta3_deg', 'omega_theta3')
-    """
-    return f"{quantity.name}_deg" if quantity.in_degrees else quantity.name
-
-
-def scene_unit(quantity) -> str:
-    """The unit of a quantity's values in a scene's output: degrees for an angle's position, else its own."""
-    return "deg" if quantity.in_degrees else quantity.unit
-
-
-def scene_quantities(scene: Scene, mech, *, all_unknowns: bool = False, all_points: bool = False,
-                     orders=None) -> dict:
-    """Scene name -> :class:`~numkin.quantities.Quantity` of what the scene computes, in table order.
-
-    Per unknown its position, velocity and acceleration (those the scene
-    wants), then the same per derived quantity, then per point its x, y
-    coordinates and their derivatives.
-    """
-    from .quantities import catalogue
-    from .schema import QUANTITIES
-
-    unknowns = mech.unknowns if all_unknowns or scene.unknowns is None else scene.unknowns
-    points = tuple(mech.points) if all_points else scene.points
-    if orders is None:
-        orders = [k for k, kind in enumerate(QUANTITIES) if scene.wants(kind)]
-    every = catalogue(mech, sorted(orders), points=bool(points)).values()  # by order, then unknown or point
-    out = {}
-    derived = [(d, False) for d in mech.derived]
-    for of, is_point in [(u, False) for u in unknowns] + derived + [(p, True) for p in points]:
-        for q in every:
-            if q.of == of and q.is_point == is_point:
-                out.setdefault(scene_key(q), q)
-    return out
-
-
-def quantity_names(scene: Scene, mech, *, all_unknowns: bool = False) -> list[str]:
-    """Names of the quantities the scene computes (see :mod:`numkin.scene`)."""
-    return list(scene_quantities(scene, mech, all_unknowns=all_unknowns))
-
-
-def scene_quantity(scene: Scene, mech, key: str):
-    """The :class:`~numkin.quantities.Quantity` a scene name denotes (any order, unknown or point), or None."""
-    return scene_quantities(scene, mech, all_unknowns=True, all_points=True, orders=(0, 1, 2)).get(key)
-
 
 # -------------------------------------------------------------- expressions
 _EXPR_CHARS = re.compile(r"[A-Za-z0-9_+\-*/^().,\s]*")

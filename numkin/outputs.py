@@ -79,7 +79,7 @@ def error_summary(comparisons: dict) -> dict:
 
 def _columns(result, quantities, values_of) -> dict:
     """Label -> array for each quantity, by :attr:`Quantity.label`; positions of angles in degrees."""
-    from .assemble import scene_unit
+    from .scene_quantities import scene_unit
 
     cols = {}
     for q in quantities:
@@ -103,7 +103,7 @@ def tables(result) -> dict:
     """
     import pandas as pd
 
-    from .assemble import scene_quantities
+    from .scene_quantities import scene_quantities
     from .column_kinds import set_kinds
     from .pipeline import SceneResult
 

@@ -28,7 +28,7 @@ from typing import Any, Callable
 import numpy as np
 
 from . import outputs
-from .assemble import scene_quantities, scene_unit
+from .scene_quantities import scene_quantities, scene_unit
 from .schema import Scene, SceneReader, check_scene_argument, in_range, load_scene, nearest
 from .errors import InputError, warn
 from .folders import output_folder

@@ -307,7 +307,7 @@ class Scene:
 
     def quantity_names(self, mech, *, all_unknowns: bool = False) -> list[str]:
         """Names of the quantities the scene computes (see :mod:`numkin.scene`)."""
-        from .assemble import quantity_names
+        from .scene_quantities import quantity_names
 
         return quantity_names(self, mech, all_unknowns=all_unknowns)
 
