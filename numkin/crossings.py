@@ -70,8 +70,11 @@ class Crossings:
         if self.approach is not None:
             self.before_sweep.append((tc, loop))
             self.passed_on_way.append((tc, loop))
-        elif met is not None and met in self.before_sweep:  # passed again by the sweep itself
+        elif met is not None and met in self.before_sweep:
+            # passed again by the sweep itself: the sweep's, where the sweep found it (the sweep's end, if it
+            # stops there: then :meth:`unpassed_crossings` gives it back to the way from the guess)
             self.before_sweep.remove(met)
+            self.crossings[self.crossings.index(met)] = (tc, loop)
 
     def where_passed(self, tc, loop) -> str:
         """``" on the way from the default guess at ... to the sweep's first input ..."`` for a change point

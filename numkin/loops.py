@@ -287,10 +287,10 @@ def describe(loops, input_symbol, parameters, points) -> dict:
     mechanism can be checked and solved without sympy. ``lengths`` are the parameters in the loop's
     vector lengths, ``links`` those in the lengths of vectors that turn (whose angle holds the input or
     an unknown): a vector of fixed direction is an offset, which may have either sign. ``numbers`` is
-    the largest length written as a number (a vector's, or a term of an equation that is a number times
-    sines and cosines; 0 if none), ``scales`` the parameters that scale the
-    loop (in its vectors' lengths; in a loop written as equations, those outside every sine, cosine and
-    tangent): both for :func:`default_length_scale`.
+    the largest vector length written as a number (0 if none), ``scales`` the parameters that scale
+    the loop (in its vectors' lengths; in a loop written as equations, those outside every sine, cosine
+    and tangent of an equation that has one), ``angle_parameters`` those in its angles: all three for
+    :func:`default_length_scale`.
 
     Examples
     --------
@@ -311,8 +311,9 @@ def describe(loops, input_symbol, parameters, points) -> dict:
                    "lengths": sorted(str(s) for s in lp.length_symbols),
                    "links": sorted({str(s) for length, angle in lp.vector_symbols if angle & moving
                                     for s in length - set(lp.unknowns)}),
-                   "numbers": _largest_number(lp),
-                   "scales": sorted(str(s) for s in _scale_symbols(lp) - moving)} for lp in loops],
+                   "numbers": max([abs(float(length)) for length, _ in lp.vectors if not length.free_symbols] + [0.0]),
+                   "scales": sorted(str(s) for s in _scale_symbols(lp)[0] - moving),
+                   "angle_parameters": sorted(str(s) for s in _scale_symbols(lp)[1] - moving)} for lp in loops],
         "points": [str(k) for k in (points or {})],
         "point_symbols": {str(k): sorted({s.name for c in xy for s in getattr(c, "free_symbols", ())})
                           for k, xy in (points or {}).items()},
@@ -472,9 +473,10 @@ def default_length_scale(model: dict, value_of: dict) -> float:
 
     That is the largest value of a parameter that scales a loop (a
     parameter in a vector's length; in a loop written as equations, one
-    outside every sine, cosine and tangent) or of a vector length written as
-    a number; a parameter only in angles (a ground's tilt) is none. Where
-    there is no such length, the largest parameter; else 1.
+    outside every sine, cosine and tangent of an equation that has one) or
+    of a vector length written as a number. Where there is no such length
+    (loops of equations in numbers), the largest parameter that is not in an
+    angle (a ground's tilt is none); else 1.
 
     Examples
     --------
@@ -488,40 +490,30 @@ def default_length_scale(model: dict, value_of: dict) -> float:
     values = [abs(v) for s, v in value_of.items() if s in scales]
     values += [lp.get("numbers", 0.0) for lp in model["loops"]]
     if not any(values):
-        values = [abs(v) for v in value_of.values()]
+        angles = {s for lp in model["loops"] for s in lp.get("angle_parameters", ())}
+        values = [abs(v) for s, v in value_of.items() if s not in angles]
     return max(values) if values and max(values) > 0 else 1.0
 
 
-def _largest_number(lp) -> float:
-    """The largest length of a loop written as a number: a vector's; in a loop written as equations, the
-    largest number a term of a residual is, times sines, cosines and tangents only (0 if none)."""
+def _scale_symbols(lp) -> tuple[set, set]:
+    """The symbols that scale a loop and those in its angles.
+
+    Of a loop of vectors: those of its lengths, and of its angles. Of a loop
+    written as equations: those outside every sine, cosine and tangent of a
+    residual that has one (an equation between angles alone, ``t5 - t4 -
+    phi``, scales nothing), and those inside them.
+    """
     if lp.vectors:
-        return max([abs(float(length)) for length, _ in lp.vectors if not length.free_symbols] + [0.0])
+        return set(lp.length_symbols), {s for _, angle in lp.vectors for s in angle.free_symbols}
     import sympy as sp
 
-    out = 0.0
+    lengths, angles = set(), set()
     for r in lp.residuals:
-        for term in sp.Add.make_args(sp.expand(r)):
-            plain = term.xreplace({f: sp.Dummy() for f in term.atoms(sp.sin, sp.cos, sp.tan)})
-            if all(isinstance(s, sp.Dummy) for s in plain.free_symbols):
-                coefficient = plain.as_coeff_Mul()[0]
-                if coefficient.is_number and coefficient.is_finite:
-                    out = max(out, abs(float(coefficient)))
-    return out
-
-
-def _scale_symbols(lp) -> set:
-    """The symbols that scale a loop: those of its vectors' lengths; of a loop written as equations, those
-    outside every sine, cosine and tangent of its residuals."""
-    if lp.vectors:
-        return set(lp.length_symbols)
-    import sympy as sp
-
-    out = set()
-    for r in lp.residuals:
-        trig = {f: sp.Dummy() for f in r.atoms(sp.sin, sp.cos, sp.tan)}
-        out |= r.xreplace(trig).free_symbols if trig else r.free_symbols
-    return {s for s in out if not isinstance(s, sp.Dummy)} - set(lp.unknowns)
+        trig = r.atoms(sp.sin, sp.cos, sp.tan)
+        if trig:
+            lengths |= r.xreplace({f: sp.Dummy() for f in trig}).free_symbols
+            angles |= {s for f in trig for s in f.free_symbols}
+    return {s for s in lengths if not isinstance(s, sp.Dummy)} - set(lp.unknowns), angles
 
 
 def check_symbols(loops, input_symbol, parameters) -> None:

@@ -177,11 +177,15 @@ def test_a_change_point_passed_before_the_sweep_is_said_to_be_there():
     ((4.0, 2.0, 3.0, 3.0), 0.0, np.arange(300.0, 179.0, -1.0), [(180.0, True)]),
     # the sweep goes back across it: the sweep's
     ((4.0, 2.0, 3.0, 3.0), 0.0, np.arange(200.0, 99.0, -1.0), [(180.0, False)]),
+    # passed on the way down from 190°, the sweep comes back up and ends on it
+    ((5.0, 2.0, 5.0, 2.0), np.radians(190.0), np.arange(170.0, 180.5, 1.0), [(180.0, True)]),
 ])
 def test_each_change_point_is_placed_on_the_way_or_in_the_sweep(dims, guess_input, inputs, expected):
     """Every change point passed is reported once (report mode), said to lie on the way from the default
     guess to the sweep's start where only that march passes it, with the event's branch in the same words."""
     guess = {"theta3": 0.3, "theta4": 1.0 if guess_input else 1.5}
+    if guess_input > 3.0:  # (near the parallelogram at 190°)
+        guess = {"theta3": 0.1, "theta4": guess_input - 0.07}
     mech = _four_bar_loop(dims, guess, guess_input)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

@@ -203,10 +203,11 @@ def test_lengths_written_as_numbers_set_the_default_length_scale(scale, tilt):
 
 
 def test_equation_loops_give_their_lengths_to_the_length_scale():
-    """Loops written as equations: a parameter outside every sine and cosine (L of a slider's equation
-    beside a four-bar of numbers, L = 1e9: it was left out and the sweep made no progress) and a number
-    times sines and cosines (4 of the four-bar's equations, whose ground is tilted by gamma = 1e-8 inside a
-    cosine: gamma was the length scale and the sweep failed at 90°) are lengths; the tilt is none."""
+    """Loops written as equations: a parameter outside every sine and cosine of an equation (L of a slider's
+    equation beside a four-bar of numbers, L = 1e9: it was left out and the sweep made no progress) is a
+    length; one inside them (a tilt gamma = 1e-8 of the four-bar's equations in numbers: it was the length
+    scale, and the sweep failed at 90°) or in an equation between angles alone (phi of t5 = t4 + phi,
+    n of t5 = n theta2) is none."""
     t2, t3, t4, x, length, gamma = sp.symbols("theta2 theta3 theta4 x L gamma")
     inputs = np.radians(np.arange(0.0, 361.0))
     four_bar = Loop.from_vectors([(1, t2), (3, t3), (-3, t4), (-4, 0)], [t3, t4])
@@ -218,7 +219,12 @@ def test_equation_loops_give_their_lengths_to_the_length_scale():
     equations = Loop([sp.cos(t2) + 3 * sp.cos(t3) - 3 * sp.cos(t4 + gamma) - 4,
                       sp.sin(t2) + 3 * sp.sin(t3) - 3 * sp.sin(t4 + gamma)], [t3, t4])
     tilted = Mechanism([equations], t2, {gamma: 1e-8}, guess={"theta3": 0.5, "theta4": 1.5})
-    assert tilted.length_scale == 4.0
+    assert tilted.length_scale == 1.0  # (no length is a parameter: the default)
+    t5, phi, n = sp.symbols("theta5 phi n")
+    small = Loop.from_vectors([(0.01, t2), (0.03, t3), (-0.03, t4), (-0.04, 0)], [t3, t4])
+    for angles, values in ((Loop([t5 - t4 - phi], [t5]), {phi: 1.5}), (Loop([t5 - n * t2], [t5]), {n: 100.0})):
+        assert Mechanism([small, angles], t2, values, guess={"theta3": 0.5, "theta4": 1.5, "theta5": 0.0}
+                         ).length_scale == 0.04
     sweep = tilted.sweep(inputs)
     ref, _ = four_bar_on_branch(inputs, (4, 1, 3, 3), side_of(sweep, (4, 1, 3, 3)))
     np.testing.assert_allclose(sweep["theta4"] + 1e-8, ref[1] + TWO_PI * np.round((sweep["theta4"][0] - ref[1][0]) / TWO_PI),

@@ -165,8 +165,8 @@ def fit_text(text, renderer, room: float, top: float | None = None) -> bool:
         now = width(original)
     if now > room:
         # never below two pixels a character (a font of less than a pixel is refused by FreeType)
-        smallest = max(_FONT_STEP, math.ceil(2.0 * 72.0 / renderer.dpi / _FONT_STEP) * _FONT_STEP)
         size = text.get_fontsize()
+        smallest = min(size, max(_FONT_STEP, math.ceil(2.0 * 72.0 / renderer.dpi / _FONT_STEP) * _FONT_STEP))
         size = max(smallest, math.floor(size * room / now / _FONT_STEP) * _FONT_STEP)
         while True:
             text.set_fontsize(round(size, 1))
