@@ -25,9 +25,9 @@ def fmt_value(value: float, expected: float | None = None, mismatch: bool = Fals
     if value == 0:
         value = 0.0  # no "-0"
     if expected is not None:
-        if written is not None and "e" in written.lower() and value == expected:
-            return written.replace("_", "")  # (the expected value itself, as written: 1.50e2)
         text = written.replace("_", "") if written is not None else repr(float(expected))
+        if written is not None and "e" in text.lower() and value == expected:
+            return text  # (the expected value itself, as written: 1.50e2)
         if "e" not in text.lower():
             decimals = 0 if written is None and text.endswith(".0") else len((text.split(".") + [""])[1])
             if not mismatch:

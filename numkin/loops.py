@@ -312,8 +312,7 @@ def describe(loops, input_symbol, parameters, points) -> dict:
                    "links": sorted({str(s) for length, angle in lp.vector_symbols if angle & moving
                                     for s in length - set(lp.unknowns)}),
                    "numbers": max([abs(float(length)) for length, _ in lp.vectors if not length.free_symbols] + [0.0]),
-                   "scales": sorted(str(s) for s in _scale_symbols(lp)[0] - moving),
-                   "angle_parameters": sorted(str(s) for s in _scale_symbols(lp)[1] - moving)} for lp in loops],
+                   **_scale_names(lp, moving)} for lp in loops],
         "points": [str(k) for k in (points or {})],
         "point_symbols": {str(k): sorted({s.name for c in xy for s in getattr(c, "free_symbols", ())})
                           for k, xy in (points or {}).items()},
@@ -493,6 +492,14 @@ def default_length_scale(model: dict, value_of: dict) -> float:
         angles = {s for lp in model["loops"] for s in lp.get("angle_parameters", ())}
         values = [abs(v) for s, v in value_of.items() if s not in angles]
     return max(values) if values and max(values) > 0 else 1.0
+
+
+def _scale_names(lp, moving) -> dict:
+    """``{"scales": [...], "angle_parameters": [...]}`` of a loop (:func:`_scale_symbols`, computed once), the
+    moving symbols left out."""
+    lengths, angles = _scale_symbols(lp)
+    return {"scales": sorted(str(s) for s in lengths - moving),
+            "angle_parameters": sorted(str(s) for s in angles - moving)}
 
 
 def _scale_symbols(lp) -> tuple[set, set]:
