@@ -62,7 +62,7 @@ class Crossings:
         (:meth:`raise_pending`), so that a toggle, where no solution lies beyond, is said as one; or kept
         (once) to be described when the sweep is done."""
         tc = 0.5 * (t + t_new) if tc is None else tc
-        if self.on_singular == "raise":
+        if self.on_singular == "raise" and self.pending is None:  # (the first passed is the one raised)
             self.pending = (tc, loop)
         met = _same(self.crossings, tc, loop)
         if met is None:

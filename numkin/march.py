@@ -389,11 +389,14 @@ class Continuation(Crossings):
                 elif o_new is None:
                     ok, reason = False, "singular"
                 elif o_new != o:
-                    k = next(i for i, (a, b) in enumerate(zip(o_new, o)) if a != b)
                     if dt > crossing_step:
                         ok, reason = False, "orientation"  # localise the crossing before deciding
                     else:
-                        self.change_point(t, t_new, self.loop_names[k], self.crossing(t, x, t_new, v, k))
+                        # every loop that changed orientation in this step, in the order the step passes them
+                        passed = sorted((direction * (self.crossing(t, x, t_new, v, k) - t), k)
+                                        for k, (a, b) in enumerate(zip(o_new, o)) if a != b)
+                        for s, k in passed:
+                            self.change_point(t, t_new, self.loop_names[k], t + direction * s)
             if ok and d is not None:
                 if not cond <= COND_TANGENT:
                     if dt > crossing_step:

@@ -270,3 +270,58 @@ def test_nodes_on_change_points_keep_the_tangent_continuous_branch():
     miss = _wrap(sweep["theta4"] - reference)
     on = (deg == 360) | (deg == 720)
     assert miss[~on].max() < 1e-12 and miss[on].max() < 1e-6
+
+
+def _two_change_point_loops(delta):
+    """Two 4/2/3/3 four-bars (2 + 4 = 3 + 3) on one crank, the second's ground turned by ``delta`` (rad):
+    change points at 180° (loop A) and 180° + delta (loop B), where each loop's crank, coupler and
+    rocker line up. The default guess at 0°."""
+    import sympy as sp
+
+    from numkin import Loop, Mechanism
+
+    t2, t3, t4, t5, t6 = sp.symbols("theta2 theta3 theta4 theta5 theta6")
+    a = Loop.from_vectors([(2, t2), (3, t3), (-3, t4), (-4, 0)], [t3, t4], name="A")
+    b = Loop.from_vectors([(2, t2), (3, t5), (-3, t6), (-4, delta)], [t5, t6], name="B")
+    guess = {"theta3": 0.3, "theta4": 1.5, "theta5": 0.3, "theta6": 1.5}
+    return Mechanism([a, b], t2, {}, guess=guess, guess_input=0.0)
+
+
+def test_two_loops_on_change_points_in_one_step_are_both_reported():
+    """Both loops pass their change point at 180° in the same step: report mode describes each, raise
+    mode raises at the first."""
+    mech = _two_change_point_loops(0.0)
+    inputs = np.radians(np.arange(170.0, 191.0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sweep = mech.sweep(inputs, on_singular="report")
+    changes = [(e.loop, e.input_value) for e in sweep.events if e.kind == "change point"]
+    assert sorted(loop for loop, _ in changes) == ["A", "B"]
+    assert all(abs(tc - np.pi) < 1e-7 for _, tc in changes)
+    with pytest.raises(BranchError) as err:
+        mech.sweep(inputs)
+    assert err.value.kind == "change point" and abs(err.value.input_value - np.pi) < 1e-7
+
+
+@pytest.mark.parametrize("downward", [False, True])
+def test_the_first_of_two_close_change_points_is_raised(downward):
+    """Change points 5e-6 rad apart (loop A at 180°, loop B just after): raise mode names the first the
+    sweep passes, A going up, B coming down; report mode lists both, in the order passed."""
+    delta = 5e-6
+    mech = _two_change_point_loops(delta)
+    deg = np.arange(190.0, 169.0, -1.0) if downward else np.arange(170.0, 191.0)
+    inputs = np.radians(deg)
+    start = closed_form(inputs[:1], 4.0, 2.0, 3.0, 3.0, 1.0 if downward else -1.0)  # the branch at the start
+    turned = closed_form(inputs[:1] - delta, 4.0, 2.0, 3.0, 3.0, 1.0 if downward else -1.0)
+    guess = np.array([start[0][0], start[1][0], turned[0][0] + delta, turned[1][0] + delta])
+    first, second = (("B", np.pi + delta), ("A", np.pi)) if downward else (("A", np.pi), ("B", np.pi + delta))
+    with pytest.raises(BranchError) as err:
+        mech.sweep(inputs, guess=guess)
+    assert (err.value.loop, err.value.kind) == (first[0], "change point")
+    assert abs(err.value.input_value - first[1]) < 1e-8
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sweep = mech.sweep(inputs, guess=guess, on_singular="report")
+    changes = [(e.loop, e.input_value) for e in sweep.events if e.kind == "change point"]
+    assert [loop for loop, _ in changes] == [first[0], second[0]]
+    assert abs(changes[0][1] - first[1]) < 1e-8 and abs(changes[1][1] - second[1]) < 1e-8
