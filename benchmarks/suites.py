@@ -150,11 +150,14 @@ def cli_workloads(settings: Settings) -> Table:
 
 
 # ------------------------------------------------------------------ one linkage, every contender
-def _numkin_contenders(mech, t):
+def _numkin_contenders(mech, t, x0):
     from numkin import analytic
 
     def sweep():
         return mech.sweep(t)
+
+    def sweep_from_start():
+        return mech.sweep(t, guess=x0)
 
     def sweep_rates():
         s = mech.sweep(t)
@@ -166,6 +169,8 @@ def _numkin_contenders(mech, t):
 
     return {
         "numkin sweep": (sweep, "Mechanism.sweep"),
+        "numkin sweep, handed the start": (sweep_from_start, "Mechanism.sweep given the solution at the first angle "
+                                                               "as its guess, as the hand-written Newton is"),
         "numkin sweep + ω, α (arrays)": (sweep_rates, "sweep, then analytic.derivatives times omega, omega^2"),
         "numkin sweep + kinematics (DataFrame)": (sweep_frame, "sweep, then analytic.kinematics"),
     }
@@ -194,7 +199,7 @@ def contenders(settings: Settings, linkage: str, n: int, *, packages: bool = Tru
         "hand-written vectorised Newton": (lambda: reference.ideal_sweep(chain, t, x0),
                                            "13 scalar nodes, Hermite predictor, Cramer Newton"),
     }
-    fns.update(_numkin_contenders(mech, t))
+    fns.update(_numkin_contenders(mech, t, x0))
     scale = {}
     if textbook:
         k = min(settings.textbook_angles, n)
