@@ -11,8 +11,13 @@ calls these.
 from __future__ import annotations
 
 import difflib
-import re
+import sys
 from typing import TYPE_CHECKING
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
 
 if TYPE_CHECKING:  # pragma: no cover - for annotations only
     from .schema import Scene, SceneReader
@@ -211,8 +216,15 @@ def read_compare(r: SceneReader, scene: Scene, cmp: dict) -> None:
         r.fail("[output] tables", "'summary' needs [compare] schemes or second_schemes")
 
 
-_CHECK_HEADER = re.compile(r"""\s*(\[\[\s*(["']?)check\2\s*\]\]|\[\s*(["']?)check\3\s*\])\s*(#.*)?$""")
-_NUMBER_LINE = re.compile(r"""\s*(["']?)([A-Za-z0-9_-]+)\1\s*=\s*([-+]?[0-9][0-9_]*(\.[0-9_]*)?([eE][-+]?[0-9_]+)?)\s*(#.*)?$""")
+class _Written(float):
+    """A TOML float that keeps the text it was written as (``parse_float`` of :func:`checks_as_written`)."""
+
+    __slots__ = ("text",)
+
+    def __new__(cls, text):
+        value = super().__new__(cls, text)
+        value.text = text
+        return value
 
 
 def checks_as_written(text: str) -> list:
@@ -220,27 +232,38 @@ def checks_as_written(text: str) -> list:
 
     TOML reads ``122.340`` as the float 122.34; the text keeps the decimals
     the author wrote, which the check's default tolerance is half a unit of.
-    A number this line-by-line reading does not find (in an inline table, or
-    a value over several lines) is left out: its tolerance is taken from the
-    float (the decimals of its shortest form).
+    The text is read by the TOML parser itself (its ``parse_float`` hands over
+    every float as written), so a check written as an inline table, with
+    quoted keys or over several lines is read as one written as a
+    ``[[check]]`` table; an integer is written as its digits. ``[]`` for a
+    text that is no TOML.
 
     Examples
     --------
     >>> checks_as_written("[input]\nstart_deg = 0\n[[check]]\nat_deg = 100\ntheta4_deg = 122.340  # deg\n"
     ...                   "[[check]]\nat_deg = 1_0\n")
-    [{'at_deg': '100', 'theta4_deg': '122.340'}, {'at_deg': '1_0'}]
+    [{'at_deg': '100', 'theta4_deg': '122.340'}, {'at_deg': '10'}]
+    >>> checks_as_written('check = [{at_deg = 100, "omega_beta" = 10.6330}]')
+    [{'at_deg': '100', 'omega_beta': '10.6330'}]
     """
-    found, current = [], None
-    for line in text.splitlines():
-        if _CHECK_HEADER.match(line):
-            current = {}
-            found.append(current)
-        elif line.lstrip().startswith("["):
-            current = None
-        elif current is not None:
-            number = _NUMBER_LINE.match(line)
-            if number:
-                current[number.group(2)] = number.group(3)
+    try:
+        checks = tomllib.loads(text, parse_float=_Written).get("check", [])
+    except tomllib.TOMLDecodeError:
+        return []
+    if isinstance(checks, dict):
+        checks = [checks]
+    if not isinstance(checks, list):
+        return []
+    found = []
+    for check in checks:
+        numbers = {}
+        if isinstance(check, dict):
+            for key, value in check.items():
+                if isinstance(value, _Written):
+                    numbers[key] = value.text
+                elif isinstance(value, int) and not isinstance(value, bool):
+                    numbers[key] = str(value)
+        found.append(numbers)
     return found
 
 
@@ -252,7 +275,7 @@ def read_checks(r: SceneReader, scene: Scene, checks, written=None) -> None:
     if not isinstance(checks, list):
         r.fail("[[check]]", f"must be an array of tables, got {checks!r}")
     if written is not None and len(written) != len(checks):
-        written = None  # (checks not all written as [[check]] tables: read from the floats)
+        written = None  # (not the scene's own checks: read from the floats)
     for k, check in enumerate(checks):
         where = f"[[check]] {k + 1}"
         r.table(check, where)

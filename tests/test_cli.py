@@ -175,6 +175,10 @@ def test_a_check_agrees_to_the_decimals_as_written_trailing_zeros_too(capsys, tm
     path = four_bar(tmp_path, extra="[[check]]\nat_deg = 90\ntheta4_deg = 119.370\n")
     code, out, err = run(capsys, "run", path)
     assert "tolerance 0.0005" in out and "theta4_deg = 119.37139 at 90° (expected 119.370)" in err
+    # the same check written as an inline array of tables, before the scene's first table
+    inline = write(tmp_path, "check = [{ at_deg = 90, theta4_deg = 119.370 }]\n" + open(four_bar(tmp_path)).read())
+    code, out, err = run(capsys, "run", inline)
+    assert code == 1 and "tolerance 0.0005" in out and "(expected 119.370)" in err
 
 
 # -------------------------------------------------------------- error paths

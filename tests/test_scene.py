@@ -453,9 +453,10 @@ def test_animation_section_gives_the_animate_defaults(tmp_path):
     assert load_scene(write(tmp_path, GOOD + "[animation]\n")).animation == {"frames": 72}
 
 
-def test_check_values_keep_the_decimals_written_where_the_file_shows_them(tmp_path):
-    """[[check]] tables read line by line keep each number's text ("122.340": TOML's float is 122.34); checks
-    written another way (an inline array of tables) or replaced by overrides fall back to the floats."""
+def test_check_values_keep_the_decimals_written(tmp_path):
+    """[[check]] tables keep each number's text ("122.340": TOML's float is 122.34), however the check is written
+    (tables, an inline array of tables, quoted keys, a value on its own line); checks replaced by overrides fall
+    back to the floats."""
     from numkin.scene_sections import checks_as_written
 
     text = (
@@ -465,10 +466,15 @@ def test_check_values_keep_the_decimals_written_where_the_file_shows_them(tmp_pa
     tables = text + "[[check]]\nat_deg = 100\ntheta4_deg = 122.340\n\n[[check]]  # second\nat_deg = 1_0\n"
     path = tmp_path / "tables.toml"
     path.write_text(tables)
-    assert checks_as_written(tables) == [{"at_deg": "100", "theta4_deg": "122.340"}, {"at_deg": "1_0"}]
+    assert checks_as_written(tables) == [{"at_deg": "100", "theta4_deg": "122.340"}, {"at_deg": "10"}]
     assert load_scene(str(path)).checks[0]["written"] == {"theta4_deg": "122.340"}
     assert load_scene(str(path), overrides={"check": [{"at_deg": 100, "theta4_deg": 122.340}]}).checks[0][
         "written"] == {}
     inline = tmp_path / "inline.toml"
-    inline.write_text("check = [{ at_deg = 100, theta4_deg = 122.340 }]\n" + text)
-    assert load_scene(str(inline)).checks[0]["written"] == {}
+    inline.write_text('check = [{ at_deg = 100, "theta4_deg" = 122.340 }, {at_deg = 90, theta4_deg = 1.2e2}]\n'
+                      + text)
+    assert [c["written"] for c in load_scene(str(inline)).checks] == [{"theta4_deg": "122.340"},
+                                                                        {"theta4_deg": "1.2e2"}]
+    table = tmp_path / "table.toml"
+    table.write_text(text + "[check]\nat_deg = 100\ntheta4_deg = 122.340\n")
+    assert load_scene(str(table)).checks[0]["written"] == {"theta4_deg": "122.340"}
