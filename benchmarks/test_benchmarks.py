@@ -62,7 +62,8 @@ def test_the_predictor_table_gives_both_sweeps_and_leaves_the_flag_as_it_was():
     rows = {row[0]: row for row in table.rows}
     assert set(rows) == set(suites.predictor_linkages()) and batch_fill.TURN is True
     assert rows["four-bar 4:1:3:3"][5] == "165 → 128"  # one batch step fewer per point with the fit
-    assert rows["chained-four-bars"][5] == "244 → 244"  # the fit refused
+    before, after = rows["chained-four-bars"][5].split(" → ")
+    assert before == after  # the fit refused: the same evaluations
 
 
 def test_the_predictor_table_takes_every_registered_linkage_with_its_defaults(monkeypatch):

@@ -69,6 +69,8 @@ class BlockStructure:
         self.newton1 = None
         self.newton_batch = None
         self._local = None
+        self._zeros = set(zeros)
+        self._loop_newton1 = {}
         if self._small:
             zeros = set(zeros)
             self.solve1 = unrolled_solve(n, self.blocks, zeros, batch=False)
@@ -82,6 +84,16 @@ class BlockStructure:
             #: Newton-Raphson on whole arrays with every update written out (see
             #: :meth:`numkin.march.Continuation.newton_batch`).
             self.newton_batch = unrolled_newton_batch(n, self.blocks, zeros, self.inv_xscale)
+
+    def loop_newton1(self, k):
+        """:attr:`newton1` on the unknowns of block ``k`` alone, every other unknown held (generated when first
+        asked for); None unless every block is of size 1 or 2."""
+        if not self._small:
+            return None
+        if k not in self._loop_newton1:
+            self._loop_newton1[k] = unrolled_newton(self.n, self.blocks, self._zeros, self.inv_xscale, self._col,
+                                                    only=k)
+        return self._loop_newton1[k]
 
     def newton_step(self, J, f):
         """The Newton step ``-J^-1 f`` at every point: J rows, f (n, N) -> (dx (n, N), bad (N,)).

@@ -2,10 +2,12 @@
 
 Algorithm
 ---------
-1. Solve at the first input from the guess (Newton, up to ``maxiter`` steps,
-   refusing near-singular Jacobians); the angles are then reduced to the
-   guess's turn and polished by further Newton steps, so the first point is
-   as accurate as every other.
+1. Solve at the first input from the guess, loop after loop, each loop from
+   its own guess with the loops before it solved (Newton, up to ``maxiter``
+   steps a loop, refusing near-singular Jacobians: a poor guess for one loop
+   then moves no later loop off the branch its guess is on); the angles are
+   then reduced to the guess's turn and polished by further Newton steps, so
+   the first point is as accurate as every other.
 2. March sequentially to *nodes*, grid points about ``max_step`` apart (30°
    by default): each step predicts with the tangent ``q' = -J^-1 dF/dt``
    (and the previous point and its tangent, a cubic, or the previous point

@@ -1,4 +1,4 @@
-"""The first point of a sweep: Newton from the guess, on the guess's turn, polished; and why it fails.
+"""The first point of a sweep: Newton from the guess loop by loop, on the guess's turn, polished; and why it fails.
 
 A singular Jacobian met on the way is told apart: dependent loop equations
 (singular wherever tried), a poor guess (singular far from any solution),
@@ -18,11 +18,12 @@ from collections.abc import Mapping
 import numpy as np
 
 from .errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning, InputError, warn
+from .compiled import MATH_ERRORS
 from .march import FAR, TWO_PI, Continuation
-from .newton import COND_MAX, is_singular
+from .newton import COND_MAX, has_converged, is_singular
 from .units import deg_text, number_array
 
-__all__ = ["solve_start", "guess_vector", "far_guesses", "still_far", "degrees_hint", "unsolved", "never_closes"]
+__all__ = ["solve_start", "loop_by_loop", "guess_vector", "far_guesses", "still_far", "degrees_hint", "unsolved", "never_closes"]
 
 
 def far_guesses(mech, guess) -> list:
@@ -224,11 +225,95 @@ def _where(t0, note):
     return f"input {deg_text(t0, 3)}{note}"
 
 
+def _block_step(J, f, a, b, n):
+    """The Newton step ``-J_kk^-1 f_k`` of the diagonal block of rows and columns ``a:b`` (a list): Cramer's rule
+    for blocks of one or two unknowns (the block is not singular: tested before)."""
+    if b - a == 1:
+        return [-f[a] / J[a * n + a]]
+    if b - a == 2:
+        p, q, r, s = J[a * n + a], J[a * n + a + 1], J[(a + 1) * n + a], J[(a + 1) * n + a + 1]
+        det = p * s - q * r
+        return [(q * f[a + 1] - s * f[a]) / det, (r * f[a] - p * f[a + 1]) / det]
+    block = np.array([[J[i * n + j] for j in range(a, b)] for i in range(a, b)])
+    return np.linalg.solve(block, [-v for v in f[a:b]]).tolist()
+
+
+def _loop_numbers(ctx, x, t0, k):
+    """Loop ``k``'s scaled residual and condition number at ``x`` (NaN and inf where undefined)."""
+    v = ctx.eval1(x, t0)
+    if v is None:
+        return math.nan, math.inf
+    a, b = ctx.blocks.blocks[k]
+    return max([abs(f) for f in v[a:b]]) / ctx.fscale, ctx.blocks.cond1(v[ctx.n : ctx.n + ctx.nn])[k]
+
+
+def _one_loop(ctx, x, t0, k, maxiter):
+    """Newton on loop ``k``'s unknowns alone at the input ``t0``, every other unknown held: ``(x, status,
+    iterations, residual, v)``, the status, the loop's scaled residual and the evaluation at ``x`` (None if
+    unknown) as :meth:`Continuation.newton1` gives them with ``cond_max`` (a block over
+    :data:`~numkin.newton.COND_MAX` is refused as singular)."""
+    written_out = ctx.blocks.loop_newton1(k) if ctx.symbolic else None
+    if written_out is not None:
+        x, status, it, res, v, evaluations = written_out(ctx._fjt, x, t0, ctx.pt, maxiter, ctx.fscale, ctx.tol,
+                                                         ctx._floor, MATH_ERRORS, COND_MAX)
+        ctx.nfev += evaluations
+        ctx.njev += evaluations
+        return x, status, it, res, v
+    a, b = ctx.blocks.blocks[k]
+    n, fscale, tol, w = ctx.n, ctx.fscale, ctx.tol, ctx.inv_xs[a:b]
+    evaluate = ctx.eval1 if ctx.symbolic else ctx.eval1_fd
+    v = evaluate(x, t0)
+    if v is None:
+        return x, "diverged", 0, math.nan, None
+    res = max([abs(f) for f in v[a:b]]) / fscale
+    prev = math.inf
+    for it in range(maxiter):
+        J = v[n : n + n * n]
+        if is_singular(ctx.blocks.cond1(J)[k], COND_MAX):
+            return x, "singular", it, res, v
+        dx = _block_step(J, v, a, b, n)
+        x = [*x[:a], *(xi + di for xi, di in zip(x[a:b], dx)), *x[b:]]
+        step = max([abs(d) * s for d, s in zip(dx, w)])
+        v = evaluate(x, t0)
+        if v is None or not math.isfinite(step):
+            return x, "diverged", it + 1, math.nan, None
+        res = max([abs(f) for f in v[a:b]]) / fscale
+        floor = ctx._floor(x, t0) if res > tol and step >= 0.9 * prev else 0.0
+        if has_converged(res, step, prev, tol, floor):
+            return x, "converged", it + 1, res, v
+        prev = step
+    return x, "maxiter", maxiter, res, v
+
+
+def loop_by_loop(ctx, x, t0, maxiter):
+    """Newton at the input ``t0`` on one loop after another, each from its own guess with the loops before it
+    solved: ``(x, status, iterations, residual, v, loop)``, ``loop`` the index of the loop that failed (else the
+    last), ``residual`` its scaled residual and ``v`` the evaluation at ``x`` of its last Newton step (None if
+    unknown).
+
+    The loops' Jacobian is block lower-triangular: Newton on all of them at
+    once moves the first loop as Newton on it alone would, and each later one
+    along a linearisation in the earlier loops' steps, which far from the
+    solution carries it off its own guess, onto another assembly branch
+    even where its guess was exact. Solved one at a time, every loop's
+    guess picks its own branch. ``maxiter`` Newton steps are allowed each loop.
+    """
+    last = len(ctx.blocks.blocks) - 1
+    for k in range(last + 1):
+        x, status, it, res, v = _one_loop(ctx, x, t0, k, maxiter)
+        total = it if k == 0 else total + it
+        if status != "converged":
+            return x, status, total, res, v, k
+    return x, "converged", total, res, v, last
+
+
 def _solve_first(ctx, t0, x_guess, maxiter, note=""):
-    """Newton from the guess at t0, the angles reduced to the guess's turn, then polished."""
+    """Newton from the guess at t0, loop by loop, the angles reduced to the guess's turn, then polished."""
     mech = ctx.mech
     guess = x_guess.tolist()
-    x, status, it, res, v = ctx.newton1(guess, t0, maxiter, cond_max=COND_MAX)
+    x, status, it, res, v, failed = loop_by_loop(ctx, guess, t0, maxiter)
+    if v is not None and not ctx.symbolic:  # (a finite-difference Jacobian's evaluation has no dF/dt)
+        v = ctx.eval1(x, t0)
     far = far_guesses(mech, guess)
     if status != "converged" and (status != "singular" or not res <= FAR):
         impossible = never_closes(mech)
@@ -237,8 +322,8 @@ def _solve_first(ctx, t0, x_guess, maxiter, note=""):
                                 cause="cannot close", residual=res, iterations=it)
     if status == "singular":
         where = _where(t0, note)
-        loop, cond = ctx.worst1(x, t0, which="cond")
-        _, res = ctx.worst1(x, t0)
+        loop = ctx.loop_names[failed]  # (the loops after it are not solved yet: only its own numbers tell)
+        res, cond = _loop_numbers(ctx, x, t0, failed)
         if _dependent(ctx, x, t0):
             raise AssemblyError(
                 f"{mech.name}: the loop equations are dependent: their Jacobian (loop '{loop}') is singular "
@@ -262,7 +347,8 @@ def _solve_first(ctx, t0, x_guess, maxiter, note=""):
         )
     if status != "converged":
         where = _where(t0, note)
-        loop, res = ctx.worst1(x, t0)
+        loop = ctx.loop_names[failed]
+        res, _ = _loop_numbers(ctx, x, t0, failed)
         raise _hinted(AssemblyError(
             f"{mech.name}: cannot assemble at {where}: Newton from the guess did not converge "
             f"(loop '{loop}' residual {res:.3g} after {it} iterations); "

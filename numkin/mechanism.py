@@ -465,7 +465,10 @@ class Mechanism(CachedModel):
             Strictly monotonic input values (rad for an angle).
         guess : mapping, sequence or callable, optional
             Starting guess at ``inputs[0]`` (or at ``guess_input`` for the
-            mechanism's default guess). Picks the assembly branch.
+            mechanism's default guess). Picks the assembly branch: the first
+            point is solved loop after loop, each loop from its own guess (so
+            each loop's guess picks that loop's branch), where :meth:`solve`
+            takes Newton on all loops at once.
         jacobian : {"symbolic", "forward", "central"}
             How Newton's Jacobian is computed.
         tol : float

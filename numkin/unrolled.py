@@ -85,7 +85,8 @@ def step_lines(n, blocks, zeros, singular, indent="    ", rows=0):
                 f"d{a} = -r{a} / det{k}",
             ]
     if singular is not None:
-        lines.append(f"if not -INF < {' + '.join(f'd{i}' for i in range(n))} < INF: {singular}")
+        steps = [f"d{i}" for a, b in blocks for i in range(a, b)]
+        lines.append(f"if not -INF < {' + '.join(steps)} < INF: {singular}")
     return [indent + line for line in lines]
 
 
@@ -117,9 +118,12 @@ def unrolled_update(n, blocks, zeros, inv_xscale):
     return namespace["update1"]
 
 
-def unrolled_newton(n, blocks, zeros, inv_xscale, col):
+def unrolled_newton(n, blocks, zeros, inv_xscale, col, only=None):
     """Generate ``newton1(K, x, t, pt, maxiter, fscale, tol, floor, errors, cond_max=None)``:
     Newton-Raphson at one point with every update written out.
+
+    ``only``: the index of one block: Newton on its unknowns alone, every other
+    unknown held (its residuals, step and conditioning are that block's).
 
     ``K(*x, t, *pt)`` is the fused scalar kernel (residuals, Jacobian rows,
     ...), the stopping rule is :func:`numkin.newton_rules.has_converged` written out,
@@ -134,8 +138,13 @@ def unrolled_newton(n, blocks, zeros, inv_xscale, col):
     """
     xs = [f"x{i}" for i in range(n)]
     xl = "[" + ", ".join(xs) + "]"
-    res = [f"abs(v[{i}])" for i in range(n)]
-    steps = [f"abs(d{i})" if w == 1.0 else f"abs(d{i}) * {w!r}" for i, w in enumerate(inv_xscale)]
+    moved = range(n)
+    if only is not None:  # the block alone: no coupling to the unknowns before it, which are held
+        a0, b0 = blocks[only]
+        blocks, moved = [(a0, b0)], range(a0, b0)
+        zeros = set(zeros) | {(i, j) for i in moved for j in range(a0)}
+    res = [f"abs(v[{i}])" for i in moved]
+    steps = [f"abs(d{i})" if inv_xscale[i] == 1.0 else f"abs(d{i}) * {inv_xscale[i]!r}" for i in moved]
     # the conditioning rule on the scaled 2 x 2 blocks (a block of size 1 is refused only where it is
     # exactly singular, by the step itself, as in BlockStructure.cond1)
     # The condition number of a scaled 2 x 2 block is at most its squared Frobenius norm over |det|
@@ -175,7 +184,7 @@ def unrolled_newton(n, blocks, zeros, inv_xscale, col):
         *cond_check,
         *step_lines(n, blocks, zeros, "status = 'converged' if res <= tol and cond_max is None else 'singular'; break",
                      indent="        "),
-        *[f"        x{i} += d{i}" for i in range(n)],
+        *[f"        x{i} += d{i}" for i in moved],
         *max_lines("step", steps, "        "),
         "        it += 1",
         "        try:",

@@ -288,3 +288,31 @@ def test_names_given_as_strings_are_the_equations_own_symbols():
     h = math.sqrt(9.0 - along**2)
     bx, by = ax + along * (ox - ax) / d + h * ay / d, ay + along * (-ay) / d + h * (ox - ax) / d
     assert mech.sweep(np.radians([0.0, 90.0]))["theta4"][1] == pytest.approx(math.atan2(by, bx - ox), abs=1e-12)
+
+
+def _circle_intersections(p, r, q, s):
+    """The two points at distance r from p and s from q (complex numbers), each side of the line p-q."""
+    d = abs(q - p)
+    a = (r * r - s * s + d * d) / (2 * d)
+    h = math.sqrt(r * r - a * a)
+    m = p + a * (q - p) / d
+    off = 1j * h * (q - p) / d
+    return m + off, m - off
+
+
+def test_a_poor_guess_for_one_loop_leaves_the_next_on_its_own_guess_branch():
+    """A Watt II six-bar: loop 2 hangs on loop 1's rocker. Loop 1's guess 2.5 rad off, loop 2's exact: the first
+    point is solved loop by loop, so loop 2 stays on the branch its guess is on (circle intersections), where Newton
+    on both loops at once carried it onto the other."""
+    t2, t3, t4, t5, t6 = sp.symbols("theta2 theta3 theta4 theta5 theta6")
+    loop1 = Loop.from_vectors([(1, t2), (3.5, t3), (-3, t4), (-4, 0)], [t3, t4], name="O2ABO4")
+    loop2 = Loop.from_vectors([(4, 0), (2.5, t4 + 0.6), (3.2, t5), (-2.8, t6), (-7, 0), (-1.5, sp.pi / 2)], [t5, t6],
+                              name="O4CDO6")
+    a, o4, o6 = 1.0 + 0j, 4.0 + 0j, 7.0 + 1.5j  # at theta2 = 0
+    b = _circle_intersections(a, 3.5, o4, 3.0)[0]  # the open branch, B above the ground
+    th3, th4 = np.angle(b - a), np.angle(b - o4)
+    c = o4 + 2.5 * np.exp(1j * (th4 + 0.6))
+    for d in _circle_intersections(c, 3.2, o6, 2.8):
+        exact = np.array([th3, th4, np.angle(d - c), np.angle(d - o6)])
+        sweep = Mechanism([loop1, loop2], t2, {}).sweep(np.radians([0.0, 5.0]), guess=exact + [2.5, -2.5, 0.0, 0.0])
+        np.testing.assert_allclose(sweep.values[:, 0], exact, atol=1e-12)
