@@ -14,7 +14,7 @@ from typing import Callable, Iterable, Sequence
 
 from .errors import InputError
 
-__all__ = ["Loop", "as_symbol", "SymbolName", "LazyPoints", "describe", "check_lengths", "check_symbols",
+__all__ = ["Loop", "as_symbol", "angle_unknowns", "SymbolName", "LazyPoints", "describe", "check_lengths", "check_symbols",
            "default_length_scale", "read_parameters", "read_points", "check_point_names"]
 
 
@@ -54,6 +54,74 @@ def _angle_unknowns(residuals, unknowns) -> set:
     return found
 
 
+_INVERSE_TRIG = ("atan2", "asin", "acos", "atan", "acot")
+
+
+def _angle_sum(expr, known) -> set:
+    """The symbols of ``expr`` where it is a sum of symbols and inverse trigonometric functions, each with
+    coefficient 1 or -1, and constants, holding at least one angle (a symbol in ``known``, or an inverse
+    trigonometric function): an equation between angles, ``t5 - t4 - 0.6`` or ``t3 - atan2(y, x)``. Else
+    the empty set (``x - r t2``, ``x - 2 t2``: a length rolled off by an angle)."""
+    symbols, angle = set(), False
+    for term in expr.as_ordered_terms() if expr.is_Add else [expr]:
+        coeff, rest = term.as_coeff_Mul()
+        if rest.is_number:
+            continue
+        if abs(coeff) != 1:
+            return set()
+        if rest.is_Symbol:
+            symbols.add(rest)
+            angle = angle or rest in known
+        elif type(rest).__name__ in _INVERSE_TRIG:
+            angle = True
+        else:
+            return set()
+    return symbols if angle else set()
+
+
+def angle_unknowns(loops, input_symbol, points=None) -> set:
+    """The unknowns of a mechanism's loops that are angles (rad).
+
+    Each loop's own (:attr:`Loop.angles`); and, of a loop whose angles were
+    not declared, every unknown inside a sine, cosine, tangent or exponential
+    of any loop's equations or any point's coordinates, and every unknown an
+    equation of it sets to a sum of angles and constants (``t5 - t2 - 0.6``,
+    ``t3 - atan2(y, x)``; :func:`_angle_sum`): an angle that a later loop
+    or a point turns by, or that others define, is an angle though its own
+    loop has no sine of it.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> t2, t5, t6, t7 = sp.symbols("theta2 theta5 theta6 theta7")
+    >>> arm = Loop([t5 - t2 - 0.6], [t5], name="arm")
+    >>> dyad = Loop.from_vectors([(1, t5), (3.5, t6), (-3, t7), (-4, 0)], [t6, t7])
+    >>> sorted(map(str, arm.angles)), sorted(map(str, angle_unknowns([arm, dyad], t2)))
+    ([], ['theta5', 'theta6', 'theta7'])
+    """
+    import sympy as sp
+
+    exprs = [r for lp in loops for r in lp.residuals]
+    exprs += [c for xy in (points or {}).values() for c in xy if isinstance(c, sp.Basic)]
+    in_trig = set().union(*(fn.free_symbols for e in exprs for fn in e.atoms(sp.sin, sp.cos, sp.tan, sp.exp)))
+    angles = set().union(*(lp.angles for lp in loops))
+    inferred = [lp for lp in loops if not lp.angles_declared]
+    for lp in inferred:
+        angles |= set(lp.unknowns) & in_trig
+    known = angles | ({input_symbol} & in_trig)
+    grown = True
+    while grown:  # (an equation may set an angle from one a later equation makes an angle)
+        grown = False
+        for lp in inferred:
+            for r in lp.residuals:
+                new = (_angle_sum(r, known) & set(lp.unknowns)) - angles
+                if new:
+                    angles |= new
+                    known |= new
+                    grown = True
+    return angles
+
+
 class Loop:
     """Closure equations of one loop in its own unknowns.
 
@@ -69,7 +137,10 @@ class Loop:
         Used in error messages ("loop 'O2-A-B-O4' did not converge ...").
     angles : sequence, optional
         Which unknowns are angles (rad). Default: those that appear inside a
-        trigonometric function; the others are lengths.
+        trigonometric function; the others are lengths. In a
+        :class:`~numkin.Mechanism`, an unknown of such a loop is an angle
+        too where another loop or a point takes its sine or cosine, or an
+        equation sets it to a sum of angles (:func:`angle_unknowns`).
 
     Notes
     -----
@@ -112,6 +183,8 @@ class Loop:
         missing = [str(u) for u in self.unknowns if u not in free]
         if missing:
             raise InputError(f"loop '{self.name}': unknown(s) {', '.join(missing)} appear in no equation")
+        #: whether ``angles`` was given (or follows from vectors): a mechanism then takes it as it is
+        self.angles_declared = angles is not None
         if angles is None:
             self.angles = _angle_unknowns(self.residuals, self.unknowns)
         else:
@@ -302,12 +375,13 @@ def describe(loops, input_symbol, parameters, points) -> dict:
     [['r', True, False]]
     """
     moving = {input_symbol, *(u for lp in loops for u in lp.unknowns)}
+    angles = angle_unknowns(loops, input_symbol, points)
     return {
         "input": str(input_symbol),
         "input_assumptions": {k: bool(v) for k, v in input_symbol.assumptions0.items()},
         "parameters": [[str(s), bool(s.is_positive or s.is_nonnegative), s.is_real is None] for s in parameters],
         "loops": [{"name": lp.name, "unknowns": [str(u) for u in lp.unknowns],
-                   "angles": [str(u) for u in lp.unknowns if u in lp.angles],
+                   "angles": [str(u) for u in lp.unknowns if u in angles],
                    "lengths": sorted(str(s) for s in lp.length_symbols),
                    "links": sorted({str(s) for length, angle in lp.vector_symbols if angle & moving
                                     for s in length - set(lp.unknowns)}),

@@ -316,3 +316,31 @@ def test_a_poor_guess_for_one_loop_leaves_the_next_on_its_own_guess_branch():
         exact = np.array([th3, th4, np.angle(d - c), np.angle(d - o6)])
         sweep = Mechanism([loop1, loop2], t2, {}).sweep(np.radians([0.0, 5.0]), guess=exact + [2.5, -2.5, 0.0, 0.0])
         np.testing.assert_allclose(sweep.values[:, 0], exact, atol=1e-12)
+
+
+def test_an_angle_another_loop_turns_by_is_an_angle():
+    """An arm held 0.6 rad from the crank, written as the equation t5 - t2 - 0.6 (no sine of t5 in its loop),
+    drives a dyad: t5 is an angle (the dyad takes its cosine), and so is one set by an equation between
+    angles that nothing turns by; a rack's travel rolled off by the crank (x - 2 t2) stays a length."""
+    t2, t5, t6, t7, t8 = sp.symbols("theta2 theta5 theta6 theta7 theta8")
+    x = sp.Symbol("x")
+    arm = Loop([t5 - t2 - 0.6], [t5], name="arm")
+    dyad = Loop.from_vectors([(1.0, t5), (3.5, t6), (-3.0, t7), (-4, 0), (-0.5, sp.pi / 2)], [t6, t7], name="dyad")
+    follower = Loop([t8 - t7 + sp.atan2(1, 2)], [t8], name="follower")
+    rack = Loop([x - 2 * t2], [x], name="rack")
+    guess = {"theta5": 0.6, "theta6": 0.29, "theta7": 1.52, "theta8": 1.06}
+    mech = Mechanism([arm, dyad, follower], t2, guess=guess, guess_input=0.0)
+    assert set(mech.angles) == {"theta5", "theta6", "theta7", "theta8"}
+    assert arm.angles == set()  # the loop alone cannot tell
+    assert set(Mechanism([arm, dyad, follower, rack], t2, guess={**guess, "x": 0.0}).angles) == set(mech.angles)
+    inputs = np.linspace(0.0, 2 * np.pi, 361)
+    sweep = mech.sweep(inputs)
+    assert "theta5 [deg]" in sweep.to_frame().columns
+    np.testing.assert_allclose(sweep["theta5"], inputs + 0.6, atol=1e-12)
+    from numkin import analytic, kinematics
+
+    frame = analytic.kinematics(sweep, 10.0)
+    assert frame.attrs["units"]["omega_theta5"] == "rad/s"
+    np.testing.assert_allclose(frame["omega_theta5"], 10.0, atol=1e-9)
+    spectral = kinematics.finite_difference(sweep, 10.0, method="spectral", second_method="spectral_second")
+    np.testing.assert_allclose(spectral["omega_theta5"], 10.0, atol=1e-9)  # one turn: periodic
