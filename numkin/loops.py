@@ -20,7 +20,8 @@ __all__ = ["Loop", "as_symbol", "angle_unknowns", "SymbolName", "LazyPoints", "d
 
 def as_symbol(name, among=()):
     """A sympy symbol from a symbol or its name: the symbol of that name in `among` (the symbols of the
-    equations, whatever their assumptions), else a new real-valued one.
+    equations, whatever their assumptions: a symbol made again with other assumptions means the
+    equations' own), else a new real-valued one.
 
     Examples
     --------
@@ -28,12 +29,16 @@ def as_symbol(name, among=()):
     >>> plain = sp.Symbol("theta2")                     # as sp.symbols("theta2") makes it
     >>> as_symbol("theta2", [plain]) is plain, as_symbol("theta2").is_real
     (True, True)
+    >>> as_symbol(sp.Symbol("theta2", real=True), [plain]) is plain
+    True
     """
     import sympy as sp
 
     if isinstance(name, SymbolName):
         return name._sympy_()
     if isinstance(name, sp.Symbol):
+        if name not in among:
+            return next((sym for sym in among if getattr(sym, "name", None) == name.name), name)
         return name
     if isinstance(name, str) and name.isidentifier():
         for sym in among:
@@ -611,6 +616,20 @@ def check_symbols(loops, input_symbol, parameters) -> None:
     ...
     numkin.errors.InputError: the input theta22 appears in no loop: the loops use theta2, which has no value; is it the input?
     """
+    import sympy as sp
+
+    writes = {}  # name -> {symbol: the first loop that writes it}
+    for lp in loops:
+        for sym in set().union(*(r.free_symbols for r in lp.residuals)):
+            writes.setdefault(sym.name, {}).setdefault(sym, lp.name)
+    for name, where in sorted(writes.items()):
+        if len(where) > 1:
+            (a, la), (b, lb) = sorted(where.items(), key=lambda item: sp.srepr(item[0]))[:2]
+            whose = f"loop '{la}' writes {sp.srepr(a)} and loop '{lb}' {sp.srepr(b)}" if la != lb else (
+                f"loop '{la}' writes both {sp.srepr(a)} and {sp.srepr(b)}")
+            raise InputError(f"{whose}: two different sympy symbols named '{name}' (their assumptions differ), "
+                             "which numkin cannot take for one; make each symbol once (sympy.symbols) and use it "
+                             "in every loop")
     known = {input_symbol} | set(parameters)
     used = set().union(*(r.free_symbols for lp in loops for r in lp.residuals))
     if input_symbol not in used:

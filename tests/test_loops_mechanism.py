@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from numkin import AssemblyError, Loop, Mechanism
+from numkin import AssemblyError, InputError, Loop, Mechanism
 
 TH, T3, X, T4, T5, XS = sp.symbols("theta theta3 x theta4 theta5 xs", real=True)
 R, L, E = sp.symbols("r l e", positive=True)
@@ -344,3 +344,21 @@ def test_an_angle_another_loop_turns_by_is_an_angle():
     np.testing.assert_allclose(frame["omega_theta5"], 10.0, atol=1e-9)
     spectral = kinematics.finite_difference(sweep, 10.0, method="spectral", second_method="spectral_second")
     np.testing.assert_allclose(spectral["omega_theta5"], 10.0, atol=1e-9)  # one turn: periodic
+
+
+def test_symbols_of_one_name_with_other_assumptions():
+    """An input or a parameter made again with other assumptions means the loops' symbol of that name (the
+    4:1:3:3 four-bar's theta4 at 90° by circle intersection: 119.3714°); two such symbols in the loops'
+    equations are refused, naming both and their loops."""
+    t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    r1, r2, r3, r4 = sp.symbols("r1 r2 r3 r4", positive=True)
+    loop = Loop.from_vectors([(r2, t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4], name="O2ABO4")
+    mech = Mechanism([loop], sp.Symbol("theta2", real=True), {r1: 4, r2: 1, r3: 3, sp.Symbol("r4"): 3},
+                     guess=[0.5, 2.0])
+    assert round(math.degrees(mech.sweep(np.radians([90.0]))["theta4"][0]), 4) == 119.3714
+    t5, t6 = sp.symbols("theta5 theta6")
+    second = Loop.from_vectors([(r1, 0), (r4, sp.Symbol("theta4", real=True)), (3, t5), (-3, t6), (-7, 0)], [t5, t6],
+                               name="second")
+    with pytest.raises(InputError, match=r"loop 'O2ABO4' writes Symbol\('theta4'\) and loop 'second' "
+                                         r"Symbol\('theta4', real=True\): two different sympy symbols named 'theta4'"):
+        Mechanism([loop, second], t2, {r1: 4, r2: 1, r3: 3, r4: 3})
