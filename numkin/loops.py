@@ -84,8 +84,8 @@ def _angle_sum(expr, known) -> set:
     return symbols if angle else set()
 
 
-def angle_unknowns(loops, input_symbol, points=None) -> set:
-    """The unknowns of a mechanism's loops that are angles (rad).
+def angle_unknowns(loops, input_symbol, points=None) -> tuple[set, bool]:
+    """The unknowns of a mechanism's loops that are angles (rad), and whether the input is one.
 
     Each loop's own (:attr:`Loop.angles`); and, of a loop whose angles were
     not declared, every unknown inside a sine, cosine, tangent or exponential
@@ -93,7 +93,7 @@ def angle_unknowns(loops, input_symbol, points=None) -> set:
     equation of it sets to a sum of angles and constants (``t5 - t2 - 0.6``,
     ``t3 - atan2(y, x)``; :func:`_angle_sum`): an angle that a later loop
     or a point turns by, or that others define, is an angle though its own
-    loop has no sine of it.
+    loop has no sine of it. The input is an angle by the same rules.
 
     Examples
     --------
@@ -101,8 +101,9 @@ def angle_unknowns(loops, input_symbol, points=None) -> set:
     >>> t2, t5, t6, t7 = sp.symbols("theta2 theta5 theta6 theta7")
     >>> arm = Loop([t5 - t2 - 0.6], [t5], name="arm")
     >>> dyad = Loop.from_vectors([(1, t5), (3.5, t6), (-3, t7), (-4, 0)], [t6, t7])
-    >>> sorted(map(str, arm.angles)), sorted(map(str, angle_unknowns([arm, dyad], t2)))
-    ([], ['theta5', 'theta6', 'theta7'])
+    >>> angles, input_angle = angle_unknowns([arm, dyad], t2)
+    >>> sorted(map(str, arm.angles)), sorted(map(str, angles)), input_angle
+    ([], ['theta5', 'theta6', 'theta7'], True)
     """
     import sympy as sp
 
@@ -117,14 +118,16 @@ def angle_unknowns(loops, input_symbol, points=None) -> set:
     grown = True
     while grown:  # (an equation may set an angle from one a later equation makes an angle)
         grown = False
-        for lp in inferred:
+        for lp in loops:
             for r in lp.residuals:
-                new = (_angle_sum(r, known) & set(lp.unknowns)) - angles
+                found = _angle_sum(r, known)
+                new = ((found & set(lp.unknowns)) - angles if not lp.angles_declared else set())
+                new |= (found & {input_symbol}) - known
                 if new:
-                    angles |= new
+                    angles |= new - {input_symbol}
                     known |= new
                     grown = True
-    return angles
+    return angles, input_symbol in known
 
 
 class Loop:
@@ -380,9 +383,10 @@ def describe(loops, input_symbol, parameters, points) -> dict:
     [['r', True, False]]
     """
     moving = {input_symbol, *(u for lp in loops for u in lp.unknowns)}
-    angles = angle_unknowns(loops, input_symbol, points)
+    angles, input_angle = angle_unknowns(loops, input_symbol, points)
     return {
         "input": str(input_symbol),
+        "input_is_angle": input_angle,
         "input_assumptions": {k: bool(v) for k, v in input_symbol.assumptions0.items()},
         "parameters": [[str(s), bool(s.is_positive or s.is_nonnegative), s.is_real is None] for s in parameters],
         "loops": [{"name": lp.name, "unknowns": [str(u) for u in lp.unknowns],

@@ -157,6 +157,13 @@ class Mechanism(CachedModel):
                 raise InputError(f"{key} must be a non-empty string, got {value!r:.60}")
         self.name = name
         self.input_name = model["input"]
+        if not model.get("input_is_angle", True):
+            warn(
+                f"{name}: the input {self.input_name} looks like no angle: no loop takes its sine or cosine, nor "
+                "sets an angle from it; numkin drives a linkage by an input angle (rad), and its tables and "
+                "messages show the input in degrees: for a linkage driven by a length (a cylinder), make the input "
+                "the angle of a link it moves and the length an unknown", UserWarning,
+            )
         params = model["parameters"]
         check_point_names(model, name)  # from the sympy model or from the kernel cache alike
         if len(values) != len(params):

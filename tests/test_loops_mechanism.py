@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -362,3 +363,19 @@ def test_symbols_of_one_name_with_other_assumptions():
     with pytest.raises(InputError, match=r"loop 'O2ABO4' writes Symbol\('theta4'\) and loop 'second' "
                                          r"Symbol\('theta4', real=True\): two different sympy symbols named 'theta4'"):
         Mechanism([loop, second], t2, {r1: 4, r2: 1, r3: 3, r4: 3})
+
+
+def test_an_input_that_is_no_angle_is_warned_of():
+    """A rocker pushed by a cylinder of length d, d taken as the input: numkin reads the input as an angle
+    (its tables show it in degrees), and says so."""
+    t, phi, d = sp.symbols("theta phi d")
+    loop = Loop.from_vectors([(100, t), (-d, phi), (-150, 0)], [t, phi], name="cylinder")
+    with pytest.warns(UserWarning, match=r"the input d looks like no angle: no loop takes its sine or cosine.*"
+                                         r"make the input the angle of a link it moves and the length an unknown"):
+        Mechanism([loop], d, guess=[0.7227, 2.4146], guess_input=100.0)
+    x = sp.Symbol("x")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        rocker = Loop.from_vectors([(100, t), (-d, phi), (-150, 0)], [d, phi], name="cylinder")
+        Mechanism([rocker], t, guess=[100.0, 2.4])  # the rocker's angle as the input: d solved for
+        Mechanism([Loop([x - sp.sin(t)], [x])], t, guess=[0.2])  # a sine of it
