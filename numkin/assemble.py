@@ -509,6 +509,20 @@ FUNCTIONS = ("sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sqrt", "exp"
 
 
 def parse_expression(scene: Scene, text, names: Mapping, where: str):
+    """A scene's expression (a string, or a number) as a sympy expression in ``names`` (name -> symbol).
+
+    Only names, numbers, ``+ - * / ^ ( )`` and the functions of
+    :data:`FUNCTIONS` are read; anything else, a name not in ``names``, or an
+    infinite or undefined value fails the scene at ``where``.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from numkin.schema import Scene
+    >>> t = sp.Symbol("theta2")
+    >>> parse_expression(Scene(name="x", source="x.toml", description="", data={}), "2*cos(theta2)^2", {"theta2": t}, "[x] y")
+    2*cos(theta2)**2
+    """
     import sympy as sp
     from sympy.parsing.sympy_parser import convert_xor, parse_expr, standard_transformations
 
@@ -551,6 +565,17 @@ def parse_expression(scene: Scene, text, names: Mapping, where: str):
 
 
 def parse_equation(scene: Scene, text, names: Mapping, where: str):
+    """A scene's equation as the expression that vanishes: ``"lhs = rhs"`` gives ``lhs - rhs``, an expression
+    alone is taken ``= 0`` (:func:`parse_expression` reads each side).
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from numkin.schema import Scene
+    >>> t5, t2 = sp.symbols("theta5 theta2")
+    >>> parse_equation(Scene(name="x", source="x.toml", description="", data={}), "theta5 = theta2 + 0.6", {"theta5": t5, "theta2": t2}, "[x] y")
+    -theta2 + theta5 - 0.6
+    """
     if not isinstance(text, str):
         scene.fail(where, f"must be a string: an expression (= 0) or \"lhs = rhs\", got {text!r}")
     if text.count("=") > 1:

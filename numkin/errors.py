@@ -177,10 +177,13 @@ class ConvergenceWarning(UserWarning):
 class DegreesWarning(UserWarning):
     """Angles given to numkin look like degrees where rad are expected.
 
-    A sweep whose inputs step by whole numbers of at least 1 over 90 or more
-    (``np.arange(0, 361)``) is, in rad, dozens of turns in steps of 57°;
-    ``np.radians`` converts. (The input may be a length, a slider's
-    position: then the warning does not apply.)
+    A sweep whose inputs step by 0.5 or more over 90 or more
+    (``np.arange(0, 361)``, ``np.linspace(0, 360, 100)``), or by whole
+    numbers over 30 or more (``np.arange(30, 61)``), is, in rad, turns in
+    steps of 29° or more; a ``guess_input`` or a parameter added to an angle
+    more than a turn from zero is most likely in degrees too. ``np.radians``
+    converts. (The input may be a length, a slider's position: then the
+    warning does not apply.)
     """
 
 

@@ -395,6 +395,7 @@ def describe(loops, input_symbol, parameters, points) -> dict:
                    "links": sorted({str(s) for length, angle in lp.vector_symbols if angle & moving
                                     for s in length - set(lp.unknowns)}),
                    "numbers": max([abs(float(length)) for length, _ in lp.vectors if not length.free_symbols] + [0.0]),
+                   "angle_offsets": _angle_offsets(lp, moving),
                    **_scale_names(lp, moving)} for lp in loops],
         "points": [str(k) for k in (points or {})],
         "point_symbols": {str(k): sorted({s.name for c in xy for s in getattr(c, "free_symbols", ())})
@@ -575,6 +576,24 @@ def default_length_scale(model: dict, value_of: dict) -> float:
         angles = {s for lp in model["loops"] for s in lp.get("angle_parameters", ())}
         values = [abs(v) for s, v in value_of.items() if s not in angles]
     return max(values) if values and max(values) > 0 else 1.0
+
+
+def _angle_offsets(lp, moving) -> list:
+    """The parameters a loop adds to an angle, each with coefficient 1 or -1 (``t4 + delta`` in a vector's angle or
+    inside a sine or cosine): angles themselves (rad). Not a gear ratio's ``n`` of ``n theta2``."""
+    import sympy as sp
+
+    if lp.vectors:
+        args = [angle for _, angle in lp.vectors]
+    else:
+        args = [fn.args[0] for r in lp.residuals for fn in r.atoms(sp.sin, sp.cos, sp.tan)]
+    found = set()
+    for arg in args:
+        for term in sp.Add.make_args(sp.sympify(arg)):
+            coeff, rest = term.as_coeff_Mul()
+            if rest.is_Symbol and abs(coeff) == 1 and rest not in moving:
+                found.add(str(rest))
+    return sorted(found)
 
 
 def _scale_names(lp, moving) -> dict:

@@ -17,7 +17,7 @@ import numpy as np
 from .cached_model import CachedModel, count_message
 from .compiled import BlockStructure, CompiledMechanism, compiled_once
 from .derived import bind, names_of, read_quantities, taken_names, warn_not_finite
-from .errors import AssemblyError, ConvergenceError, GuessWarning, InputError, warn
+from .errors import AssemblyError, ConvergenceError, DegreesWarning, GuessWarning, InputError, warn
 from .loops import (Loop, as_symbol, check_lengths, check_point_names, check_symbols, default_length_scale, describe,
                     read_parameters, read_points)
 from .newton import JACOBIANS, TOL_MIN, NewtonResult, check_tol, iterate, residual_floor, scaled_cond
@@ -39,6 +39,20 @@ def _names(value, argument: str) -> list:
     if not isinstance(value, (list, tuple)) or not all(isinstance(v, str) for v in value):
         raise InputError(f"{argument} must be a list of point names, got {value!r:.60}")
     return list(value)
+
+
+def _warn_degrees(name, model, value_of, guess_input) -> None:
+    """A :class:`~numkin.errors.DegreesWarning` for a ``guess_input`` or a parameter added to an angle more than a
+    turn from zero: most likely given in degrees."""
+    offsets = {p for lp in model["loops"] for p in lp.get("angle_offsets", ())}
+    far = [f"parameter {p} = {v:g}" for p, v in value_of.items() if p in offsets and abs(v) > 2.0 * math.pi]
+    if guess_input is not None and model.get("input_is_angle", True) and abs(guess_input) > 2.0 * math.pi:
+        far.append(f"guess_input = {guess_input:g}")
+    if far:
+        warn(DegreesWarning(
+            f"{name}: {', '.join(far)} {'is' if len(far) == 1 else 'are'} an angle more than a turn from zero: "
+            "angles are in rad (was it given in degrees? np.radians converts)"
+        ))
 
 
 class Mechanism(CachedModel):
@@ -216,6 +230,7 @@ class Mechanism(CachedModel):
                              f"of the input, got {guess!r:.60}")
         self._guess = guess
         self.guess_input = None if guess_input is None else finite("guess_input (rad)", guess_input)
+        _warn_degrees(name, model, value_of, self.guess_input)
         self.parameter_values = np.array(values, dtype=float)
         self.derived = {}
         self._declared = quantities  # declared by add_quantities once the model can be read

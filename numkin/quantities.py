@@ -224,6 +224,9 @@ def tex(name: str) -> str:
 def catalogue(mechanism, orders=(0, 1, 2), *, wrt: str = "time", points: bool = True) -> dict:
     """Every quantity numkin computes for a mechanism: name -> :class:`Quantity`.
 
+    The unknowns come first, then the derived quantities (:mod:`numkin.derived`),
+    then the points, at each order.
+
     Parameters
     ----------
     mechanism : Mechanism
@@ -233,9 +236,6 @@ def catalogue(mechanism, orders=(0, 1, 2), *, wrt: str = "time", points: bool = 
         Derivatives with respect to time or to the input angle.
     points : bool
         Whether to list the coordinates of the named points too.
-
-    The unknowns come first, then the derived quantities (:mod:`numkin.derived`),
-    then the points, at each order.
 
     Examples
     --------

@@ -117,6 +117,9 @@ def input_rate(value, order: int, name: str | None = None) -> float:
 
 
 def read_input(r: SceneReader, scene: Scene, inp: dict) -> None:
+    """``[input]`` into ``scene``: the input speed and acceleration (read with their units), the sweep's
+    ``start_deg``, ``stop_deg`` and ``step_deg``, and ``on_singular``; each mistake fails the scene naming
+    its key."""
     from .units import UnitError
 
     for key, order in (("speed", 1), ("acceleration", 2)):
@@ -157,6 +160,8 @@ def read_input(r: SceneReader, scene: Scene, inp: dict) -> None:
 
 
 def read_output(r: SceneReader, scene: Scene, out: dict) -> None:
+    """``[output]`` into ``scene``: the quantities (position always among them), the unknowns and points
+    reported, the tables and their formats, and the figures (:func:`read_figures`)."""
     scene.quantities = r.strings(out.get("quantities", ["position"]), "[output] quantities", QUANTITIES)
     if not scene.quantities:
         r.fail("[output] quantities", "is empty; ask for at least \"position\"")
@@ -176,6 +181,8 @@ def read_output(r: SceneReader, scene: Scene, out: dict) -> None:
 
 
 def read_figures(r: SceneReader, out: dict) -> tuple:
+    """``[output] figures`` as a tuple of names, each read as :func:`numkin.figures.specs.parse_spec` reads it
+    (a misspelt name fails the scene with the nearest one)."""
     names = r.strings(out.get("figures", []), "[output] figures")
     if names:
         from .figures.specs import parse_spec  # (not the modules that draw)
@@ -189,6 +196,8 @@ def read_figures(r: SceneReader, out: dict) -> tuple:
 
 
 def read_compare(r: SceneReader, scene: Scene, cmp: dict) -> None:
+    """``[compare]`` into ``scene``: the first- and second-derivative schemes (registered names of the right
+    order, the quantity they need asked for in ``[output]``)."""
     for key, order, quantity in (("schemes", 1, "velocity"), ("second_schemes", 2, "acceleration")):
         if key not in cmp:
             continue
@@ -303,6 +312,7 @@ def read_checks(r: SceneReader, scene: Scene, checks, written=None) -> None:
 
 
 def in_range(r: SceneReader, scene: Scene, at: float, where: str) -> None:
+    """Fail the scene at ``where`` unless the angle ``at`` (deg) lies in the sweep (to 1e-9°)."""
     if not scene.start_deg - 1e-9 <= at <= scene.stop_deg + 1e-9:
         r.fail(where, f"{at:g}° is outside the sweep {scene.start_deg:g}..{scene.stop_deg:g}°")
 

@@ -85,6 +85,11 @@ _SECTIONS = {
 
 
 def one_line(text: str) -> str:
+    """``text`` on one line, its runs of white space (newlines included) one space each.
+
+    >>> one_line("malformed TOML:\\n  line 2")
+    'malformed TOML: line 2'
+    """
     return " ".join(str(text).split())
 
 

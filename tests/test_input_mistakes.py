@@ -8,6 +8,7 @@ by the key parts of their text.
 from __future__ import annotations
 
 import math
+import re
 import textwrap
 import warnings
 
@@ -551,7 +552,42 @@ def test_a_sweep_in_degrees_is_warned_of_and_one_in_rad_is_not():
         warnings.simplefilter("error", DegreesWarning)
         mech.sweep(np.radians(np.arange(0.0, 361.0)))
         mech.sweep(np.arange(0.0, 20.0))  # 20 rad in steps of 1: a few turns, not degrees
+        mech.sweep(np.linspace(0.0, 20 * np.pi, 2001))  # ten turns in steps of 1.8°
     assert issubclass(GuessWarning, DegreesWarning)
+
+
+@pytest.mark.parametrize("inputs, words", [
+    (np.arange(0.0, 360.0, 0.5), "run from 0 to 359.5 in steps of 0.5; if the input is an angle, that is 57.2 turns"),
+    (np.linspace(0.0, 360.0, 100), "run from 0 to 360 in steps of 3.63636"),
+    (np.arange(30.0, 61.0), "run from 30 to 60 in steps of 1; if the input is an angle, that is 4.77 turns"),
+])
+def test_more_sweeps_in_degrees_are_warned_of(inputs, words):
+    with pytest.warns(DegreesWarning, match=re.escape(words)):
+        linkages.four_bar(4, 1, 3, 3).sweep(inputs)
+
+
+def test_a_guess_input_or_an_angle_parameter_in_degrees_is_warned_of():
+    """guess_input = 90 and an offset delta = 34.4 added to the crank's angle: degrees by their size; a gear
+    ratio n = 10 multiplying it is no angle."""
+    import sympy as sp
+
+    from numkin import Loop, Mechanism
+
+    t2, t3, t4, delta, n = sp.symbols("theta2 theta3 theta4 delta n")
+    dims = dict(zip(sp.symbols("r1 r2 r3 r4"), (4, 1, 3, 3)))
+    r1, r2, r3, r4 = dims
+    plain = Loop.from_vectors([(r2, t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4])
+    with pytest.warns(DegreesWarning, match=r"guess_input = 90 is an angle more than a turn from zero: angles are "
+                                            r"in rad"):
+        Mechanism([plain], t2, dims, guess=[0.57, 2.08], guess_input=90.0)
+    offset = Loop.from_vectors([(r2, t2 + delta), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4])
+    with pytest.warns(DegreesWarning, match=r"parameter delta = 34.4 is an angle more than a turn from zero"):
+        Mechanism([offset], t2, {**dims, delta: 34.4}, guess=[0.57, 2.08])
+    geared = Loop.from_vectors([(r2, n * t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", DegreesWarning)
+        Mechanism([geared], t2, {**dims, n: 10}, guess=[0.57, 2.08], guess_input=6.0)
+        Mechanism([offset], t2, {**dims, delta: 0.6}, guess=[0.57, 2.08])
 
 
 # ------------------------------------------------------------ the report and the figures of a scene

@@ -32,10 +32,16 @@ VARIES = "(varies)"
 
 
 def deg_text(angle: float) -> str:
+    """An angle (rad) in degrees, to 6 significant figures, without the unit: a caption's number.
+
+    >>> deg_text(1.0)
+    '57.2958'
+    """
     return f"{math.degrees(angle):.6g}"
 
 
 def order_text(scheme) -> str:
+    """A scheme's order of accuracy in words: its number, or ``"spectral"`` (order 0 in the registry)."""
     return "spectral" if scheme.order == 0 else str(scheme.order)
 
 

@@ -80,6 +80,11 @@ def grid_inputs(points: int, start: float, span: float) -> np.ndarray:
 
 
 def grid_list(grids) -> list:
+    """Grids (points per turn: an integer or a sequence of them) as a list of distinct integers of at least 4.
+
+    >>> grid_list(36), grid_list([36.0, 72])
+    ([36], [36, 72])
+    """
     if isinstance(grids, (int, np.integer)):
         grids = [grids]
     if isinstance(grids, str):
