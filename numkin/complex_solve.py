@@ -157,7 +157,9 @@ def complex_step(sweep, h: float = COMPLEX_STEP, *, order: int = 1) -> np.ndarra
     Raises
     ------
     ValueError
-        If `h` is not finite and positive or `order` is not 1 or 2.
+        If `h` is not finite and positive or `order` is not 1 or 2, or
+        (:class:`~numkin.errors.InputError`) if a function of the loop
+        equations has no complex form (``atan2``).
 
     Examples
     --------
@@ -174,7 +176,13 @@ def complex_step(sweep, h: float = COMPLEX_STEP, *, order: int = 1) -> np.ndarra
     if order not in (1, 2):
         raise InputError(f"order must be 1 (dq/dtheta) or 2 (d2q/dtheta2), got {order!r}")
     mech, t, q = check_sweep(sweep)
-    x, failed, singular = complex_positions(mech, q, t, float(h))
+    try:
+        x, failed, singular = complex_positions(mech, q, t, float(h))
+    except TypeError as error:  # numpy's functions with no complex form, as arctan2
+        raise InputError(
+            f"{mech.name}: the complex step evaluates the loop equations at complex inputs, and one of their "
+            f"functions has no complex form in numpy ({error}); analytic.derivatives differentiates them exactly"
+        ) from None
     if failed.any():
         k = int(np.flatnonzero(failed)[0])
         warn(

@@ -41,6 +41,23 @@ def _names(value, argument: str) -> list:
     return list(value)
 
 
+def _underivable(loops, input_symbol) -> str:
+    """Which loop's equation has a derivative sympy leaves unevaluated (``Derivative(Abs(z), z)`` of a ``z`` not
+    declared real), and what to do; ``""`` if none is found."""
+    import sympy as sp
+
+    for lp in loops:
+        for k, r in enumerate(lp.residuals):
+            for u in [*lp.unknowns, input_symbol]:
+                left = r.diff(u).atoms(sp.Derivative)
+                if left:
+                    return (f"loop '{lp.name}': equation {k + 1} has no derivative sympy can write as code with respect "
+                            f"to {u} ({sorted(map(str, left))[0]}): a function such as Abs or sign of symbols not "
+                            "declared real; declare them real (sympy.symbols(..., real=True)) or write the equation "
+                            "without it")
+    return ""
+
+
 def _warn_degrees(name, model, value_of, guess_input) -> None:
     """A :class:`~numkin.errors.DegreesWarning` for a ``guess_input`` or a parameter added to an angle more than a
     turn from zero: most likely given in degrees."""
@@ -155,12 +172,15 @@ class Mechanism(CachedModel):
                     list(self.parameters.values()), name=name, guess=guess, guess_input=guess_input, links=links,
                     ground=ground, length_unit=length_unit, length_scale=length_scale,
                     assembly_check=assembly_check, branch=branch, quantities=quantities)
-        self.compiled = CompiledMechanism(
-            [r for lp in self.loops for r in lp.residuals],
-            self.unknown_symbols,
-            self.input_symbol,
-            list(self.parameters),
-        )
+        try:
+            self.compiled = CompiledMechanism(
+                [r for lp in self.loops for r in lp.residuals],
+                self.unknown_symbols,
+                self.input_symbol,
+                list(self.parameters),
+            )
+        except NotImplementedError as error:  # sympy's printer: a derivative it cannot write as code
+            raise InputError(_underivable(self.loops, self.input_symbol) or f"{name}: {error}") from None
         self.add_quantities(self.__dict__.pop("_declared"))
 
     def _setup(self, model: dict, values: list, *, name, guess, guess_input, links, ground, length_unit,

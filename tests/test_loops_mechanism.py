@@ -379,3 +379,29 @@ def test_an_input_that_is_no_angle_is_warned_of():
         rocker = Loop.from_vectors([(100, t), (-d, phi), (-150, 0)], [d, phi], name="cylinder")
         Mechanism([rocker], t, guess=[100.0, 2.4])  # the rocker's angle as the input: d solved for
         Mechanism([Loop([x - sp.sin(t)], [x])], t, guess=[0.2])  # a sine of it
+
+
+def test_functions_without_a_code_derivative_or_a_complex_form_name_the_loop():
+    """Abs of symbols not declared real differentiates to a Derivative sympy cannot print: refused naming the
+    loop and the equation (declared real, the same loop compiles); atan2 has no complex form in numpy, so the
+    complex step says so and points at the exact derivatives."""
+    t2, t3 = sp.symbols("theta2 theta3")
+    x = sp.Symbol("x", real=True)
+    residuals = [x - 50 * sp.cos(t2) - 150 * sp.cos(t3), sp.Abs(50 * sp.sin(t2) + 150 * sp.sin(t3) + 200) - 200]
+    with pytest.raises(InputError, match=r"loop 'abs': equation 2 has no derivative sympy can write as code .*"
+                                         r"declare them real"):
+        Mechanism([Loop(residuals, [t3, x], name="abs")], t2, guess=[0.0, 200.0])
+    r2, r3 = sp.symbols("theta2 theta3", real=True)
+    real = [x - 50 * sp.cos(r2) - 150 * sp.cos(r3), sp.Abs(50 * sp.sin(r2) + 150 * sp.sin(r3) + 200) - 200]
+    Mechanism([Loop(real, [r3, x], name="abs")], r2, guess=[0.0, 200.0])
+    s = sp.sqrt(150**2 - (50 * sp.sin(t2)) ** 2)
+    mech = Mechanism([Loop([x - 50 * sp.cos(t2) - s, t3 - sp.atan2(-50 * sp.sin(t2), s)], [x, t3], name="atan2")], t2,
+                     guess=[200.0, 0.0])
+    sweep = mech.sweep(np.radians([80.0, 90.0, 100.0]))
+    from numkin import analytic
+
+    with pytest.raises(InputError, match="no complex form in numpy .*analytic.derivatives differentiates them"):
+        analytic.complex_step(sweep)
+    dq, _ = analytic.derivatives(sweep)
+    # dx/dtheta2 = -r sin(theta2) - r^2 sin(theta2) cos(theta2) / sqrt(l^2 - r^2 sin^2(theta2)): -50 at 90°
+    assert dq[0, 1] == pytest.approx(-50.0, abs=1e-12)
