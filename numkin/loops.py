@@ -673,8 +673,14 @@ def check_symbols(loops, input_symbol, parameters) -> None:
         free = set().union(*(r.free_symbols for r in lp.residuals))
         stray = free - known - set(lp.unknowns)
         if stray:
+            import difflib
+
+            unused = [str(p) for p in parameters if p not in used]
+            near = [f"parameter {m[0]} is given but used by no loop: a misspelling of {s}?" for s in sorted(map(str, stray))
+                    for m in [difflib.get_close_matches(s, unused, n=1, cutoff=0.6)] if m]
             raise InputError(
                 f"loop '{lp.name}' uses symbol(s) {', '.join(sorted(map(str, stray)))} that are neither "
                 "its unknowns, earlier unknowns, the input nor a parameter with a value"
+                + "".join(f"; {text}" for text in near)
             )
         known |= set(lp.unknowns)

@@ -41,6 +41,19 @@ def _names(value, argument: str) -> list:
     return list(value)
 
 
+def _warn_unused(name, parameters, named, points, quantities) -> None:
+    """A warning for parameters that no loop, point or derived quantity uses: a value given for nothing."""
+    import re
+
+    used = set(named) | {s for xy in (points or {}).values() for c in xy for s in getattr(c, "free_symbols", ())}
+    written = " ".join(str(q) for q in (quantities or {}).values())
+    unused = [f"{p} = {v:g}" for p, v in parameters.items()
+              if p not in used and not re.search(rf"\b{re.escape(str(p))}\b", written)]
+    if unused:
+        warn(f"{name}: parameter{'s' if len(unused) > 1 else ''} {', '.join(unused)} "
+             f"{'are' if len(unused) > 1 else 'is'} used by no loop, point or derived quantity", UserWarning)
+
+
 def _underivable(loops, input_symbol) -> str:
     """Which loop's equation has a derivative sympy leaves unevaluated (``Derivative(Abs(z), z)`` of a ``z`` not
     declared real), and what to do; ``""`` if none is found."""
@@ -168,6 +181,7 @@ class Mechanism(CachedModel):
         self.unknown_symbols = [u for lp in self.loops for u in lp.unknowns]
         self.points = read_points(points, [*self.unknown_symbols, self.input_symbol, *self.parameters],
                                   name if isinstance(name, str) else "mechanism")
+        _warn_unused(name, self.parameters, named, self.points, quantities)
         self._setup(describe(self.loops, self.input_symbol, self.parameters, self.points),
                     list(self.parameters.values()), name=name, guess=guess, guess_input=guess_input, links=links,
                     ground=ground, length_unit=length_unit, length_scale=length_scale,

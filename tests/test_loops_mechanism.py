@@ -405,3 +405,21 @@ def test_functions_without_a_code_derivative_or_a_complex_form_name_the_loop():
     dq, _ = analytic.derivatives(sweep)
     # dx/dtheta2 = -r sin(theta2) - r^2 sin(theta2) cos(theta2) / sqrt(l^2 - r^2 sin^2(theta2)): -50 at 90°
     assert dq[0, 1] == pytest.approx(-50.0, abs=1e-12)
+
+
+def test_a_parameter_used_nowhere_is_named():
+    """A misspelt parameter (r_4 for r4) is named beside the symbol left without a value; one used by no loop,
+    point or derived quantity is warned of (one a point uses is not)."""
+    t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
+    r1, r2, r3, r4, r5 = sp.symbols("r1 r2 r3 r4 r5", positive=True)
+    loop = Loop.from_vectors([(r2, t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4], name="O2ABO4")
+    with pytest.raises(InputError, match=r"uses symbol\(s\) r4 that are neither .*; parameter r_4 is given but used "
+                                         r"by no loop: a misspelling of r4\?"):
+        Mechanism([loop], t2, {"r1": 4, "r2": 1, "r3": 3, "r_4": 3})
+    dims = {r1: 4, r2: 1, r3: 3, r4: 3}
+    with pytest.warns(UserWarning, match=r"parameter r5 = 2 is used by no loop, point or derived quantity"):
+        Mechanism([loop], t2, {**dims, r5: 2}, guess=[0.5, 2.0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        Mechanism([loop], t2, {**dims, r5: 2}, guess=[0.5, 2.0], points={"P": ("r5*cos(theta3)", 0)})
+        Mechanism([loop], t2, {**dims, r5: 2}, guess=[0.5, 2.0], quantities={"q": ("r5*cos(theta3)", "length")})
