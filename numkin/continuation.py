@@ -74,7 +74,7 @@ from .march import CROSSING_STEP, DEFAULT_MAX_STEP, MAX_CORRECTION, MAX_TANGENT_
 from .newton import JACOBIANS, check_tol
 from .predictors import MAX_PREDICTION
 from .sweep import Sweep, record_evaluations
-from .units import number_array
+from .units import deg_text, number_array
 
 __all__ = ["run_sweep", "DEFAULT_MAX_STEP", "MAX_CORRECTION", "MAX_PREDICTION", "MAX_TANGENT_TURN", "TREND_REACH",
            "CROSSING_STEP", "EVEN_STEPS"]
@@ -109,7 +109,8 @@ def _validate_inputs(inputs):
     if high < 0:
         return t, float(-low), high - low <= EVEN_STEPS * -low
     k = int(np.flatnonzero(np.sign(d) != np.sign(d[0]))[0]) if np.any(d != 0) else 0
-    raise InputError(f"inputs must be strictly monotonic for continuation (check inputs[{k}:{k + 2}])")
+    raise InputError(f"inputs must be strictly monotonic for continuation (check inputs[{k}:{k + 2}] = "
+                     f"{t[k]:g}, {t[k + 1]:g} rad: {deg_text(t[k], 4)}, {deg_text(t[k + 1], 4)})")
 
 
 def _warn_if_degrees(mech, t) -> None:

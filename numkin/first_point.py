@@ -349,10 +349,11 @@ def _solve_first(ctx, t0, x_guess, maxiter, note=""):
         where = _where(t0, note)
         loop = ctx.loop_names[failed]
         res, _ = _loop_numbers(ctx, x, t0, failed)
+        more = f", or allow more than maxiter={maxiter} steps" if status == "maxiter" else ""
         raise _hinted(AssemblyError(
             f"{mech.name}: cannot assemble at {where}: Newton from the guess did not converge "
             f"(loop '{loop}' residual {res:.3g} after {it} iterations); "
-            "check the dimensions or give a better guess (angles in rad)",
+            f"check the dimensions or give a better guess (angles in rad){more}",
             input_value=float(t0), loop=loop, cause="bad guess", residual=res, iterations=it,
         ), far)
     x, moved = ctx.nearest_turn(x, guess)

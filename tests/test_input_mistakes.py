@@ -17,7 +17,7 @@ import pytest
 import sympy as sp
 
 from numkin import Loop, Mechanism, linkages
-from numkin.errors import AssemblyError, BranchError, ConvergenceWarning, DegreesWarning, GuessWarning
+from numkin.errors import AssemblyError, BranchError, ConvergenceWarning, DegreesWarning, GuessWarning, InputError
 from numkin.scene import SceneError, load_scene, run_scene
 from test_cli import one_line_error, run
 
@@ -838,3 +838,12 @@ def test_a_report_grid_too_coarse_for_a_scheme_names_the_key(capsys, tmp_path):
                                          r"'five_point_second' needs at least 6"):
         report.convergence_table(linkages.slider_crank(50, 60, 20), omega=10.0, quantity="x", grids=(36, 72),
                                  span=math.radians(40), start=math.radians(310))
+
+
+def test_a_first_point_short_of_steps_and_inputs_out_of_order_say_so():
+    mech = linkages.four_bar(4, 1, 3, 3)
+    with pytest.raises(AssemblyError, match=r"did not converge .* after 1 iterations.*or allow more than maxiter=1 "
+                                            r"steps"):
+        mech.sweep(np.radians([0.0, 10.0]), maxiter=1, guess=[2.5, 0.3])
+    with pytest.raises(InputError, match=re.escape("check inputs[1:3] = 0.174533, 0.0872665 rad: 10.0000°, 5.0000°")):
+        mech.sweep(np.radians([0.0, 10.0, 5.0]))
