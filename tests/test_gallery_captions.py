@@ -87,7 +87,7 @@ def broken_claims(stem: str, text: str, fig) -> list[str]:
     if "log-log" in low:
         claim(any(ax.get_xscale() == "log" and ax.get_yscale() == "log" for ax in fig.axes), "no log-log axes")
     if "formal order" in low:
-        claim(labels and all(re.search(r"\(order \w+\)", lab) for lab in labels if "slope" not in lab),
+        claim(labels and all(re.search(r"\(order \w+\)|spectral", lab) for lab in labels if "slope" not in lab),
               "formal orders not in the legend")
     claim(("observed" in low) == ("observed" in everything.lower()), "observed orders drawn <-> named")
     if "reference slopes 1, 2 and 4" in low:

@@ -64,8 +64,11 @@ def _panel_text(quantity, error: str, table=None) -> tuple[str, str]:
 
 
 def _order_label(scheme: str, order) -> str:
-    """A scheme's legend label, with its formal order when known."""
-    return source_label(scheme) + (f" (order {order})" if order is not None else "")
+    """A scheme's legend label, with its formal order when known (a spectral scheme's label says it already)."""
+    label = source_label(scheme)
+    if order is None or order == "spectral" and "spectral" in label:
+        return label
+    return label + (" (spectral)" if order == "spectral" else f" (order {order})")
 
 
 def table_caption(table) -> str:
@@ -197,7 +200,10 @@ def convergence(table, *, error: str = "max abs error"):
                 ax.plot(hh, yy, color="0.35", linestyle=ls, linewidth=0.9, scalex=False, scaley=False)
                 inside = np.flatnonzero(yy >= ylo * 1.5)
                 j = inside[0] if inside.size else hh.size - 1
-                ax.text(hh[j], yy[j], f"slope {p}", fontsize=7.5, color="0.25", ha="right", va="bottom")
+                if j == 0:  # at the line's left end
+                    ax.text(hh[0], yy[0], f"slope {p}", fontsize=7.5, color="0.25", ha="right", va="bottom")
+                else:  # where it rises into view: beside it, to its right
+                    ax.text(hh[j] * 1.15, yy[j], f"slope {p}", fontsize=7.5, color="0.25", ha="left", va="bottom")
             log_scale(ax, "xy")
             ax.set_ylim(ylo, yhi)
             ax.set_xlim(hmin / 1.6, hmax * 1.3)
