@@ -387,6 +387,11 @@ class Mechanism(CachedModel):
     def solve(self, input_value: float, guess=None, *, jacobian="symbolic", tol=1e-12, maxiter=50) -> NewtonResult:
         """Solve the position at one input by Newton-Raphson (no continuation).
 
+        Newton on all loops at once, the textbook iteration: far from the
+        solution a later loop moves with the earlier ones' steps, so a poor
+        guess for one loop can take the next onto its other branch; a
+        sweep's first point is solved loop by loop instead (:meth:`sweep`).
+
         Parameters
         ----------
         input_value : float
