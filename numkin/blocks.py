@@ -11,6 +11,7 @@ are arrays or numbers.
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 
@@ -69,10 +70,8 @@ class BlockStructure:
         self.newton1 = None
         self.newton_batch = None
         self._local = None
-        self._zeros = set(zeros)
-        self._loop_newton1 = {}
+        zeros = self._zeros = set(zeros)
         if self._small:
-            zeros = set(zeros)
             self.solve1 = unrolled_solve(n, self.blocks, zeros, batch=False)
             self._step = unrolled_solve(n, self.blocks, zeros, batch=True)
             self.update1 = unrolled_update(n, self.blocks, zeros, self.inv_xscale)
@@ -87,13 +86,11 @@ class BlockStructure:
 
     def loop_newton1(self, k):
         """:attr:`newton1` on the unknowns of block ``k`` alone, every other unknown held (generated when first
-        asked for); None unless every block is of size 1 or 2."""
+        asked for, once for every mechanism of the same structure); None unless every block is of size 1 or 2."""
         if not self._small:
             return None
-        if k not in self._loop_newton1:
-            self._loop_newton1[k] = unrolled_newton(self.n, self.blocks, self._zeros, self.inv_xscale, self._col,
-                                                    only=k)
-        return self._loop_newton1[k]
+        return _loop_newton1(self.n, tuple(self.blocks), frozenset(self._zeros), tuple(self.inv_xscale),
+                             tuple(self._col), k)
 
     def newton_step(self, J, f):
         """The Newton step ``-J^-1 f`` at every point: J rows, f (n, N) -> (dx (n, N), bad (N,)).
@@ -358,6 +355,12 @@ class BlockStructure:
                     c[ok] = np.linalg.cond(m[ok])
                 out[k] = np.where(np.isfinite(c), c, np.inf)
         return out, signs
+
+
+@lru_cache(maxsize=64)
+def _loop_newton1(n, blocks, zeros, inv_xscale, col, k):
+    """:func:`numkin.unrolled.unrolled_newton` of block ``k`` alone, kept for mechanisms of the same structure."""
+    return unrolled_newton(n, list(blocks), set(zeros), list(inv_xscale), list(col), only=k)
 
 
 def _any_complex(rows) -> bool:

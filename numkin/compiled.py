@@ -28,7 +28,7 @@ from .blocks import BlockStructure, stack_rows
 __all__ = [
     "vector_function", "scalar_function", "CompiledMechanism", "BlockStructure", "stack_rows", "MATH_ERRORS",
     "acceleration_rhs", "rates", "jacobian_rows", "KERNEL_ROLES", "compiled_once", "export_function",
-    "import_function", "KernelNotKept",
+    "import_function", "KernelNotKept", "underivable",
 ]
 
 #: The numeric functions of a mechanism a bundle of the kernel cache keeps: role -> attribute of
@@ -284,6 +284,23 @@ class compiled_once(cached_property):
 
 #: Attributes of a :class:`CompiledMechanism` that are sympy objects (derived on first use when loaded from a bundle).
 _SYMBOLIC = ("residuals", "unknowns", "input_symbol", "parameters", "args", "varying", "jacobian_matrix")
+
+
+def underivable(loops, input_symbol) -> str:
+    """Which loop's equation has a derivative sympy leaves unevaluated (``Derivative(im(z), z)`` of ``Abs`` of a
+    ``z`` not declared real), which no printer writes as code, and what to do; ``""`` if none is found."""
+    import sympy as sp
+
+    for lp in loops:
+        for k, r in enumerate(lp.residuals):
+            for u in [*lp.unknowns, input_symbol]:
+                left = r.diff(u).atoms(sp.Derivative)
+                if left:
+                    return (f"loop '{lp.name}': equation {k + 1} has no derivative sympy can write as code with respect "
+                            f"to {u} ({sorted(map(str, left))[0]}): a function such as Abs or sign of symbols not "
+                            "declared real; declare them real (sympy.symbols(..., real=True)) or write the equation "
+                            "without it")
+    return ""
 
 
 class CompiledMechanism:

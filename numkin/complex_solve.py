@@ -179,6 +179,8 @@ def complex_step(sweep, h: float = COMPLEX_STEP, *, order: int = 1) -> np.ndarra
     try:
         x, failed, singular = complex_positions(mech, q, t, float(h))
     except TypeError as error:  # numpy's functions with no complex form, as arctan2
+        if "ufunc" not in str(error):
+            raise
         raise InputError(
             f"{mech.name}: the complex step evaluates the loop equations at complex inputs, and one of their "
             f"functions has no complex form in numpy ({error}); analytic.derivatives differentiates them exactly"

@@ -114,16 +114,18 @@ def _validate_inputs(inputs):
 
 
 def _warn_if_degrees(mech, t) -> None:
-    """A :class:`~numkin.errors.DegreesWarning` where the inputs look like degrees: steps of at least 0.5 over a
-    range of 90 or more (in rad: more than 14 turns in steps of 29° or more), or whole numbers in steps of at
-    least 1 over a range of 30 or more (``np.arange(30, 61)``: in rad, nearly five turns in steps of 57°; a
-    range of 20, three turns, is left alone)."""
+    """A :class:`~numkin.errors.DegreesWarning` where the inputs of an angle look like degrees: steps of at least
+    0.5 over a range of 90 or more from and to multiples of 0.5 (``np.linspace(0, 360, 100)``; in rad, more than
+    14 turns in steps of 29° or more), or whole numbers in steps of at least 1 over a range of 30 or more
+    (``np.arange(30, 61)``: in rad, nearly five turns in steps of 57°; a range of 20, three turns, is left
+    alone)."""
     span = abs(t[-1] - t[0]) if t.size >= 3 else 0.0
-    if span < 30.0:
+    if span < 30.0 or not getattr(mech, "input_is_angle", True):
         return
     steps = np.abs(np.diff(t))
     low = steps.min()
-    if not (low >= 0.5 and span >= 90.0 or low >= 1.0 and np.array_equal(t, np.round(t))):
+    round_ends = float(2.0 * t[0]).is_integer() and float(2.0 * t[-1]).is_integer()
+    if not (low >= 0.5 and span >= 90.0 and round_ends or low >= 1.0 and np.array_equal(t, np.round(t))):
         return
     step = float(steps.min())
     warn(DegreesWarning(

@@ -17,13 +17,14 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from .errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning, InputError, warn
 from .compiled import MATH_ERRORS
+from .errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning, InputError, warn
 from .march import FAR, TWO_PI, Continuation
 from .newton import COND_MAX, has_converged, is_singular
 from .units import deg_text, number_array
 
-__all__ = ["solve_start", "loop_by_loop", "guess_vector", "far_guesses", "still_far", "degrees_hint", "unsolved", "never_closes"]
+__all__ = ["solve_start", "loop_by_loop", "guess_vector", "far_guesses", "still_far", "degrees_hint", "unsolved",
+           "never_closes"]
 
 
 def far_guesses(mech, guess) -> list:
@@ -252,6 +253,8 @@ def _one_loop(ctx, x, t0, k, maxiter):
     iterations, residual, v)``, the status, the loop's scaled residual and the evaluation at ``x`` (None if
     unknown) as :meth:`Continuation.newton1` gives them with ``cond_max`` (a block over
     :data:`~numkin.newton.COND_MAX` is refused as singular)."""
+    if len(ctx.blocks.blocks) == 1:  # (one loop: Newton on all unknowns, as the continuation's)
+        return ctx.newton1(x, t0, maxiter, cond_max=COND_MAX)
     written_out = ctx.blocks.loop_newton1(k) if ctx.symbolic else None
     if written_out is not None:
         x, status, it, res, v, evaluations = written_out(ctx._fjt, x, t0, ctx.pt, maxiter, ctx.fscale, ctx.tol,
@@ -280,16 +283,16 @@ def _one_loop(ctx, x, t0, k, maxiter):
         res = max([abs(f) for f in v[a:b]]) / fscale
         floor = ctx._floor(x, t0) if res > tol and step >= 0.9 * prev else 0.0
         if has_converged(res, step, prev, tol, floor):
-            return x, "converged", it + 1, res, v
+            return x, "converged", it + 1, res, v if ctx.symbolic else ctx.eval1(x, t0)  # (dF/dt with the rows)
         prev = step
     return x, "maxiter", maxiter, res, v
 
 
 def loop_by_loop(ctx, x, t0, maxiter):
     """Newton at the input ``t0`` on one loop after another, each from its own guess with the loops before it
-    solved: ``(x, status, iterations, residual, v, loop)``, ``loop`` the index of the loop that failed (else the
-    last), ``residual`` its scaled residual and ``v`` the evaluation at ``x`` of its last Newton step (None if
-    unknown).
+    solved: ``(x, status, iterations, residual, v, loop, loop_iterations)``: ``iterations`` of all loops,
+    ``loop`` the index of the loop that failed (else the last), ``loop_iterations`` and ``residual`` its own
+    Newton steps and scaled residual, ``v`` the evaluation at ``x`` of its last step (None if unknown).
 
     The loops' Jacobian is block lower-triangular: Newton on all of them at
     once moves the first loop as Newton on it alone would, and each later one
@@ -303,17 +306,15 @@ def loop_by_loop(ctx, x, t0, maxiter):
         x, status, it, res, v = _one_loop(ctx, x, t0, k, maxiter)
         total = it if k == 0 else total + it
         if status != "converged":
-            return x, status, total, res, v, k
-    return x, "converged", total, res, v, last
+            return x, status, total, res, v, k, it
+    return x, "converged", total, res, v, last, it
 
 
 def _solve_first(ctx, t0, x_guess, maxiter, note=""):
     """Newton from the guess at t0, loop by loop, the angles reduced to the guess's turn, then polished."""
     mech = ctx.mech
     guess = x_guess.tolist()
-    x, status, it, res, v, failed = loop_by_loop(ctx, guess, t0, maxiter)
-    if v is not None and not ctx.symbolic:  # (a finite-difference Jacobian's evaluation has no dF/dt)
-        v = ctx.eval1(x, t0)
+    x, status, it, res, v, failed, steps = loop_by_loop(ctx, guess, t0, maxiter)
     far = far_guesses(mech, guess)
     if status != "converged" and (status != "singular" or not res <= FAR):
         impossible = never_closes(mech)
@@ -329,14 +330,14 @@ def _solve_first(ctx, t0, x_guess, maxiter, note=""):
                 f"{mech.name}: the loop equations are dependent: their Jacobian (loop '{loop}') is singular "
                 f"at {where} and at every nearby point tried, so they do not fix the unknowns; "
                 "check that no equation repeats another",
-                input_value=float(t0), loop=loop, cause="dependent equations", residual=res, iterations=it,
+                input_value=float(t0), loop=loop, cause="dependent equations", residual=res, iterations=steps,
             )
         if not res <= FAR:
             raise _hinted(AssemblyError(
                 f"{mech.name}: cannot assemble at {where} from the guess: Newton met a singular Jacobian "
-                f"of loop '{loop}' after {it} iterations, far from any solution (scaled residual {res:.3g}); "
+                f"of loop '{loop}' after {steps} iterations, far from any solution (scaled residual {res:.3g}); "
                 "give a guess nearer the position (angles in rad)",
-                input_value=float(t0), loop=loop, cause="bad guess", residual=res, iterations=it,
+                input_value=float(t0), loop=loop, cause="bad guess", residual=res, iterations=steps,
             ), far)
         raise BranchError(
             f"{mech.name}: the Jacobian of loop '{loop}' is singular at {where} "
@@ -352,9 +353,9 @@ def _solve_first(ctx, t0, x_guess, maxiter, note=""):
         more = f", or allow more than maxiter={maxiter} steps" if status == "maxiter" else ""
         raise _hinted(AssemblyError(
             f"{mech.name}: cannot assemble at {where}: Newton from the guess did not converge "
-            f"(loop '{loop}' residual {res:.3g} after {it} iterations); "
+            f"(loop '{loop}' residual {res:.3g} after {steps} iterations); "
             f"check the dimensions or give a better guess (angles in rad){more}",
-            input_value=float(t0), loop=loop, cause="bad guess", residual=res, iterations=it,
+            input_value=float(t0), loop=loop, cause="bad guess", residual=res, iterations=steps,
         ), far)
     x, moved = ctx.nearest_turn(x, guess)
     if moved:  # reduced to the guess's turn, then polished there

@@ -14,8 +14,8 @@ from typing import Callable, Iterable, Sequence
 
 from .errors import InputError
 
-__all__ = ["Loop", "as_symbol", "angle_unknowns", "SymbolName", "LazyPoints", "describe", "check_lengths", "check_symbols",
-           "default_length_scale", "read_parameters", "read_points", "check_point_names"]
+__all__ = ["Loop", "as_symbol", "SymbolName", "LazyPoints", "describe", "check_lengths", "check_symbols",
+           "read_parameters", "read_points", "check_point_names"]
 
 
 def as_symbol(name, among=()):
@@ -59,77 +59,6 @@ def _angle_unknowns(residuals, unknowns) -> set:
     return found
 
 
-_INVERSE_TRIG = ("atan2", "asin", "acos", "atan", "acot")
-
-
-def _angle_sum(expr, known) -> set:
-    """The symbols of ``expr`` where it is a sum of symbols and inverse trigonometric functions, each with
-    coefficient 1 or -1, and constants, holding at least one angle (a symbol in ``known``, or an inverse
-    trigonometric function): an equation between angles, ``t5 - t4 - 0.6`` or ``t3 - atan2(y, x)``. Else
-    the empty set (``x - r t2``, ``x - 2 t2``: a length rolled off by an angle)."""
-    symbols, angle = set(), False
-    for term in expr.as_ordered_terms() if expr.is_Add else [expr]:
-        coeff, rest = term.as_coeff_Mul()
-        if rest.is_number:
-            continue
-        if abs(coeff) != 1:
-            return set()
-        if rest.is_Symbol:
-            symbols.add(rest)
-            angle = angle or rest in known
-        elif type(rest).__name__ in _INVERSE_TRIG:
-            angle = True
-        else:
-            return set()
-    return symbols if angle else set()
-
-
-def angle_unknowns(loops, input_symbol, points=None) -> tuple[set, bool]:
-    """The unknowns of a mechanism's loops that are angles (rad), and whether the input is one.
-
-    Each loop's own (:attr:`Loop.angles`); and, of a loop whose angles were
-    not declared, every unknown inside a sine, cosine, tangent or exponential
-    of any loop's equations or any point's coordinates, and every unknown an
-    equation of it sets to a sum of angles and constants (``t5 - t2 - 0.6``,
-    ``t3 - atan2(y, x)``; :func:`_angle_sum`): an angle that a later loop
-    or a point turns by, or that others define, is an angle though its own
-    loop has no sine of it. The input is an angle by the same rules.
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> t2, t5, t6, t7 = sp.symbols("theta2 theta5 theta6 theta7")
-    >>> arm = Loop([t5 - t2 - 0.6], [t5], name="arm")
-    >>> dyad = Loop.from_vectors([(1, t5), (3.5, t6), (-3, t7), (-4, 0)], [t6, t7])
-    >>> angles, input_angle = angle_unknowns([arm, dyad], t2)
-    >>> sorted(map(str, arm.angles)), sorted(map(str, angles)), input_angle
-    ([], ['theta5', 'theta6', 'theta7'], True)
-    """
-    import sympy as sp
-
-    exprs = [r for lp in loops for r in lp.residuals]
-    exprs += [c for xy in (points or {}).values() for c in xy if isinstance(c, sp.Basic)]
-    in_trig = set().union(*(fn.free_symbols for e in exprs for fn in e.atoms(sp.sin, sp.cos, sp.tan, sp.exp)))
-    angles = set().union(*(lp.angles for lp in loops))
-    inferred = [lp for lp in loops if not lp.angles_declared]
-    for lp in inferred:
-        angles |= set(lp.unknowns) & in_trig
-    known = angles | ({input_symbol} & in_trig)
-    grown = True
-    while grown:  # (an equation may set an angle from one a later equation makes an angle)
-        grown = False
-        for lp in loops:
-            for r in lp.residuals:
-                found = _angle_sum(r, known)
-                new = ((found & set(lp.unknowns)) - angles if not lp.angles_declared else set())
-                new |= (found & {input_symbol}) - known
-                if new:
-                    angles |= new - {input_symbol}
-                    known |= new
-                    grown = True
-    return angles, input_symbol in known
-
-
 class Loop:
     """Closure equations of one loop in its own unknowns.
 
@@ -148,7 +77,8 @@ class Loop:
         trigonometric function; the others are lengths. In a
         :class:`~numkin.Mechanism`, an unknown of such a loop is an angle
         too where another loop or a point takes its sine or cosine, or an
-        equation sets it to a sum of angles (:func:`angle_unknowns`).
+        equation sets it to a sum of angles
+        (:func:`numkin.symbol_roles.angle_unknowns`).
 
     Notes
     -----
@@ -371,7 +301,7 @@ def describe(loops, input_symbol, parameters, points) -> dict:
     the largest vector length written as a number (0 if none), ``scales`` the parameters that scale
     the loop (in its vectors' lengths; in a loop written as equations, those outside every sine, cosine
     and tangent of an equation that has one), ``angle_parameters`` those in its angles: all three for
-    :func:`default_length_scale`.
+    :func:`numkin.symbol_roles.default_length_scale`.
 
     Examples
     --------
@@ -383,6 +313,8 @@ def describe(loops, input_symbol, parameters, points) -> dict:
     [['r', True, False]]
     """
     moving = {input_symbol, *(u for lp in loops for u in lp.unknowns)}
+    from .symbol_roles import angle_offsets, angle_unknowns, scale_names
+
     angles, input_angle = angle_unknowns(loops, input_symbol, points)
     return {
         "input": str(input_symbol),
@@ -395,8 +327,8 @@ def describe(loops, input_symbol, parameters, points) -> dict:
                    "links": sorted({str(s) for length, angle in lp.vector_symbols if angle & moving
                                     for s in length - set(lp.unknowns)}),
                    "numbers": max([abs(float(length)) for length, _ in lp.vectors if not length.free_symbols] + [0.0]),
-                   "angle_offsets": _angle_offsets(lp, moving),
-                   **_scale_names(lp, moving)} for lp in loops],
+                   "angle_offsets": angle_offsets(lp, moving),
+                   **scale_names(lp, moving)} for lp in loops],
         "points": [str(k) for k in (points or {})],
         "point_symbols": {str(k): sorted({s.name for c in xy for s in getattr(c, "free_symbols", ())})
                           for k, xy in (points or {}).items()},
@@ -549,80 +481,6 @@ def check_lengths(model: dict, value_of: dict, every_link: bool = False) -> None
                 )
                 error.parameter = sym
                 raise error
-
-
-def default_length_scale(model: dict, value_of: dict) -> float:
-    """The characteristic length of a mechanism: the largest of its lengths.
-
-    That is the largest value of a parameter that scales a loop (a
-    parameter in a vector's length; in a loop written as equations, one
-    outside every sine, cosine and tangent of an equation that has one) or
-    of a vector length written as a number. Where there is no such length
-    (loops of equations in numbers), the largest parameter that is not in an
-    angle (a ground's tilt is none); else 1.
-
-    Examples
-    --------
-    >>> import sympy as sp
-    >>> t2, t3, t4, tilt = sp.symbols("theta2 theta3 theta4 tilt")
-    >>> loop = Loop.from_vectors([(1e6, t2), (3e6, t3), (-3e6, t4), (-4e6, tilt)], [t3, t4])
-    >>> default_length_scale(describe([loop], t2, {tilt: 1e-6}, None), {"tilt": 1e-6})
-    4000000.0
-    """
-    scales = {s for lp in model["loops"] for s in lp.get("scales", lp["lengths"])}
-    values = [abs(v) for s, v in value_of.items() if s in scales]
-    values += [lp.get("numbers", 0.0) for lp in model["loops"]]
-    if not any(values):
-        angles = {s for lp in model["loops"] for s in lp.get("angle_parameters", ())}
-        values = [abs(v) for s, v in value_of.items() if s not in angles]
-    return max(values) if values and max(values) > 0 else 1.0
-
-
-def _angle_offsets(lp, moving) -> list:
-    """The parameters a loop adds to an angle, each with coefficient 1 or -1 (``t4 + delta`` in a vector's angle or
-    inside a sine or cosine): angles themselves (rad). Not a gear ratio's ``n`` of ``n theta2``."""
-    import sympy as sp
-
-    if lp.vectors:
-        args = [angle for _, angle in lp.vectors]
-    else:
-        args = [fn.args[0] for r in lp.residuals for fn in r.atoms(sp.sin, sp.cos, sp.tan)]
-    found = set()
-    for arg in args:
-        for term in sp.Add.make_args(sp.sympify(arg)):
-            coeff, rest = term.as_coeff_Mul()
-            if rest.is_Symbol and abs(coeff) == 1 and rest not in moving:
-                found.add(str(rest))
-    return sorted(found)
-
-
-def _scale_names(lp, moving) -> dict:
-    """``{"scales": [...], "angle_parameters": [...]}`` of a loop (:func:`_scale_symbols`, computed once), the
-    moving symbols left out."""
-    lengths, angles = _scale_symbols(lp)
-    return {"scales": sorted(str(s) for s in lengths - moving),
-            "angle_parameters": sorted(str(s) for s in angles - moving)}
-
-
-def _scale_symbols(lp) -> tuple[set, set]:
-    """The symbols that scale a loop and those in its angles.
-
-    Of a loop of vectors: those of its lengths, and of its angles. Of a loop
-    written as equations: those outside every sine, cosine and tangent of a
-    residual that has one (an equation between angles alone, ``t5 - t4 -
-    phi``, scales nothing), and those inside them.
-    """
-    if lp.vectors:
-        return set(lp.length_symbols), {s for _, angle in lp.vectors for s in angle.free_symbols}
-    import sympy as sp
-
-    lengths, angles = set(), set()
-    for r in lp.residuals:
-        trig = r.atoms(sp.sin, sp.cos, sp.tan)
-        if trig:
-            lengths |= r.xreplace({f: sp.Dummy() for f in trig}).free_symbols
-            angles |= {s for f in trig for s in f.free_symbols}
-    return {s for s in lengths if not isinstance(s, sp.Dummy)} - set(lp.unknowns), angles
 
 
 def check_symbols(loops, input_symbol, parameters) -> None:

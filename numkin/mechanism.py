@@ -15,11 +15,12 @@ from typing import Callable, Iterable, Mapping, Sequence
 import numpy as np
 
 from .cached_model import CachedModel, count_message
-from .compiled import BlockStructure, CompiledMechanism, compiled_once
+from .compiled import BlockStructure, CompiledMechanism, compiled_once, underivable
 from .derived import bind, names_of, read_quantities, taken_names, warn_not_finite
-from .errors import AssemblyError, ConvergenceError, DegreesWarning, GuessWarning, InputError, warn
-from .loops import (Loop, as_symbol, check_lengths, check_point_names, check_symbols, default_length_scale, describe,
+from .errors import AssemblyError, ConvergenceError, GuessWarning, InputError, warn
+from .loops import (Loop, as_symbol, check_lengths, check_point_names, check_symbols, describe,
                     read_parameters, read_points)
+from .symbol_roles import default_length_scale, warn_degrees
 from .newton import JACOBIANS, TOL_MIN, NewtonResult, check_tol, iterate, residual_floor, scaled_cond
 from .units import finite, number_array, with_length_unit
 
@@ -39,50 +40,6 @@ def _names(value, argument: str) -> list:
     if not isinstance(value, (list, tuple)) or not all(isinstance(v, str) for v in value):
         raise InputError(f"{argument} must be a list of point names, got {value!r:.60}")
     return list(value)
-
-
-def _warn_unused(name, parameters, named, points, quantities) -> None:
-    """A warning for parameters that no loop, point or derived quantity uses: a value given for nothing."""
-    import re
-
-    used = set(named) | {s for xy in (points or {}).values() for c in xy for s in getattr(c, "free_symbols", ())}
-    written = " ".join(str(q) for q in (quantities or {}).values())
-    unused = [f"{p} = {v:g}" for p, v in parameters.items()
-              if p not in used and not re.search(rf"\b{re.escape(str(p))}\b", written)]
-    if unused:
-        warn(f"{name}: parameter{'s' if len(unused) > 1 else ''} {', '.join(unused)} "
-             f"{'are' if len(unused) > 1 else 'is'} used by no loop, point or derived quantity", UserWarning)
-
-
-def _underivable(loops, input_symbol) -> str:
-    """Which loop's equation has a derivative sympy leaves unevaluated (``Derivative(Abs(z), z)`` of a ``z`` not
-    declared real), and what to do; ``""`` if none is found."""
-    import sympy as sp
-
-    for lp in loops:
-        for k, r in enumerate(lp.residuals):
-            for u in [*lp.unknowns, input_symbol]:
-                left = r.diff(u).atoms(sp.Derivative)
-                if left:
-                    return (f"loop '{lp.name}': equation {k + 1} has no derivative sympy can write as code with respect "
-                            f"to {u} ({sorted(map(str, left))[0]}): a function such as Abs or sign of symbols not "
-                            "declared real; declare them real (sympy.symbols(..., real=True)) or write the equation "
-                            "without it")
-    return ""
-
-
-def _warn_degrees(name, model, value_of, guess_input) -> None:
-    """A :class:`~numkin.errors.DegreesWarning` for a ``guess_input`` or a parameter added to an angle more than a
-    turn from zero: most likely given in degrees."""
-    offsets = {p for lp in model["loops"] for p in lp.get("angle_offsets", ())}
-    far = [f"parameter {p} = {v:g}" for p, v in value_of.items() if p in offsets and abs(v) > 2.0 * math.pi]
-    if guess_input is not None and model.get("input_is_angle", True) and abs(guess_input) > 2.0 * math.pi:
-        far.append(f"guess_input = {guess_input:g}")
-    if far:
-        warn(DegreesWarning(
-            f"{name}: {', '.join(far)} {'is' if len(far) == 1 else 'are'} an angle more than a turn from zero: "
-            "angles are in rad (was it given in degrees? np.radians converts)"
-        ))
 
 
 class Mechanism(CachedModel):
@@ -123,7 +80,7 @@ class Mechanism(CachedModel):
         Unit of the lengths (labels only; no conversion), default ``"mm"``.
     length_scale : float, optional
         Characteristic length for the stopping rule; default the largest
-        vector length (:func:`numkin.loops.default_length_scale`: a
+        vector length (:func:`numkin.symbol_roles.default_length_scale`: a
         parameter in a vector's length, or a length written as a number;
         a parameter in a vector's angle, a ground's tilt, is none). It must lie in
         :data:`LENGTH_SCALE_RANGE` (1e-150 to 1e150); within it, a linkage
@@ -181,7 +138,6 @@ class Mechanism(CachedModel):
         self.unknown_symbols = [u for lp in self.loops for u in lp.unknowns]
         self.points = read_points(points, [*self.unknown_symbols, self.input_symbol, *self.parameters],
                                   name if isinstance(name, str) else "mechanism")
-        _warn_unused(name, self.parameters, named, self.points, quantities)
         self._setup(describe(self.loops, self.input_symbol, self.parameters, self.points),
                     list(self.parameters.values()), name=name, guess=guess, guess_input=guess_input, links=links,
                     ground=ground, length_unit=length_unit, length_scale=length_scale,
@@ -194,7 +150,7 @@ class Mechanism(CachedModel):
                 list(self.parameters),
             )
         except NotImplementedError as error:  # sympy's printer: a derivative it cannot write as code
-            raise InputError(_underivable(self.loops, self.input_symbol) or f"{name}: {error}") from None
+            raise InputError(underivable(self.loops, self.input_symbol) or f"{name}: {error}") from None
         self.add_quantities(self.__dict__.pop("_declared"))
 
     def _setup(self, model: dict, values: list, *, name, guess, guess_input, links, ground, length_unit,
@@ -205,10 +161,12 @@ class Mechanism(CachedModel):
                 raise InputError(f"{key} must be a non-empty string, got {value!r:.60}")
         self.name = name
         self.input_name = model["input"]
-        if not model.get("input_is_angle", True):
+        #: whether the input is an angle (:func:`numkin.symbol_roles.angle_unknowns`): else a length, warned of
+        self.input_is_angle = bool(model.get("input_is_angle", True))
+        if not self.input_is_angle:
             warn(
-                f"{name}: the input {self.input_name} looks like no angle: no loop takes its sine or cosine, nor "
-                "sets an angle from it; numkin drives a linkage by an input angle (rad), and its tables and "
+                f"{name}: the input {self.input_name} is a length: the loops take no sine or cosine of it and use it "
+                "as a vector's length; numkin drives a linkage by an input angle (rad), and its tables and "
                 "messages show the input in degrees: for a linkage driven by a length (a cylinder), make the input "
                 "the angle of a link it moves and the length an unknown", UserWarning,
             )
@@ -264,7 +222,7 @@ class Mechanism(CachedModel):
                              f"of the input, got {guess!r:.60}")
         self._guess = guess
         self.guess_input = None if guess_input is None else finite("guess_input (rad)", guess_input)
-        _warn_degrees(name, model, value_of, self.guess_input)
+        warn_degrees(name, model, value_of, self.guess_input)
         self.parameter_values = np.array(values, dtype=float)
         self.derived = {}
         self._declared = quantities  # declared by add_quantities once the model can be read
@@ -535,7 +493,8 @@ class Mechanism(CachedModel):
         tol : float
             Relative tolerance of the stopping rule (see :mod:`numkin.newton`).
         maxiter : int
-            Newton iterations allowed at the starting point.
+            Newton iterations allowed at the starting point, for each loop
+            (``iterations[0]`` of the result counts those of all loops).
         max_step : float
             Largest input step (rad) between the points solved one after
             the other (each step is also shrunk as needed: it is accepted only

@@ -553,6 +553,7 @@ def test_a_sweep_in_degrees_is_warned_of_and_one_in_rad_is_not():
         mech.sweep(np.radians(np.arange(0.0, 361.0)))
         mech.sweep(np.arange(0.0, 20.0))  # 20 rad in steps of 1: a few turns, not degrees
         mech.sweep(np.linspace(0.0, 20 * np.pi, 2001))  # ten turns in steps of 1.8°
+        mech.sweep(np.linspace(0.0, 40 * np.pi, 200))  # twenty turns in steps of 36°
     assert issubclass(GuessWarning, DegreesWarning)
 
 

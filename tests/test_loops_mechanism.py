@@ -334,6 +334,12 @@ def test_an_angle_another_loop_turns_by_is_an_angle():
     assert set(mech.angles) == {"theta5", "theta6", "theta7", "theta8"}
     assert arm.angles == set()  # the loop alone cannot tell
     assert set(Mechanism([arm, dyad, follower, rack], t2, guess={**guess, "x": 0.0}).angles) == set(mech.angles)
+    # a wheel of radius R rolled by x: a point turns by x / R, which leaves x a length
+    radius = sp.Symbol("R", positive=True)
+    slider = Loop([80 * sp.cos(t2) + 200 * sp.cos(t6) - x, 80 * sp.sin(t2) + 200 * sp.sin(t6)], [t6, x])
+    wheel = Mechanism([slider], t2, {radius: 30.0}, guess=[0.0, 250.0],
+                      points={"P": (x - radius * sp.sin(x / radius), radius - radius * sp.cos(x / radius))})
+    assert wheel.angles == ("theta6",)
     inputs = np.linspace(0.0, 2 * np.pi, 361)
     sweep = mech.sweep(inputs)
     assert "theta5 [deg]" in sweep.to_frame().columns
@@ -365,20 +371,29 @@ def test_symbols_of_one_name_with_other_assumptions():
         Mechanism([loop, second], t2, {r1: 4, r2: 1, r3: 3, r4: 3})
 
 
-def test_an_input_that_is_no_angle_is_warned_of():
+def test_an_input_that_is_a_length_is_warned_of():
     """A rocker pushed by a cylinder of length d, d taken as the input: numkin reads the input as an angle
-    (its tables show it in degrees), and says so."""
-    t, phi, d = sp.symbols("theta phi d")
+    (its tables show it in degrees), and says so, written as vectors or as equations. An input the loops
+    turn by, gear (t5 = 2 t2) or roll a rack off (x = r t2), or put in a square root, is none."""
+    t, phi, d, x, t5, t6, t7 = sp.symbols("theta phi d x theta5 theta6 theta7")
     loop = Loop.from_vectors([(100, t), (-d, phi), (-150, 0)], [t, phi], name="cylinder")
-    with pytest.warns(UserWarning, match=r"the input d looks like no angle: no loop takes its sine or cosine.*"
-                                         r"make the input the angle of a link it moves and the length an unknown"):
-        Mechanism([loop], d, guess=[0.7227, 2.4146], guess_input=100.0)
-    x = sp.Symbol("x")
+    written = Loop([100 * sp.cos(t) - d * sp.cos(phi) - 150, 100 * sp.sin(t) - d * sp.sin(phi)], [t, phi])
+    for lp in (loop, written):
+        with pytest.warns(UserWarning, match=r"the input d is a length: the loops take no sine or cosine of it.*"
+                                             r"make the input the angle of a link it moves and the length an unknown"):
+            Mechanism([lp], d, guess=[0.7227, 2.4146], guess_input=100.0)
+    r = sp.Symbol("r", positive=True)
+    dyad = Loop.from_vectors([(1, t5), (3.5, t6), (-3, t7), (-4, 0)], [t6, t7])
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         rocker = Loop.from_vectors([(100, t), (-d, phi), (-150, 0)], [d, phi], name="cylinder")
         Mechanism([rocker], t, guess=[100.0, 2.4])  # the rocker's angle as the input: d solved for
         Mechanism([Loop([x - sp.sin(t)], [x])], t, guess=[0.2])  # a sine of it
+        geared = Mechanism([Loop([t5 - 2 * t], [t5]), dyad], t, guess=[0.0, 0.3, 1.5])
+        assert set(geared.angles) == {"theta5", "theta6", "theta7"}
+        rack = Mechanism([Loop([x - r * t], [x])], t, {r: 20.0}, guess=[0.0])
+        assert rack.angles == ()
+        Mechanism([Loop([x - sp.sqrt(2 - t)], [x])], t, guess=[1.4])
 
 
 def test_functions_without_a_code_derivative_or_a_complex_form_name_the_loop():
@@ -407,19 +422,11 @@ def test_functions_without_a_code_derivative_or_a_complex_form_name_the_loop():
     assert dq[0, 1] == pytest.approx(-50.0, abs=1e-12)
 
 
-def test_a_parameter_used_nowhere_is_named():
-    """A misspelt parameter (r_4 for r4) is named beside the symbol left without a value; one used by no loop,
-    point or derived quantity is warned of (one a point uses is not)."""
+def test_a_misspelt_parameter_is_named():
+    """A misspelt parameter (r_4 for r4) is named beside the symbol left without a value."""
     t2, t3, t4 = sp.symbols("theta2 theta3 theta4")
-    r1, r2, r3, r4, r5 = sp.symbols("r1 r2 r3 r4 r5", positive=True)
+    r1, r2, r3, r4 = sp.symbols("r1 r2 r3 r4", positive=True)
     loop = Loop.from_vectors([(r2, t2), (r3, t3), (-r4, t4), (-r1, 0)], [t3, t4], name="O2ABO4")
     with pytest.raises(InputError, match=r"uses symbol\(s\) r4 that are neither .*; parameter r_4 is given but used "
                                          r"by no loop: a misspelling of r4\?"):
         Mechanism([loop], t2, {"r1": 4, "r2": 1, "r3": 3, "r_4": 3})
-    dims = {r1: 4, r2: 1, r3: 3, r4: 3}
-    with pytest.warns(UserWarning, match=r"parameter r5 = 2 is used by no loop, point or derived quantity"):
-        Mechanism([loop], t2, {**dims, r5: 2}, guess=[0.5, 2.0])
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        Mechanism([loop], t2, {**dims, r5: 2}, guess=[0.5, 2.0], points={"P": ("r5*cos(theta3)", 0)})
-        Mechanism([loop], t2, {**dims, r5: 2}, guess=[0.5, 2.0], quantities={"q": ("r5*cos(theta3)", "length")})
