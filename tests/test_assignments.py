@@ -264,6 +264,84 @@ def test_other_ratios_are_not_blamed_on_units(ratio):
     assert kc.explain_factor(ratio, ("deg", "rad/min", "rpm", "mm")) is None
 
 
+SLIDER_CRANK = (0.08, 0.2, 6000 * 2 * math.pi / 60)  # homework 3: crank R, rod L (m), ω (rad/s)
+
+
+def _piston_x(theta_rad):
+    """The piston position (m) of homework 3's slider-crank, in closed form."""
+    r, l, _ = SLIDER_CRANK
+    return r * np.cos(theta_rad) + np.sqrt(l**2 - (r * np.sin(theta_rad)) ** 2)
+
+
+def _piston_a_centred(theta_deg, omega):
+    """ω² times the centred second difference (step 1°) of the closed-form x, at the angles given (m/s²)."""
+    h = math.radians(1.0)
+    t = np.radians(np.asarray(theta_deg, dtype=float))
+    return omega**2 * (_piston_x(t + h) - 2 * _piston_x(t) + _piston_x(t - h)) / h**2
+
+
+def test_the_textbook_approximation_of_the_piston_acceleration_is_given_no_unit_slip():
+    """a = -Rω²(cos θ + R/L cos 2θ) drops the higher harmonics: at 90° it is Rω² R/L = 12633 m/s², 1/1.091 of the
+    exact 13784 m/s², 0.5 % from (180/π)² × (1/60)² = 1/1.097, a pair of unit factors. It is another formula,
+    not two slips: the checks report the miss."""
+    r, l, omega = SLIDER_CRANK
+    theta = np.radians(np.arange(181.0))
+    approx = -r * omega**2 * (np.cos(theta) + r / l * np.cos(2 * theta))
+    exact_90 = omega**2 * r**2 / math.sqrt(l**2 - r**2)
+    assert approx[90] / exact_90 == pytest.approx(1 / 1.091, rel=1e-3)
+    assert approx[90] / exact_90 == pytest.approx((180 / math.pi) ** 2 / 60**2, rel=6e-3)
+    message = _fails(_master_test(HW3, "test_a_90"), approx)
+    assert message.startswith("`a_90` at θ = 90° = 12633 m/s², expected 13784 m/s² (within 0.50%): off by -8.3")
+    assert "factor" not in message and "degrees" not in message and "60" not in message
+    assert "factor" not in _fails(_master_test(HW3, "test_acceleration_curve"), approx)
+    # no pair of the five suspects within 2 % of it is named, whatever the check's tolerance
+    suspects = ("deg", "rpm", "rad/min", "rev", "mm")
+    assert kc.explain_factor(approx[90] / exact_90, suspects) is None
+    assert kc.explain_factor(approx[90] / exact_90, suspects, rtol=5e-3) is None
+
+
+def test_one_and_two_unit_slips_are_still_named():
+    """Slips on a right answer give exact unit factors, alone or two together: the crank speed left in rpm, the
+    acceleration in mm/s², or both, on ω² times the centred second difference of x."""
+    r, l, omega = SLIDER_CRANK
+    rpm = 6000.0
+    check = _master_test(HW3, "test_a_90")
+    right = _piston_a_centred(90, omega)
+    check(right)
+    assert "(= (60/2π)²): rpm where rad/s is asked?" in _fails(check, _piston_a_centred(90, rpm))
+    assert "off by a factor 1000: millimetres where metres are asked?" in _fails(check, 1000 * right)
+    both = _fails(check, 1000 * _piston_a_centred(90, rpm))
+    assert "(= (60/2π)² × 1000): rpm where rad/s is asked?" in both and "And millimetres where metres" in both
+    curve = _fails(_master_test(HW3, "test_acceleration_curve"), 1000 * _piston_a_centred(np.arange(181), rpm))
+    assert "(= (60/2π)² × 1000)" in curve
+
+
+def test_the_public_check_near_the_exact_value_names_two_slips_only_where_they_are_exact():
+    """Homework 3's public check of a at 0° accepts ±1 % of -Rω²(1 + R/L): a number 0.4 % off once a pair of
+    unit factors is taken out is no evidence of that pair; the centred value with two slips is."""
+    r, l, omega = SLIDER_CRANK
+    check = _master_test(HW3, "test_top_dead_centre")
+    exact = -r * omega**2 * (1 + r / l)
+    pair = (180 / math.pi) ** 2 / 60**2
+    message = _fails(check, exact * pair * 1.004)
+    assert "factor" not in message and message.endswith("(between -44658 and -43774)")
+    both = _fails(check, 1000 * _piston_a_centred(0, 6000.0))
+    assert "(= (60/2π)² × 1000): rpm where rad/s is asked?" in both
+
+
+def test_pairs_of_unit_factors_explain_few_ratios_near_one():
+    """Between 1/2 and 2 no single unit factor lies; products of two of homework 3's five suspects lie
+    everywhere, so within 2 % they "explained" three ratios in ten. Within the pairs' own tolerance, about
+    one in seventy at most."""
+    suspects = ("deg", "rpm", "rad/min", "rev", "mm")
+    ratios = np.exp(np.linspace(math.log(0.5), math.log(2.0), 4001))
+    named = [r for r in ratios if kc.explain_factor(float(r), suspects) is not None]
+    assert len(named) / ratios.size < 0.02
+    # a check of 0.5 % names no more; one of 1e-6 names none but exact products
+    assert [r for r in ratios if kc.explain_factor(float(r), suspects, rtol=5e-3) is not None] == named
+    assert all(kc.explain_factor(float(r), suspects, rtol=1e-6) is None for r in named[::10])
+
+
 def test_value_at_100_degrees_is_picked_from_a_full_turn_array():
     turn = np.arange(361.0) / 10
     assert kc.at(turn, "w", 100) == 10.0
@@ -473,6 +551,7 @@ def test_the_other_assembly_of_each_chained_linkage_is_named():
 # --------------------------------------------------------------------------
 
 HW1 = "hw1_chained_four_bar"
+HW3 = "hw3_slider_crank"
 H_RAD = math.radians(1.0)  # the homework's grid step
 
 

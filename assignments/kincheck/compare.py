@@ -98,7 +98,7 @@ def series(
             raise AssertionError(f"`{name}`: {message}")
     ratio = _ratio(got, want)
     if ratio is not None:
-        hint = explain_factor(ratio, suspects, step_rad=step_rad, flipped=flipped)
+        hint = explain_factor(ratio, suspects, step_rad=step_rad, flipped=flipped, rtol=rtol)
         if hint:
             raise AssertionError(f"`{name}`: {hint}")
     worst = int(np.argmax(np.abs(got - want)))
@@ -158,7 +158,7 @@ def value(
             raise AssertionError(f"`{name}`{where} = {got:.7g}{unit_text}, expected {want:.6g}{unit_text}: {message}")
     if abs(got - want) <= rtol * abs(want):
         return got
-    hint = explain_factor(got / want, suspects, step_rad=step_rad, flipped=flipped) if want else None
+    hint = explain_factor(got / want, suspects, step_rad=step_rad, flipped=flipped, rtol=rtol) if want else None
     if hint:
         raise AssertionError(f"`{name}`{where} = {_fmt(got)}{unit_text}: {hint}")
     shown_want, shown_got = _pair(want, got)
@@ -261,7 +261,7 @@ def band(
             if low <= got / step_rad**power <= high:
                 hint = _missing_step(step_rad**power, step_rad)
                 break
-    hint = hint or _loose_factor(got, low, high, suspects, flipped)
+    hint = hint or _loose_factor(got, low, high, suspects, flipped, about)
     if hint:
         raise AssertionError(f"`{name}`{where} = {_fmt(got)}{unit_text}: {hint}")
     raise AssertionError(

@@ -56,7 +56,16 @@ SUSPECTS = {
     ),
 }
 
-_FACTOR_TOLERANCE = 0.02  # relative, for recognising a unit factor
+_FACTOR_TOLERANCE = 0.02  # relative, for recognising one unit factor
+
+_PAIR_TOLERANCE = 1e-3
+"""How far (relative) a ratio may lie from a product of two unit factors to be named as two slips, at most.
+
+A product of two unit factors is exact: two slips on an otherwise right answer miss it by that answer's own
+error (below 2e-4 for the homework's centred differences against exact values), and a check passes its own,
+tighter tolerance.  The 2 % that recognises one factor would find a pair of hw3's five suspects for three
+ratios in ten between 1/2 and 2 (the textbook a = -Rω²(cos θ + R/L cos 2θ) at 90° is 1/1.097 of the exact
+value, 0.5 % from (180/π)² × (1/60)²); within 1e-3, for about one in seventy."""
 
 FLIPPED = "the sign is flipped"
 """What a check says of an answer that is the reference times −1, unless it is told more (``flipped=``).
@@ -150,14 +159,22 @@ def _missing_step(ratio: float, step_rad: float | None) -> str | None:
 
 
 def explain_factor(
-    ratio: float, suspects=("deg", "rad/min"), *, step_rad: float | None = None, flipped: str = FLIPPED
+    ratio: float,
+    suspects=("deg", "rad/min"),
+    *,
+    step_rad: float | None = None,
+    flipped: str = FLIPPED,
+    rtol: float = _PAIR_TOLERANCE,
 ) -> str | None:
     """Name a unit mix-up that turns the right answer into ``ratio`` times it.
 
     Tries the listed ``SUSPECTS`` alone and in pairs, to the powers ±1 and ±2
     (an acceleration goes with ω², a second difference with 1/h²), with either
     sign.  Returns a message such as ``"off by a factor 60: rad/min where
-    rad/s is asked? ..."``, or None when no combination fits within 2 %.
+    rad/s is asked? ..."``, or None when no single factor fits within 2 % and
+    no pair within ``rtol`` (the check's own tolerance; at most
+    :data:`_PAIR_TOLERANCE`, 1e-3): a pair's product is exact, and pairs are
+    so many that a looser match names two slips for ratios no slip explains.
 
     ``step_rad`` is the grid step h (rad) when the quantity is a difference
     quotient: a ratio of h or h² is then named first as a missing division by
@@ -182,7 +199,8 @@ def explain_factor(
     best = None
     for factor, terms in _combinations(suspects):
         miss = abs(math.log(size / factor))
-        if miss < _FACTOR_TOLERANCE and (best is None or (len(terms), miss) < best[0]):
+        allowed = _FACTOR_TOLERANCE if len(terms) == 1 else min(rtol, _PAIR_TOLERANCE)
+        if miss <= allowed and (best is None or (len(terms), miss) < best[0]):
             best = ((len(terms), miss), factor, terms)
     if best is None:
         return None
@@ -202,10 +220,14 @@ def _ratio(got: np.ndarray, want: np.ndarray) -> float | None:
     return middle
 
 
-def _loose_factor(got: float, low: float, high: float, suspects, flipped: str = FLIPPED) -> str | None:
+def _loose_factor(
+    got: float, low: float, high: float, suspects, flipped: str = FLIPPED, about: float | None = None
+) -> str | None:
     """Unit mix-ups that would bring ``got`` back into [low, high] (at most two named).
 
-    A flipped sign is tried first, then single unit factors, then pairs.
+    A flipped sign is tried first, then single unit factors, then pairs: a pair only where it brings
+    ``got`` within :data:`_PAIR_TOLERANCE` of ``about`` (a band as wide as a check's rough value holds
+    a product of two unit factors for many a number no slip explains).
     """
     if low <= -got <= high:
         return flipped
@@ -216,6 +238,8 @@ def _loose_factor(got: float, low: float, high: float, suspects, flipped: str = 
             continue
         for sign in (1.0, -1.0):
             fixed = got / (sign * factor)
+            if len(terms) > 1 and (not about or abs(fixed / about - 1.0) > _PAIR_TOLERANCE):
+                continue
             if low <= fixed <= high:
                 miss = abs(math.log(abs(fixed / middle)))
                 found.append((len(terms), miss, _describe(factor, terms, sign)))
