@@ -162,16 +162,27 @@ def expected_hw2() -> dict:
 
 def expected_hw3() -> dict:
     """Slider-crank (source 004, problem 1): piston position and acceleration at 6000 rpm."""
-    np = _np()
-    from numkin import linkages
+    import warnings
 
+    from numkin import DegreesWarning, derivatives, linkages
+
+    np = _np()
     theta_deg = np.arange(0, 181)
     check = list(range(0, 181, 20))
-    sweep = linkages.slider_crank(crank=80, rod=200).sweep(np.radians(theta_deg))
+    mech = linkages.slider_crank(crank=80, rod=200)
+    sweep = mech.sweep(np.radians(theta_deg))
     kin = _analytic(sweep, "6000 rpm")
     accel = _column(kin, "a_x", "acc_x", "xddot", "x_ddot", "alpha_x") / 1000.0  # mm/s² -> m/s²
+    inside = check[1:-1]  # 20, ..., 160: the centred second difference of the grid's own x
+    second = derivatives.second_difference(np.asarray(sweep["x"]) / 1000.0, math.radians(1.0))  # m/rad²
+    # θ in degrees handed to a function of radians: x at θ = 0, 1, ..., 180 rad, which numkin warns of
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DegreesWarning)
+        in_radians = mech.sweep(theta_deg.astype(float))
     return {
         "x": _at(sweep["x"], theta_deg, check),
+        "x_at_degrees_as_radians": _at(in_radians["x"], theta_deg, check),
+        "d2x_second": _at(second, theta_deg, inside),
         "a": _at(accel, theta_deg, check),
         "a_0": float(accel[0]),
         "a_90": float(accel[90]),

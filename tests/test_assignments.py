@@ -329,6 +329,31 @@ def test_the_public_check_near_the_exact_value_names_two_slips_only_where_they_a
     assert "(= (60/2π)² × 1000): rpm where rad/s is asked?" in both
 
 
+def test_a_right_piston_acceleration_is_not_blamed_for_a_wrong_position():
+    """Homework 3's a comes from x computed beyond the grid, not from `x_piston`: the check of a against ω² times
+    the second difference passes a right a whatever `x_piston` holds (metres, x at θ in degrees read as
+    radians), and an a made from the student's own `x_piston` as well; a wrong a is told what is wrong."""
+    _, _, omega = SLIDER_CRANK
+    check = _master_test(HW3, "test_acceleration_is_your_omega_squared_times_the_second_difference")
+    theta = np.arange(181.0)
+    a = _piston_a_centred(theta, omega)
+    x_mm = 1000 * _piston_x(np.radians(theta))
+    check(a, x_mm, omega)
+    check(a, x_mm / 1000, omega)  # x in metres
+    check(a, 1000 * _piston_x(theta), omega)  # x at 0, 1, ..., 180 rad
+    check(a / 1000, x_mm / 1000, omega)  # a made from the student's own x, in metres
+    check(a * (6000 / omega) ** 2, x_mm, 6000.0)  # ω in rpm: a agrees with it, the check of ω says what is wrong
+    message = _fails(check, a * math.radians(1.0) ** 2, x_mm / 1000, omega)  # divided by 1 (degree) for h²
+    assert message.startswith("`a_piston`: off by a factor 1/3283 (= h², with h = 0.01745 rad): the division by h² "
+                              "is missing?")
+
+
+def test_x_at_theta_in_degrees_read_as_radians_is_named():
+    message = _fails(_master_test(HW3, "test_position_values"), 1000 * _piston_x(np.arange(181.0)))
+    assert message.startswith("`x_piston`: this is x at θ = 0, 1, 2, …, 180 rad, not at 0°, 1°, 2°, …, 180°")
+    _master_test(HW3, "test_position_values")(1000 * _piston_x(np.radians(np.arange(181.0))))
+
+
 def test_pairs_of_unit_factors_explain_few_ratios_near_one():
     """Between 1/2 and 2 no single unit factor lies; products of two of homework 3's five suspects lie
     everywhere, so within 2 % they "explained" three ratios in ten. Within the pairs' own tolerance, about
