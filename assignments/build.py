@@ -200,10 +200,11 @@ def expected_hw4() -> dict:
     velocity = _column(kin, "v_x", "vel_x", "xdot", "x_dot", "omega_x")
     accel = _column(kin, "a_x", "acc_x", "xddot", "x_ddot", "alpha_x")
     check = list(range(0, 360, 30))
+    inside = check[1:]  # rates at interior angles only: any formula may be used at the ends
     return {
         "x": _at(sweep["x"], theta_deg, check),
-        "v": _at(velocity, theta_deg, check),
-        "a": _at(accel, theta_deg, check),
+        "v": _at(velocity, theta_deg, inside),
+        "a": _at(accel, theta_deg, inside),
     }
 
 

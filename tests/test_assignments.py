@@ -354,6 +354,40 @@ def test_x_at_theta_in_degrees_read_as_radians_is_named():
     _master_test(HW3, "test_position_values")(1000 * _piston_x(np.radians(np.arange(181.0))))
 
 
+@pytest.fixture(scope="module")
+def hw4_sweep():
+    """θ3, θ4, θ5 (rad) and x of D (cm) over θ2 = 0°, 1°, …, 360°, from numkin's six-bar."""
+    from numkin import linkages
+
+    sweep = linkages.six_bar().sweep(np.radians(np.arange(361.0)))
+    return [np.asarray(sweep[k]) for k in ("theta3", "theta4", "theta5", "x")]
+
+
+def test_hw4_rates_are_compared_at_interior_angles_only(hw4_sweep):
+    """The question leaves the ends to any formula: np.gradient's first-order ends, or the ends copied from
+    their neighbours, cost nothing, as the README promises; the interior is checked as before."""
+    x = hw4_sweep[3]
+    h = H_RAD
+    v = -10.0 * np.gradient(x, h)  # centred inside, one-sided first order at 0° and 360°
+    a = 100.0 * np.concatenate([[0.0], (x[2:] - 2 * x[1:-1] + x[:-2]) / h**2, [0.0]])
+    a[0], a[-1] = a[1], a[-2]
+    _master_test(HW4, "test_slider_velocity")(v)
+    _master_test(HW4, "test_slider_acceleration")(a)
+    _master_test(HW4, "test_rates_follow_from_position")(x, v, a)
+    assert "off by up to" in _fails(_master_test(HW4, "test_slider_velocity"), v * (1 + 1e-2))
+
+
+def test_hw4_x_in_millimetres_is_named(hw4_sweep):
+    t3, t4, t5, x = hw4_sweep
+    message = _fails(_master_test(HW4, "test_loops_close_on_one_branch"), t3, t4, t5, 10 * x)
+    assert message == "`x_D` looks like millimetres: the loops close with x_D / 10; the question asks for centimetres"
+    _master_test(HW4, "test_loops_close_on_one_branch")(t3, t4, t5, x)
+    message = _fails(_master_test(HW4, "test_slider_position"), 10 * x)
+    assert message == "`x_D`: off by a factor 10: millimetres where centimetres are asked? (1 cm = 10 mm)"
+    message = _fails(_master_test(HW4, "test_slider_velocity"), -100.0 * np.gradient(x, H_RAD))
+    assert message.startswith("`v_D`: off by a factor 10: millimetres where centimetres are asked?")
+
+
 def test_pairs_of_unit_factors_explain_few_ratios_near_one():
     """Between 1/2 and 2 no single unit factor lies; products of two of homework 3's five suspects lie
     everywhere, so within 2 % they "explained" three ratios in ten. Within the pairs' own tolerance, about
@@ -577,6 +611,7 @@ def test_the_other_assembly_of_each_chained_linkage_is_named():
 
 HW1 = "hw1_chained_four_bar"
 HW3 = "hw3_slider_crank"
+HW4 = "hw4_six_bar"
 H_RAD = math.radians(1.0)  # the homework's grid step
 
 

@@ -148,6 +148,12 @@ def test_loops_close_on_one_branch(theta3, theta4, theta5, x_D):
     raw = [kc.array(a, n)[: x.size] for a, n in ((theta3, "theta3"), (theta4, "theta4"), (theta5, "theta5"))]
     unit, angles, residual = kc.read_angle_group(raw, lambda t3, t4, t5: kc.six_bar_gap(t2, t3, t4, t5, x))
     print(f"angles read as {'radians' if unit == 'rad' else 'degrees'}")
+    if np.nanmax(residual) > 1e-9:  # a length in another unit than cm: the loops close once it is converted
+        for factor, unit_name, convert in ((10.0, "millimetres", "x_D / 10"), (0.01, "metres", "x_D × 100")):
+            _, _, scaled = kc.read_angle_group(raw, lambda t3, t4, t5: kc.six_bar_gap(t2, t3, t4, t5, x / factor))
+            assert np.nanmax(scaled) > 1e-9, (
+                f"`x_D` looks like {unit_name}: the loops close with {convert}; the question asks for centimetres"
+            )
     kc.closure("theta3, theta4, theta5, x_D", residual, tol=1e-9)
     for name, a in zip(("theta3", "theta4", "theta5"), angles):
         kc.continuity(name, a)
@@ -162,7 +168,7 @@ def test_slider_position(x_D):
     X = {0: -1.7788130729, 30: -1.9366255824, 60: -2.68256474799, 90: -3.70858438599, 120: -4.7126162668, 150: -5.46016513355, 180: -5.84837875089, 210: -5.87334851638, 240: -5.52995995042, 270: -4.76902499792, 300: -3.6094989305, 330: -2.41094979384}  # reference: x
     FROM_O4 = {d: v - 3.7 for d, v in X.items()}
     kc.series(
-        "x_D", x_D, X, rtol=1e-6, unit="cm", suspects=(),
+        "x_D", x_D, X, rtol=1e-6, unit="cm", suspects=("cm", "mm"),
         alternatives=[(FROM_O4, "this is x measured from O4; the question measures x from O2")],
         small_hint="Positions this close to the reference come from a solve stopped before it converged: see the loop-closure check",
     )
@@ -181,8 +187,9 @@ def test_slider_position(x_D):
 # %% [markdown]
 # **Q2 — velocity and acceleration of the slider.** The crank speed is constant, so
 # v = ω₂ dx/dθ₂ and a = ω₂² d²x/dθ₂². Compute them with the centred difference and the
-# centred second difference of `x_D` (any second-order formula at the ends), and store
-# them in `v_D` (cm/s) and `a_D` (cm/s²), 361 values each.
+# centred second difference of `x_D` (at the two ends, any one-sided formula: the checks
+# compare interior angles only), and store them in `v_D` (cm/s) and `a_D` (cm/s²), 361
+# values each.
 
 # %% [raw]
 # # BEGIN SOLUTION
@@ -248,8 +255,8 @@ hidden: true
 def test_slider_velocity(v_D):
     import kincheck as kc
 
-    V = {0: -4.32064448025, 30: 9.57619107951, 60: 17.9177555236, 90: 20.2931974979, 120: 17.2834210237, 150: 10.9560918928, 180: 3.89930053432, 210: -2.944953495, 240: -10.3583120403, 270: -18.7580541703, 300: -24.3988785229, 330: -19.1450862035}  # reference: v
-    kc.series("v_D", v_D, V, rtol=5e-3, unit="cm/s", suspects=("deg",), flipped=kc.ROTATION)
+    V = {30: 9.57619107951, 60: 17.9177555236, 90: 20.2931974979, 120: 17.2834210237, 150: 10.9560918928, 180: 3.89930053432, 210: -2.944953495, 240: -10.3583120403, 270: -18.7580541703, 300: -24.3988785229, 330: -19.1450862035}  # reference: v
+    kc.series("v_D", v_D, V, rtol=5e-3, unit="cm/s", suspects=("deg", "cm"), flipped=kc.ROTATION)
 
 # %%
 """ # BEGIN TEST CONFIG
@@ -258,8 +265,8 @@ hidden: true
 def test_slider_acceleration(a_D):
     import kincheck as kc
 
-    A = {0: -302.174202587, 30: -216.268322148, 60: -102.019821361, 90: 9.93661951135, 120: 98.0960436806, 150: 134.423977006, 180: 132.163347752, 210: 132.431990323, 240: 153.307831871, 270: 156.89460999, 300: 26.2653090339, 330: -223.06027955}  # reference: a
-    kc.series("a_D", a_D, A, rtol=5e-3, unit="cm/s²", suspects=("deg",),
+    A = {30: -216.268322148, 60: -102.019821361, 90: 9.93661951135, 120: 98.0960436806, 150: 134.423977006, 180: 132.163347752, 210: 132.431990323, 240: 153.307831871, 270: 156.89460999, 300: 26.2653090339, 330: -223.06027955}  # reference: a
+    kc.series("a_D", a_D, A, rtol=5e-3, unit="cm/s²", suspects=("deg", "cm"),
               flipped="the sign is flipped: a = ω2² d²x/dθ2², whose sign does not depend on the sense of rotation")
 
 # %%

@@ -1,7 +1,7 @@
 """Naming what makes a number wrong, for the messages of the checks.
 
 A miss by a constant factor is read as a unit mix-up (:data:`SUSPECTS`: degrees
-where radians are asked, rad/min, rpm, rev/s, mm), a flipped sign (:data:`FLIPPED`,
+where radians are asked, rad/min, rpm, rev/s, mm where m or cm are asked), a flipped sign (:data:`FLIPPED`,
 :data:`ROTATION`) or a difference quotient not divided by its step h
 (:func:`explain_factor`); a miss within the rounding of the numbers as written is
 read as rounding or single precision (:func:`as_written`,
@@ -54,6 +54,11 @@ SUSPECTS = {
         "multiplied by 2π once too often? (1 rev/s = 2π rad/s)",
         "rev/s (turns per second) where rad/s is asked? (1 rev/s = 2π rad/s)",
     ),
+    "cm": (
+        10.0,
+        "millimetres where centimetres are asked? (1 cm = 10 mm)",
+        "divided by 10 once too often? (1 cm = 10 mm)",
+    ),
 }
 
 _FACTOR_TOLERANCE = 0.02  # relative, for recognising one unit factor
@@ -101,6 +106,7 @@ _SYMBOLS = {
     "rpm": ("60/2π", "2π/60"),
     "mm": ("1000", "1/1000"),
     "rev": ("2π", "1/2π"),
+    "cm": ("10", "1/10"),
 }
 
 
