@@ -637,6 +637,34 @@ def hw1_sweep():
     return np.asarray(sweep["phi"]), np.asarray(sweep["beta"])
 
 
+@pytest.mark.parametrize("word", ["centred", "Centred", " CENTERED ", "Central difference", "centre", "center",
+                                  "forward", "Forward difference", "backward", "the centred one", "c", ""])
+def test_q1c_public_and_hidden_checks_read_a_word_alike(word):
+    """Every answer the hidden check accepts passes the public check: both read the word in any case, by how it
+    starts. The public check also lets "forward" through (the form is right, the hidden check marks the choice)."""
+    public, hidden = _master_test(HW1, "test_answer_form"), _master_test(HW1, "test_orders")
+    centred = word.strip().lower().startswith("cent")
+    form = centred or word.strip().lower().startswith("forw")
+    if form:
+        public(word, 1, 2)
+    else:
+        assert _fails(public, word, 1, 2).startswith('`more_accurate` should be "forward" or "centred", got')
+    if centred:
+        hidden(word, 1, 2)
+    else:
+        assert "the centred difference is the more accurate one" in _fails(hidden, word, 1, 2)
+
+
+def test_q1c_an_answer_not_set_yet_is_told_so():
+    public, hidden = _master_test(HW1, "test_answer_form"), _master_test(HW1, "test_orders")
+    for check in (public, hidden):
+        assert _fails(check, ..., 1, 2).startswith("`more_accurate` is not set yet: replace its `...`")
+        assert _fails(check, None, 1, 2).startswith("`more_accurate` is not defined: did the cell")
+        assert _fails(check, "centred", ..., 2).startswith("`order_forward` is not set yet")
+    assert _fails(public, 2, 1, 2) == "`more_accurate` should be text (a word, in quotes), got int"
+    assert _fails(public, "centred", True, 2) == "`order_forward` should be a number, got True"
+
+
 def test_alpha_between_the_centred_and_the_forward_twice_value_names_no_formula():
     ref = build.load_expected(HW1)
     centred, forward_twice = ref["alpha_beta_100"], ref["alpha_beta_fw_100"]

@@ -312,13 +312,17 @@ more_accurate = "centred"  # SOLUTION
 
 # %%
 def test_answer_form(more_accurate, order_forward, order_centred):
-    assert isinstance(more_accurate, str), '`more_accurate` should be "forward" or "centred"'
-    word = more_accurate.strip().lower()
-    assert word in ("forward", "centred", "centered", "central", "center", "centre"), (
+    import kincheck as kc
+
+    # read as the hidden check reads it: any case, any word that starts like "forward" or "centred"
+    word = kc.text(more_accurate, "more_accurate")
+    assert word.startswith(("forw", "cent")), (
         f'`more_accurate` should be "forward" or "centred", got {more_accurate!r}'
     )
+    print(f'`more_accurate` read as "{"forward" if word.startswith("forw") else "centred"}"')
     for name, p in (("order_forward", order_forward), ("order_centred", order_centred)):
-        assert isinstance(p, (int, float)) and not isinstance(p, bool), f"`{name}` should be a number"
+        value = kc.floats(p, name, "a number")
+        assert value.size == 1 and not isinstance(p, bool), f"`{name}` should be a number, got {p!r}"
 
 # %%
 """ # BEGIN TEST CONFIG
@@ -327,8 +331,10 @@ hidden: true
 def test_orders(more_accurate, order_forward, order_centred):
     import kincheck as kc
 
-    assert order_forward == 1, f"`order_forward` = {order_forward}: the forward difference has error h/2 f'', order 1"
-    assert order_centred == 2, f"`order_centred` = {order_centred}: the centred difference has error h²/6 f''', order 2"
+    forward = kc.floats(order_forward, "order_forward", "a number")
+    centred = kc.floats(order_centred, "order_centred", "a number")
+    assert forward.size == 1 and forward == 1, f"`order_forward` = {order_forward}: the forward difference has error h/2 f'', order 1"
+    assert centred.size == 1 and centred == 2, f"`order_centred` = {order_centred}: the centred difference has error h²/6 f''', order 2"
     assert kc.text(more_accurate, "more_accurate").startswith("cent"), (
         "the centred difference is the more accurate one: its error falls like h², the forward one like h"
     )
