@@ -665,6 +665,45 @@ def test_q1c_an_answer_not_set_yet_is_told_so():
     assert _fails(public, "centred", True, 2) == "`order_forward` should be a number, got True"
 
 
+def _solved_at_degrees_read_as_radians(mechanism):
+    """A numkin sweep at θ = 0, 1, …, 360 rad: what a solver of radians gives when it is handed theta_deg."""
+    import warnings
+
+    from numkin import DegreesWarning
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DegreesWarning)  # numkin warns of exactly this slip
+        return mechanism.sweep(np.arange(361.0))
+
+
+def test_theta_in_degrees_handed_to_the_sweep_is_named(hw1_sweep):
+    """φ solved at θ = 0, 1, 2, … rad closes linkage 1 there and at no asked angle: the checks of q1a say that θ
+    was given in degrees, in either unit φ is handed in; the right φ passes, and a φ that closes nowhere is left to
+    the closure check."""
+    from numkin import linkages
+
+    wrong = np.asarray(_solved_at_degrees_read_as_radians(linkages.chained_four_bars())["phi"])
+    assert kc.four_bar_gap(wrong, np.arange(361.0), 7.0, 1.94, 6.86, 2.36).max() < 1e-9
+    said = ("`phi` closes the loop at θ = 0, 1, 2, … rad, not at θ = 0°, 1°, 2°, …: the input angles were given in "
+            "degrees where the equations take radians; use `theta`, not `theta_deg`")
+    public = _master_test(HW1, "test_phi_closes_loop_on_one_branch")
+    assert _fails(public, wrong) == said
+    assert _fails(public, np.degrees(wrong)) == said
+    assert _fails(_master_test(HW1, "test_phi_values"), wrong) == said
+    public(hw1_sweep[0])
+    assert "does not satisfy the loop-closure equations" in _fails(public, np.full(361, 1.0))
+
+
+def test_theta2_in_degrees_in_the_six_bar_is_named(hw4_sweep):
+    from numkin import linkages
+
+    wrong = _solved_at_degrees_read_as_radians(linkages.six_bar())
+    t3, t4, t5, x = (np.asarray(wrong[k]) for k in ("theta3", "theta4", "theta5", "x"))
+    message = _fails(_master_test(HW4, "test_loops_close_on_one_branch"), t3, t4, t5, x)
+    assert message.startswith("`theta3, theta4, theta5` closes the loop at θ = 0, 1, 2, … rad, not at θ = 0°, 1°, 2°")
+    assert message.endswith("use `theta2`, not `theta2_deg`")
+
+
 def test_alpha_between_the_centred_and_the_forward_twice_value_names_no_formula():
     ref = build.load_expected(HW1)
     centred, forward_twice = ref["alpha_beta_100"], ref["alpha_beta_fw_100"]

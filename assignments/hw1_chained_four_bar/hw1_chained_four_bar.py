@@ -143,6 +143,7 @@ def test_phi_closes_loop_on_one_branch(phi):
 
     unit, angles, residual = kc.read_angles("phi", phi, gap)
     print(f"`phi` read as {'radians' if unit == 'rad' else 'degrees'}")
+    kc.inputs_in_degrees("phi", [phi], lambda t, a: kc.four_bar_gap(a, t, 7.0, 1.94, 6.86, 2.36))
     kc.closure("phi", residual, tol=1e-9)
     kc.continuity("phi", angles)
     kc.chained_four_bar_assembly("phi", phi)
@@ -155,6 +156,7 @@ def test_phi_values(phi):
     import kincheck as kc
 
     kc.chained_four_bar_assembly("phi", phi)  # names the other assembly, where that is why the values differ
+    kc.inputs_in_degrees("phi", [phi], lambda t, a: kc.four_bar_gap(a, t, 7.0, 1.94, 6.86, 2.36))  # and θ in degrees
     PHI = {10: 0.48101131173, 40: 0.801992851788, 70: 1.21832147982, 100: 1.64824558046, 130: 2.04593688727, 160: 2.31500391439, 190: 2.20276535076, 220: 1.71369175609, 250: 1.22685763437, 280: 0.852830800482, 310: 0.579419252725, 340: 0.417601762442}  # reference: phi
     kc.angles("phi", phi, PHI, tol=1e-6)
 

@@ -148,6 +148,8 @@ def test_loops_close_on_one_branch(theta3, theta4, theta5, x_D):
     raw = [kc.array(a, n)[: x.size] for a, n in ((theta3, "theta3"), (theta4, "theta4"), (theta5, "theta5"))]
     unit, angles, residual = kc.read_angle_group(raw, lambda t3, t4, t5: kc.six_bar_gap(t2, t3, t4, t5, x))
     print(f"angles read as {'radians' if unit == 'rad' else 'degrees'}")
+    kc.inputs_in_degrees("theta3, theta4, theta5", raw, lambda t, t3, t4, t5: kc.six_bar_gap(t[: x.size], t3, t4, t5, x),
+                         radians="theta2", degrees="theta2_deg")
     if np.nanmax(residual) > 1e-9:  # a length in another unit than cm: the loops close once it is converted
         for factor, unit_name, convert in ((10.0, "millimetres", "x_D / 10"), (0.01, "metres", "x_D × 100")):
             _, _, scaled = kc.read_angle_group(raw, lambda t3, t4, t5: kc.six_bar_gap(t2, t3, t4, t5, x / factor))

@@ -6,7 +6,8 @@ six-bar (:func:`six_bar_gap`); the unit of angle arrays decided by those loops
 and the checks that raise on them: :func:`closure` (the loop does not close, or a
 Newton iteration stopped early), :func:`continuity` (a jump to the other branch),
 :func:`chained_four_bar_assembly` (the mirror assembly),
-:func:`quick_return_input_unit` (θ2 in degrees where radians are taken).
+:func:`quick_return_input_unit` (θ2 in degrees where radians are taken) and
+:func:`inputs_in_degrees` (a sweep's input angles in degrees where radians are taken).
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ __all__ = [
     "chained_four_bar_assembly",
     "six_bar_gap",
     "quick_return_input_unit",
+    "inputs_in_degrees",
     "read_angle_group",
     "read_angles",
     "closure",
@@ -159,6 +161,41 @@ def quick_return_input_unit(values, theta2_deg: float) -> None:
                 f"(= {math.degrees(theta2_deg) % 360:.1f}° after whole turns), not at {theta2_deg:g}°: "
                 f"θ2 was given in degrees where F and J take radians; use np.radians({theta2_deg:g})"
             )
+
+
+def inputs_in_degrees(name: str, arrays, gap, *, grid=FULL_TURN, tol: float = 1e-6, radians: str = "theta",
+                      degrees: str = "theta_deg") -> None:
+    """Raise if the angle ``arrays`` close their loop with the grid's input angles read as radians.
+
+    Solved at θ = 0, 1, 2, … rad where 0°, 1°, 2°, … are asked, the angles close the loop at
+    those inputs and at no asked one: the evidence of input angles in degrees (the variable
+    ``degrees``) handed to functions that take radians (``radians``).  ``gap(inputs_rad,
+    *angles_rad)`` is the loop-closure residual; the arrays are read in radians and in
+    degrees.  Raises only on that evidence: arrays that cannot be read, that close the loop
+    at the asked inputs, or at neither, are left to the other checks (:func:`closure`).
+    """
+    try:
+        values = [array(a, name, grid) for a in arrays]
+    except AssertionError:
+        return
+    asked = np.radians(_grid_angles(grid))
+    read_as_radians = _grid_angles(grid)  # 0, 1, 2, ... where 0°, 1°, 2°, ... are asked
+
+    def worst(inputs, angles):
+        with np.errstate(all="ignore"):
+            residual = np.asarray(gap(inputs, *angles), dtype=float)
+        return float(np.nanmax(residual)) if np.isfinite(residual).any() else math.inf
+
+    readings = [values, [np.radians(a) for a in values]]
+    if any(worst(asked, angles) <= tol for angles in readings):
+        return
+    if any(worst(read_as_radians, angles) <= tol for angles in readings):
+        start, _, step = grid
+        first = ", ".join(f"{start + k * step:g}" for k in range(3))
+        raise AssertionError(
+            f"`{name}` closes the loop at θ = {first}, … rad, not at θ = {first.replace(', ', '°, ')}°, …: the input "
+            f"angles were given in degrees where the equations take radians; use `{radians}`, not `{degrees}`"
+        )
 
 
 def read_angle_group(arrays, gap):
