@@ -827,6 +827,41 @@ def test_student_notebook_runs_all_cells(hw, monkeypatch, tmp_path):
         assert "`phi` is not set yet: replace its `...`" in _fails(kc.array, namespace["phi"], "phi")
 
 
+def _master_tests(hw):
+    """Every test function of a master, public and hidden, defined as otter defines it: [(name, function)]."""
+    found = []
+    for cell in _master_cells(hw):
+        if cell.cell_type == "code" and "def test_" in cell.source:
+            namespace: dict = {}
+            exec(cell.source, namespace)
+            found += [(name, f) for name, f in namespace.items() if name.startswith("test_")]
+    return found
+
+
+@pytest.mark.parametrize("hw", HOMEWORK)
+def test_an_untouched_notebook_is_told_what_is_not_done_yet(hw, monkeypatch, tmp_path):
+    """The first grader.check of a notebook run as handed out: every check, public and hidden, fails (no point
+    for a stub), and says that an answer is not set yet or a function not written yet (its stub returns None),
+    not that it has the wrong shape or raised a TypeError."""
+    import inspect
+
+    pytest.importorskip("matplotlib").use("Agg")
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.syspath_prepend(str(build.folder(hw)))
+    namespace: dict = {}
+    for source in _student_code(hw):
+        exec(source, namespace)
+    tests = _master_tests(hw)
+    assert len(tests) >= 5
+    for name, check in tests:
+        arguments = [namespace.get(p) for p in inspect.signature(check).parameters]  # otter passes None if missing
+        message = _fails(check, *arguments)
+        assert "is not set yet: replace its `...`" in message or "is not written yet: `" in message, (name, message)
+    if hw == "hw2_quick_return":
+        assert _fails(dict(tests)["test_jacobian_matches_residual"], namespace["F"], namespace["J"]) == (
+            "`F` is not written yet: `F(x, theta2)` returns None (its body is still `...`, or it has no `return`)")
+
+
 def test_generated_master_says_the_units_of_its_guess_and_of_q_check(tmp_path):
     """The comment of GUESS names the unknowns' own units; the question says q_check is in rad."""
     pytest.importorskip("sympy")

@@ -22,9 +22,14 @@ def quadrature_rule(rule, *, n: int, cases) -> None:
         raise AssertionError("`gauss_chebyshev` is not defined yet: run the cell that defines it")
     for f, degree, exact in cases:
         try:
-            got = float(rule(f, n))
+            value = rule(f, n)
         except Exception as error:  # the student's function failed: say how, without a traceback
             raise AssertionError(f"`gauss_chebyshev(f, {n})` raised {type(error).__name__}: {error}") from None
+        value = kc.returned(value, "gauss_chebyshev", f"gauss_chebyshev(f, {n})")
+        try:
+            got = float(value)
+        except (TypeError, ValueError):
+            raise AssertionError(f"`gauss_chebyshev(f, {n})` should return a number, got {type(value).__name__}") from None
         if abs(got - exact) <= 1e-12 * max(1.0, abs(exact)):
             continue
         message = (

@@ -20,7 +20,7 @@ The checks are used as ``import kincheck as kc``; every name below is one of
 its modules', re-exported here:
 
 * ``reading`` — what the student handed in: names not set yet or not defined,
-  text, numbers, arrays on the grid, angles in radians or degrees;
+  functions not written yet, text, numbers, arrays on the grid, angles in radians or degrees;
 * ``compare`` — one value, an angle, a series, a band, a list against the
   reference values, with feedback;
 * ``diagnose`` — what makes a number wrong: a unit factor, a flipped sign, a
@@ -64,7 +64,7 @@ from .loops import (
     read_angles,
     six_bar_gap,
 )
-from .reading import FULL_TURN, angles, array, at, floats, rows, text, unit_of
+from .reading import FULL_TURN, angles, array, at, floats, returned, rows, text, unit_of
 
 # FULL_TURN, NEWTON_HINT and SINGLE are kincheck's attributes too, as they always were, not in __all__
 __all__ = [
@@ -92,6 +92,7 @@ __all__ = [
     "quick_return_input_unit",
     "listed",
     "read_angle_group",
+    "returned",
     "rows",
     "read_angles",
     "six_bar_gap",

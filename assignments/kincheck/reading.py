@@ -1,4 +1,4 @@
-"""Reading what a student handed in: a name still ``...`` or not defined, text, numbers,
+"""Reading what a student handed in: a name still ``...`` or not defined, a function not written yet, text, numbers,
 arrays on a grid of angles in degrees, and angles read in radians or in degrees.
 
 Arrays are sampled on a grid of input angles in degrees, for example
@@ -18,6 +18,7 @@ from .diagnose import _pair
 
 __all__ = [
     "FULL_TURN",
+    "returned",
     "text",
     "floats",
     "array",
@@ -43,6 +44,21 @@ def _present(x, name: str) -> None:
             f"`{name}` is not defined: did the cell that computes it raise an error? run it and read the "
             "error (or it is None, which a function without `return` gives)"
         )
+
+
+def returned(x, name: str, call: str):
+    """What the student's function ``name`` returned (``call`` shows how it was called), or the student's
+    message: a function that returns None is not written yet (the stub's body is ``...``) or has no ``return``.
+
+    >>> returned(None, "F", "F(x, theta2)")
+    Traceback (most recent call last):
+    AssertionError: `F` is not written yet: `F(x, theta2)` returns None (its body is still `...`, or it has no `return`)
+    """
+    if x is None:
+        raise AssertionError(
+            f"`{name}` is not written yet: `{call}` returns None (its body is still `...`, or it has no `return`)"
+        )
+    return x
 
 
 def text(x, name: str) -> str:
