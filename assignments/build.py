@@ -12,7 +12,7 @@ Commands::
     python assignments/build.py expected           # recompute references with numkin, rewrite them
     python assignments/build.py expected --check   # fail if the committed references are stale
     python assignments/build.py assign [HW ...]    # jupytext -> .ipynb -> otter assign, into assignments/dist/
-    python assignments/build.py grade HW SUBMISSION ... [--out DIR] [--venv DIR]   # otter run on each
+    python assignments/build.py grade HW SUBMISSION ... [--out DIR] [--venv DIR] [--timeout S]  # otter run on each
     python assignments/build.py mistakes [HW ...] [--venv DIR]  # grade the deliberate mistakes, show the feedback
     python assignments/build.py new SCENE.toml     # a homework master generated from a scene
 
@@ -45,7 +45,16 @@ HERE = Path(__file__).resolve().parent
 if str(HERE) not in sys.path:
     sys.path.insert(0, str(HERE))  # fromscene.py, grading.py, exam004.py
 
-from grading import environment, grading_venv, isolated_env, run, tool, zip_requirements  # noqa: E402,F401
+from grading import (  # noqa: E402,F401
+    TIMEOUT,
+    GradingError,
+    environment,
+    grading_venv,
+    isolated_env,
+    run,
+    tool,
+    zip_requirements,
+)
 KINCHECK = HERE / "kincheck"  # the feedback package, a folder of modules
 DIST = HERE / "dist"
 
@@ -474,25 +483,42 @@ def feedback(results: dict) -> str:
     return "\n".join(t.get("output", "") for t in results["tests"])
 
 
-def grade(hw_or_zip: str, submissions: list[Path], out: Path, venv: Path | None = None) -> Path:
-    """Run ``otter run`` on every submission; write one results folder each and scores.csv."""
+def grade(hw_or_zip: str, submissions: list[Path], out: Path, venv: Path | None = None,
+          timeout: float | None = TIMEOUT) -> Path:
+    """Run ``otter run`` on every submission; write one results folder each and scores.csv.
+
+    A submission that cannot be graded (``otter run`` fails, or takes more than ``timeout``
+    seconds) gets a row of its own, with no score and the reason in ``error``, and the
+    others are graded all the same.
+    """
     target = Path(hw_or_zip)
     autograder = target if target.suffix == ".zip" else autograder_zip(DIST / hw_or_zip)
     bin_dir = environment(autograder, venv)
     rows = []
     for submission in submissions:
         folder = out / submission.stem
-        results = run(submission, autograder, folder, bin_dir=bin_dir)
+        try:
+            results = run(submission, autograder, folder, bin_dir=bin_dir, timeout=timeout)
+        except GradingError as error:
+            rows.append({"submission": submission.name, "score": "", "possible": "", "error": str(error)})
+            print(f"{submission.name}: not graded: {error} (see {error.log})")
+            continue
         got, possible = score(results)
-        rows.append({"submission": submission.name, "score": got, "possible": possible})
+        rows.append({"submission": submission.name, "score": got, "possible": possible, "error": ""})
         print(f"{submission.name}: {got:g} / {possible:g}")
     out.mkdir(parents=True, exist_ok=True)
     table = out / "scores.csv"
     with table.open("w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=["submission", "score", "possible"])
+        writer = csv.DictWriter(f, fieldnames=["submission", "score", "possible", "error"])
         writer.writeheader()
         writer.writerows(rows)
     return table
+
+
+def ungraded(table: Path) -> list[str]:
+    """The submissions of a scores.csv that could not be graded."""
+    with table.open(newline="") as f:
+        return [row["submission"] for row in csv.DictReader(f) if row["error"]]
 
 
 # --------------------------------------------------------------------------
@@ -532,6 +558,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--out", type=Path, default=Path("grades"))
     p.add_argument("--venv", type=Path, help="grade in this virtual environment, made from the zip's "
                    "requirements alone if it does not exist (as Gradescope / otter grade do)")
+    p.add_argument("--timeout", type=float, default=TIMEOUT, metavar="SECONDS",
+                   help=f"stop a submission that takes longer and record it as timed out (default {TIMEOUT:g}; "
+                   "0: no limit)")
 
     p = sub.add_parser("mistakes", help="grade the solution and each deliberate mistake, print feedback")
     p.add_argument("homework", nargs="*")
@@ -574,8 +603,12 @@ def _run(args) -> int:
         files = []
         for path in args.submissions:
             files += sorted(path.glob("*.zip")) + sorted(path.glob("*.ipynb")) if path.is_dir() else [path]
-        print(f"scores written to {grade(args.homework, files, args.out, args.venv)}")
-        return 0
+        table = grade(args.homework, files, args.out, args.venv, args.timeout or None)
+        print(f"scores written to {table}")
+        missing = ungraded(table)
+        if missing:
+            print(f"not graded ({len(missing)}): {', '.join(missing)}; the reason is in scores.csv's error column")
+        return 1 if missing else 0
     if args.command == "mistakes":
         for hw in _homework(args.homework):
             result = assign(hw, args.out, run_tests=False)

@@ -9,11 +9,29 @@ that, and :func:`run` grades a submission with it (or with the current environme
 from __future__ import annotations
 
 import json
+import os
+import signal
 import subprocess
 import sys
 from pathlib import Path
 
-__all__ = ["zip_requirements", "grading_venv", "isolated_env", "environment", "run", "tool"]
+__all__ = ["zip_requirements", "grading_venv", "isolated_env", "environment", "run", "tool", "GradingError",
+           "TIMEOUT"]
+
+TIMEOUT = 600.0
+"""Seconds ``otter run`` may take on one submission before it is stopped (a cell that never ends)."""
+
+
+class GradingError(RuntimeError):
+    """``otter run`` could not grade a submission: it failed, wrote no results, or ran out of time.
+
+    The message says which, in a few words fit for a row of ``scores.csv``; ``log`` is the file
+    holding what ``otter run`` wrote to stderr.
+    """
+
+    def __init__(self, message: str, log: Path | None = None):
+        super().__init__(message)
+        self.log = log
 
 
 def tool(name: str) -> str:
@@ -76,23 +94,63 @@ def isolated_env(bin_dir: Path | None, home: Path | None = None) -> dict:
     return env
 
 
-def run(submission: Path, autograder: Path, out: Path, *, bin_dir: Path | None = None) -> dict:
+def run(submission: Path, autograder: Path, out: Path, *, bin_dir: Path | None = None,
+        timeout: float | None = None) -> dict:
     """``otter run`` one submission; returns its results.json.
 
     With ``bin_dir`` (see :func:`grading_venv`) the submission is graded with
     that environment's otter and Python only, as the autograder image would.
+    With ``timeout`` (seconds) a run that takes longer is stopped, with the
+    notebook's kernel.  Raises :class:`GradingError` when the submission could
+    not be graded; what ``otter run`` wrote to stderr is in ``out/otter-run.log``.
     """
     submission, autograder, out = submission.resolve(), autograder.resolve(), out.resolve()
     out.mkdir(parents=True, exist_ok=True)
     otter = str(bin_dir / "otter") if bin_dir is not None else tool("otter")
-    subprocess.run(
-        [otter, "run", "-a", str(autograder), "-o", str(out), "--no-logo", str(submission)],
-        check=True,
-        stdout=subprocess.DEVNULL,
-        cwd=out,
-        env=isolated_env(bin_dir, out if bin_dir is not None else None),
-    )
-    return json.loads((out / "results.json").read_text())
+    log = out / "otter-run.log"
+    results = out / "results.json"
+    results.unlink(missing_ok=True)  # a results.json of an earlier run is not this run's
+    with log.open("w") as stderr:
+        process = subprocess.Popen(
+            [otter, "run", "-a", str(autograder), "-o", str(out), "--no-logo", str(submission)],
+            stdout=subprocess.DEVNULL,
+            stderr=stderr,
+            cwd=out,
+            env=isolated_env(bin_dir, out if bin_dir is not None else None),
+            start_new_session=True,  # its own process group, stopped as a whole on a timeout
+        )
+        try:
+            code = process.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            _stop(process)
+            raise GradingError(f"timed out after {timeout:g} s (a cell that never ends?)", log) from None
+        except BaseException:  # interrupted: leave no grading running
+            _stop(process)
+            raise
+    if code != 0:
+        raise GradingError(f"otter run failed (exit status {code}): {_last_line(log)}", log)
+    if not results.exists():
+        raise GradingError(f"otter run wrote no results.json: {_last_line(log)}", log)
+    return json.loads(results.read_text())
+
+
+def _stop(process: subprocess.Popen) -> None:
+    """Kill ``otter run`` and its process group (the notebook's kernel stops when its parent is gone)."""
+    try:
+        if sys.platform == "win32":
+            process.kill()
+        else:
+            os.killpg(process.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+    process.wait()
+
+
+def _last_line(log: Path) -> str:
+    """The last line of ``log`` that says something (an error's last line), or where to look."""
+    lines = [line.strip() for line in log.read_text(errors="replace").splitlines() if line.strip()]
+    lines = [line for line in lines if "WARNING" not in line and "warn(" not in line]
+    return lines[-1][:300] if lines else f"see {log}"
 
 
 def environment(autograder: Path, venv: Path | None) -> Path | None:

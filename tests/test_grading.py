@@ -21,10 +21,13 @@ time.  The environment needs PyPI (or a local index) to be reachable.
 
 from __future__ import annotations
 
+import csv
 import json
 import os
 import re
+import shutil
 import subprocess
+import time
 import zipfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -289,3 +292,56 @@ def test_generated_homework_mistakes(built, graded, name):
             assert words in text, f"{mistake['name']}: feedback lacks {words!r}:\n{text}"
         for words in mistake.get("not_feedback", []):
             assert words not in text, f"{mistake['name']}: feedback names {words!r}:\n{text}"
+
+
+def _processes_mentioning(text: str) -> list[int]:
+    """Ids of this user's processes whose environment or command line mentions ``text`` (Linux /proc)."""
+    found = []
+    for proc in Path("/proc").glob("[0-9]*"):
+        try:
+            seen = (proc / "environ").read_bytes() + (proc / "cmdline").read_bytes()
+        except OSError:
+            continue
+        if text.encode() in seen and int(proc.name) != os.getpid():
+            found.append(int(proc.name))
+    return found
+
+
+def test_grade_goes_on_past_a_submission_that_fails_or_never_ends(built, environments, tmp_path):
+    """``build.py grade`` on a folder holding a right notebook, one whose cell never ends and one that is no
+    notebook: each gets its row in scores.csv (the last two with the reason, no score), the loop is stopped
+    after --timeout seconds with its kernel, and the exit status says that some were not graded."""
+    nbformat = pytest.importorskip("nbformat")
+    hw = "hw3_slider_crank"
+    folder = built[hw][1]
+    autograder = build.autograder_zip(folder)
+    solution = folder / "autograder" / f"{hw}.ipynb"
+    submissions = tmp_path / "submissions"
+    submissions.mkdir()
+    shutil.copy(solution, submissions / "alice.ipynb")
+    notebook = nbformat.read(solution, as_version=4)
+    notebook.cells.insert(3, nbformat.v4.new_code_cell("while True:\n    pass"))
+    nbformat.write(notebook, submissions / "bob.ipynb")
+    (submissions / "carol.ipynb").write_text("{ this is not a notebook")
+    out = tmp_path / "grades"
+    timeout = 45
+    start = time.monotonic()
+    status = build.main(["grade", str(autograder), str(submissions), "--out", str(out),
+                         "--venv", str(environments[autograder].parent), "--timeout", str(timeout)])
+    elapsed = time.monotonic() - start
+    assert status == 1
+    with (out / "scores.csv").open(newline="") as f:
+        rows = {row["submission"]: row for row in csv.DictReader(f)}
+    assert list(rows) == ["alice.ipynb", "bob.ipynb", "carol.ipynb"]
+    assert float(rows["alice.ipynb"]["score"]) == float(rows["alice.ipynb"]["possible"]) == 8  # hw3: 8 points
+    assert rows["alice.ipynb"]["error"] == ""
+    assert rows["bob.ipynb"]["score"] == "" and rows["bob.ipynb"]["error"].startswith(f"timed out after {timeout} s")
+    assert rows["carol.ipynb"]["score"] == ""
+    assert rows["carol.ipynb"]["error"].startswith("otter run failed (exit status 1): ")
+    assert "Notebook does not appear to be JSON" in rows["carol.ipynb"]["error"]
+    assert (out / "alice" / "results.json").exists() and (out / "carol" / "otter-run.log").exists()
+    assert timeout <= elapsed < timeout + 120
+    deadline = time.monotonic() + 10  # the kernel stops within a second or two of otter
+    while _processes_mentioning(str(out / "bob")) and time.monotonic() < deadline:
+        time.sleep(0.5)
+    assert not _processes_mentioning(str(out / "bob")), "the submission that never ends is still running"
