@@ -13,7 +13,10 @@ nothing of the development environment), and grade there with ``otter run``:
   it names;
 * homework generated from scenes none of the ready homework uses (an offset
   slider-crank, whose output is a length, and a crank-rocker, whose output is an
-  angle) build and grade the same way, with the mistakes ``build.py new`` writes.
+  angle) build and grade the same way, with the mistakes ``build.py new`` writes;
+* ``build.py grade`` records a submission it cannot grade, or that never ends, and
+  goes on with the others;
+* what the README tells students to install runs the student notebook.
 
 Everything is built once per pytest run; the submissions are graded two at a
 time.  The environment needs PyPI (or a local index) to be reachable.
@@ -345,3 +348,33 @@ def test_grade_goes_on_past_a_submission_that_fails_or_never_ends(built, environ
     while _processes_mentioning(str(out / "bob")) and time.monotonic() < deadline:
         time.sleep(0.5)
     assert not _processes_mentioning(str(out / "bob")), "the submission that never ends is still running"
+
+
+def _student_install() -> list[str]:
+    """The packages of the students' install line in assignments/README.md ("2. Distribute")."""
+    readme = (ASSIGNMENTS / "README.md").read_text()
+    section = readme[readme.index("## 2. Distribute"):readme.index("## 3. Collect")]
+    (line,) = re.findall(r"`pip install ([^`]+)`", section)
+    return line.split()
+
+
+def test_the_students_install_line_runs_the_student_notebook(built, tmp_path):
+    """A fresh environment holding what the README tells students to install runs the student version with
+    nbclient, as Jupyter would: a kernel is there, every cell runs, and grader.check says what is not set yet."""
+    hw = "hw3_slider_crank"
+    packages = _student_install()
+    assert {"otter-grader", "numpy", "matplotlib"} <= set(packages)
+    bin_dir = build.grading_venv(packages, tmp_path / "student-env")
+    work = tmp_path / "student"
+    shutil.copytree(built[hw][1] / "student", work)
+    script = (
+        "import nbformat, nbclient\n"
+        f"nb = nbformat.read({str(work / (hw + '.ipynb'))!r}, as_version=4)\n"
+        "nbclient.NotebookClient(nb, kernel_name='python3', timeout=300,"
+        f" resources={{'metadata': {{'path': {str(work)!r}}}}}).execute()\n"
+        "print('\\n'.join(str(o.get('text', '')) for c in nb.cells if c.cell_type == 'code' for o in c.outputs))\n"
+    )
+    ran = subprocess.run([str(bin_dir / "python"), "-c", script], capture_output=True, text=True, cwd=work,
+                         env=build.isolated_env(bin_dir, tmp_path / "home"), timeout=600)
+    assert ran.returncode == 0, ran.stderr[-3000:]
+    assert "`x_piston` is not set yet" in ran.stdout and "q1 results:" in ran.stdout, ran.stdout[-3000:]
