@@ -1,7 +1,7 @@
 """What the symbols of a mechanism's loops are: angles or lengths, and what sets the loops' scale.
 
 A loop knows its own angles (declared, or inside a sine or cosine of its
-equations: :attr:`numkin.Loop.angles`). Across a mechanism more follows
+equations: ``Loop.angles``). Across a mechanism more follows
 (:func:`angle_unknowns`): an unknown that another loop or a point turns by,
 or that an equation sets to a sum of angles, is an angle too, and the input
 is one unless the loops use it as a length only (the length of a vector: a
@@ -77,14 +77,14 @@ def _input_is_length(loops, input_symbol, trig) -> bool:
 def angle_unknowns(loops, input_symbol, points=None) -> tuple[set, bool]:
     """The unknowns of a mechanism's loops that are angles (rad), and whether the input is one.
 
-    Each loop's own (:attr:`numkin.Loop.angles`); and, of a loop whose angles
+    Each loop's own (``Loop.angles``); and, of a loop whose angles
     were not declared, every unknown that another loop's sine or cosine, or
     a point's, turns by (a term of its argument: ``t5`` of ``cos(t5 + 0.6)``,
     not ``x`` of ``sin(x / R)``), and every unknown an equation of it sets to
     a sum of angles and constants (``t5 - t2 - 0.6``, ``t3 - atan2(y, x)``):
     an angle that a later loop or a point turns by, or that others define, is
     an angle though its own loop has no sine of it. The input is an angle
-    unless the loops use it as a length only (:func:`_input_is_length`).
+    unless the loops use it as a length only (a vector's length, ``d cos(phi)``).
 
     Examples
     --------
@@ -136,7 +136,7 @@ def angle_offsets(lp, moving) -> list:
 
 
 def scale_names(lp, moving) -> dict:
-    """``{"scales": [...], "angle_parameters": [...]}`` of a loop (:func:`_scale_symbols`, computed once), the
+    """``{"scales": [...], "angle_parameters": [...]}`` of a loop (its scaling and angle symbols, computed once), the
     moving symbols left out."""
     lengths, angles = _scale_symbols(lp)
     return {"scales": sorted(str(s) for s in lengths - moving),
