@@ -166,6 +166,27 @@ class BlockStructure:
             return None, None
         return [a + b for a, b in zip(x, dx)], max([abs(a) * w for a, w in zip(dx, self.inv_xscale)])
 
+    def update1_loop(self, v, x, k):
+        """:meth:`update1` of block ``k``'s unknowns alone, every other unknown held: ``(x - J_kk^-1 F_k, scaled
+        step norm)`` or ``(None, None)`` if the block is singular or the step not finite."""
+        n = self.n
+        a, b = self.blocks[k]
+        J = v[n : n + n * n]
+        if b - a == 1:
+            dx = [-v[a] / J[a * n + a]] if J[a * n + a] != 0.0 else None
+        elif b - a == 2:
+            p, q, r, s = J[a * n + a], J[a * n + a + 1], J[(a + 1) * n + a], J[(a + 1) * n + a + 1]
+            det = p * s - q * r
+            dx = [(q * v[a + 1] - s * v[a]) / det, (r * v[a] - p * v[a + 1]) / det] if det != 0.0 else None
+        else:
+            m = np.array([[J[i * n + j] for j in range(a, b)] for i in range(a, b)], dtype=float)
+            det = float(np.linalg.det(m)) if np.all(np.isfinite(m)) else math.nan
+            dx = np.linalg.solve(m, [-f for f in v[a:b]]).tolist() if det != 0.0 and math.isfinite(det) else None
+        if dx is None or not math.isfinite(sum(dx)):
+            return None, None
+        return [*x[:a], *(xi + di for xi, di in zip(x[a:b], dx)), *x[b:]], max(
+            [abs(d) * w for d, w in zip(dx, self.inv_xscale[a:b])])
+
     def local1(self, v):
         """Tangent, orientations and largest condition number at one solved point.
 

@@ -17,10 +17,9 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from .compiled import MATH_ERRORS
 from .errors import AssemblyError, BranchError, ConvergenceWarning, GuessWarning, InputError, warn
 from .march import FAR, TWO_PI, Continuation
-from .newton import COND_MAX, has_converged, is_singular
+from .newton import COND_MAX, is_singular
 from .units import deg_text, number_array
 
 __all__ = ["solve_start", "loop_by_loop", "guess_vector", "far_guesses", "still_far", "degrees_hint", "unsolved",
@@ -226,19 +225,6 @@ def _where(t0, note):
     return f"input {deg_text(t0, 3)}{note}"
 
 
-def _block_step(J, f, a, b, n):
-    """The Newton step ``-J_kk^-1 f_k`` of the diagonal block of rows and columns ``a:b`` (a list): Cramer's rule
-    for blocks of one or two unknowns (the block is not singular: tested before)."""
-    if b - a == 1:
-        return [-f[a] / J[a * n + a]]
-    if b - a == 2:
-        p, q, r, s = J[a * n + a], J[a * n + a + 1], J[(a + 1) * n + a], J[(a + 1) * n + a + 1]
-        det = p * s - q * r
-        return [(q * f[a + 1] - s * f[a]) / det, (r * f[a] - p * f[a + 1]) / det]
-    block = np.array([[J[i * n + j] for j in range(a, b)] for i in range(a, b)])
-    return np.linalg.solve(block, [-v for v in f[a:b]]).tolist()
-
-
 def _loop_numbers(ctx, x, t0, k):
     """Loop ``k``'s scaled residual and condition number at ``x`` (NaN and inf where undefined)."""
     v = ctx.eval1(x, t0)
@@ -246,46 +232,6 @@ def _loop_numbers(ctx, x, t0, k):
         return math.nan, math.inf
     a, b = ctx.blocks.blocks[k]
     return max([abs(f) for f in v[a:b]]) / ctx.fscale, ctx.blocks.cond1(v[ctx.n : ctx.n + ctx.nn])[k]
-
-
-def _one_loop(ctx, x, t0, k, maxiter):
-    """Newton on loop ``k``'s unknowns alone at the input ``t0``, every other unknown held: ``(x, status,
-    iterations, residual, v)``, the status, the loop's scaled residual and the evaluation at ``x`` (None if
-    unknown) as :meth:`Continuation.newton1` gives them with ``cond_max`` (a block over
-    :data:`~numkin.newton.COND_MAX` is refused as singular)."""
-    if len(ctx.blocks.blocks) == 1:  # (one loop: Newton on all unknowns, as the continuation's)
-        return ctx.newton1(x, t0, maxiter, cond_max=COND_MAX)
-    written_out = ctx.blocks.loop_newton1(k) if ctx.symbolic else None
-    if written_out is not None:
-        x, status, it, res, v, evaluations = written_out(ctx._fjt, x, t0, ctx.pt, maxiter, ctx.fscale, ctx.tol,
-                                                         ctx._floor, MATH_ERRORS, COND_MAX)
-        ctx.nfev += evaluations
-        ctx.njev += evaluations
-        return x, status, it, res, v
-    a, b = ctx.blocks.blocks[k]
-    n, fscale, tol, w = ctx.n, ctx.fscale, ctx.tol, ctx.inv_xs[a:b]
-    evaluate = ctx.eval1 if ctx.symbolic else ctx.eval1_fd
-    v = evaluate(x, t0)
-    if v is None:
-        return x, "diverged", 0, math.nan, None
-    res = max([abs(f) for f in v[a:b]]) / fscale
-    prev = math.inf
-    for it in range(maxiter):
-        J = v[n : n + n * n]
-        if is_singular(ctx.blocks.cond1(J)[k], COND_MAX):
-            return x, "singular", it, res, v
-        dx = _block_step(J, v, a, b, n)
-        x = [*x[:a], *(xi + di for xi, di in zip(x[a:b], dx)), *x[b:]]
-        step = max([abs(d) * s for d, s in zip(dx, w)])
-        v = evaluate(x, t0)
-        if v is None or not math.isfinite(step):
-            return x, "diverged", it + 1, math.nan, None
-        res = max([abs(f) for f in v[a:b]]) / fscale
-        floor = ctx._floor(x, t0) if res > tol and step >= 0.9 * prev else 0.0
-        if has_converged(res, step, prev, tol, floor):
-            return x, "converged", it + 1, res, v if ctx.symbolic else ctx.eval1(x, t0)  # (dF/dt with the rows)
-        prev = step
-    return x, "maxiter", maxiter, res, v
 
 
 def loop_by_loop(ctx, x, t0, maxiter):
@@ -301,10 +247,10 @@ def loop_by_loop(ctx, x, t0, maxiter):
     even where its guess was exact. Solved one at a time, every loop's
     guess picks its own branch. ``maxiter`` Newton steps are allowed each loop.
     """
-    last = len(ctx.blocks.blocks) - 1
+    last, total = len(ctx.blocks.blocks) - 1, 0
     for k in range(last + 1):
-        x, status, it, res, v = _one_loop(ctx, x, t0, k, maxiter)
-        total = it if k == 0 else total + it
+        x, status, it, res, v = ctx.newton1(x, t0, maxiter, cond_max=COND_MAX, loop=k if last else None)
+        total += it
         if status != "converged":
             return x, status, total, res, v, k, it
     return x, "converged", total, res, v, last, it

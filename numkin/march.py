@@ -158,8 +158,12 @@ class Continuation(Crossings):
         """The round-off floor of the scaled residual at the point ``x`` (list) and input ``t``."""
         return residual_floor([a * w for a, w in zip(x, self.inv_xs)], t)
 
-    def newton1(self, x, t, maxiter, cond_max=None):
+    def newton1(self, x, t, maxiter, cond_max=None, loop=None):
         """Newton-Raphson at one input from ``x`` (list): the scalar kernel.
+
+        ``loop``: the index of one loop, whose unknowns alone Newton moves,
+        every other unknown held (the residual, the step and the conditioning
+        rule are that loop's: :meth:`numkin.blocks.BlockStructure.update1_loop`).
 
         Returns ``(x, status, iterations, residual, v)``: status is
         ``"converged"``, ``"singular"``, ``"diverged"`` or ``"maxiter"``;
@@ -171,25 +175,31 @@ class Continuation(Crossings):
         already within ``tol`` (a root on a singular position) has converged.
         """
         n, nn, fscale, tol = self.n, self.nn, self.fscale, self.tol
-        if self._newton1 is not None:
-            x, status, it, res, v, evals = self._newton1(self._fjt, x, t, self.pt, maxiter, fscale, tol, self._floor,
-                                                         MATH_ERRORS, cond_max)
+        written_out = self._newton1 if loop is None else self.symbolic and self.blocks.loop_newton1(loop)
+        if written_out:
+            x, status, it, res, v, evals = written_out(self._fjt, x, t, self.pt, maxiter, fscale, tol, self._floor,
+                                                       MATH_ERRORS, cond_max)
             self.nfev += evals
             self.njev += evals
             return x, status, it, res, v
-        update = self.blocks.update1
+        if loop is None:
+            update, (a, b) = self.blocks.update1, (0, n)
+        else:
+            update, (a, b) = (lambda v_, x_: self.blocks.update1_loop(v_, x_, loop)), self.blocks.blocks[loop]
         evaluate = self.eval1 if self.symbolic else self.eval1_fd
         v = evaluate(x, t)
         if v is None:
             return x, "diverged", 0, math.nan, None
-        res = max([abs(a) for a in v[:n]]) / fscale
+        res = max([abs(f) for f in v[a:b]]) / fscale
         prev = math.inf
         it = 0
         status = "maxiter"
         while it < maxiter:
-            if cond_max is not None and is_singular(max(self.blocks.cond1(v[n : n + nn])), cond_max):
-                status = "singular"
-                break
+            if cond_max is not None:
+                conds = self.blocks.cond1(v[n : n + nn])
+                if is_singular(max(conds) if loop is None else conds[loop], cond_max):
+                    status = "singular"
+                    break
             x_new, step = update(v, x)
             if x_new is None:  # no step; none needed if x is a root already (on a singular position)
                 status = "converged" if cond_max is None and res <= tol else "singular"
@@ -199,7 +209,7 @@ class Continuation(Crossings):
             v = evaluate(x, t)
             if v is None:
                 return x, "diverged", it, math.nan, None
-            res = max([abs(a) for a in v[:n]]) / fscale
+            res = max([abs(f) for f in v[a:b]]) / fscale
             floor = 0.0
             if res > tol and step >= 0.9 * prev:  # stalled above tol: is it the round-off floor?
                 floor = self._floor(x, t)
