@@ -171,17 +171,9 @@ class BlockStructure:
         step norm)`` or ``(None, None)`` if the block is singular or the step not finite."""
         n = self.n
         a, b = self.blocks[k]
-        J = v[n : n + n * n]
-        if b - a == 1:
-            dx = [-v[a] / J[a * n + a]] if J[a * n + a] != 0.0 else None
-        elif b - a == 2:
-            p, q, r, s = J[a * n + a], J[a * n + a + 1], J[(a + 1) * n + a], J[(a + 1) * n + a + 1]
-            det = p * s - q * r
-            dx = [(q * v[a + 1] - s * v[a]) / det, (r * v[a] - p * v[a + 1]) / det] if det != 0.0 else None
-        else:
-            m = np.array([[J[i * n + j] for j in range(a, b)] for i in range(a, b)], dtype=float)
-            det = float(np.linalg.det(m)) if np.all(np.isfinite(m)) else math.nan
-            dx = np.linalg.solve(m, [-f for f in v[a:b]]).tolist() if det != 0.0 and math.isfinite(det) else None
+        m = np.array([v[n + i * n + j] for i in range(a, b) for j in range(a, b)], dtype=float).reshape(b - a, b - a)
+        det = float(np.linalg.det(m)) if np.all(np.isfinite(m)) else math.nan
+        dx = np.linalg.solve(m, [-f for f in v[a:b]]).tolist() if det != 0.0 and math.isfinite(det) else None
         if dx is None or not math.isfinite(sum(dx)):
             return None, None
         return [*x[:a], *(xi + di for xi, di in zip(x[a:b], dx)), *x[b:]], max(

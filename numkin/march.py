@@ -403,10 +403,10 @@ class Continuation(Crossings):
                         ok, reason = False, "orientation"  # localise the crossing before deciding
                     else:
                         # every loop that changed orientation in this step, in the order the step passes them
-                        passed = sorted((direction * (self.crossing(t, x, t_new, v, k) - t), k)
-                                        for k, (a, b) in enumerate(zip(o_new, o)) if a != b)
-                        for s, k in passed:
-                            self.change_point(t, t_new, self.loop_names[k], t + direction * s)
+                        places = {k: self.crossing(t, x, t_new, v, k) for k, (a, b) in enumerate(zip(o_new, o))
+                                  if a != b}
+                        for k in sorted(places, key=lambda k: direction * (places[k] - t)):
+                            self.change_point(t, t_new, self.loop_names[k], places[k])
             if ok and d is not None:
                 if not cond <= COND_TANGENT:
                     if dt > crossing_step:
